@@ -1,0 +1,137 @@
+// Every struct and binding number that crosses the host/shader boundary, defined once for C++ and GLSL.
+// Layouts are std430/scalar-compatible: vec3 members are always followed by a 4-byte scalar.
+#ifndef WB_GPU_TYPES_H
+#define WB_GPU_TYPES_H
+#include "glsl_cpp.h"
+
+// ---- descriptor set 0 bindings of the ray tracing pipelines ----
+#define WB_BIND_TLAS 0          // accelerationStructureEXT
+#define WB_BIND_ACCUM 1         // rgba32f storage image: running average of radiance
+#define WB_BIND_FRAME 2         // uniform buffer FrameUniforms
+#define WB_BIND_GEOMETRIES 3    // storage buffer GeometryInfo[] (indexed by instance custom index + geometry index)
+#define WB_BIND_MATERIALS 4     // storage buffer Material[]
+#define WB_BIND_LIGHTS 5        // storage buffer DirectionalLight[]
+#define WB_BIND_TEXTURES 6      // sampler2D[] (runtime array, descriptor indexing)
+#define WB_BIND_ENV_MAP 7       // sampler2D: equirectangular environment (1x1 when constant colour)
+#define WB_BIND_ENV_ALIAS 8     // storage buffer EnvAliasEntry[] (importance sampling table)
+#define WB_BIND_AOV_ALBEDO 9    // rgba16f storage image
+#define WB_BIND_AOV_NORMAL 10   // rgba16f storage image
+#define WB_BIND_COUNTERS 11     // storage buffer Counters
+#define WB_BIND_BLUE_NOISE 12   // storage buffer uint[] 128x128 blue-noise (rg in 16 bits each)
+#define WB_BIND_SOBOL 13        // storage buffer uint[] Sobol direction numbers [dim * 32 + bit]
+
+// Material alpha modes (glTF).
+#define WB_ALPHA_OPAQUE 0u
+#define WB_ALPHA_MASK 1u
+#define WB_ALPHA_BLEND 2u
+
+// Material flags.
+#define WB_MATERIAL_DOUBLE_SIDED 1u
+
+// Push-constant flags.
+#define WB_FLAG_SAMPLER_PCG 1u       // PCG random numbers instead of Sobol + blue noise
+#define WB_FLAG_NO_NEE 2u            // disable next-event estimation (BRDF sampling only)
+#define WB_FLAG_NO_BRDF_MIS 4u       // light sampling only for the environment (no MIS with BRDF)
+#define WB_FLAG_NO_RR 8u             // Russian roulette off
+#define WB_FLAG_AOV 16u              // write albedo/normal AOVs at bounce 0
+
+WB_NAMESPACE_BEGIN
+
+// Interleaved vertex as stored in device memory, fetched through buffer device addresses.
+struct Vertex {
+  vec3 position;
+  float u;
+  vec3 normal;
+  float v;
+  vec4 tangent;  // xyz tangent, w handedness; all zero when the mesh has none and none could be generated
+};
+
+// One entry per BLAS geometry (mesh primitive): where its data lives and what it is made of.
+struct GeometryInfo {
+  uint vertexAddressLo;  // buffer device address split in two 32-bit halves (no int64 needed in GLSL)
+  uint vertexAddressHi;
+  uint indexAddressLo;
+  uint indexAddressHi;
+  uint materialIndex;
+  uint vertexCount;
+  uint triangleCount;
+  uint pad0;
+};
+
+// glTF 2.0 metallic-roughness material, extensions folded in. Texture indices are -1 when absent.
+struct Material {
+  vec4 baseColorFactor;
+  vec3 emissive;  // emissiveFactor * KHR_materials_emissive_strength
+  float metallic;
+  vec3 specularColorFactor;  // KHR_materials_specular
+  float roughness;
+  float specularFactor;  // KHR_materials_specular (1 when absent)
+  float alphaCutoff;
+  uint alphaMode;
+  uint flags;
+  int baseColorTexture;
+  int normalTexture;
+  int metallicRoughnessTexture;
+  int emissiveTexture;
+  float normalScale;
+  float pad0;
+  float pad1;
+  float pad2;
+};
+
+// KHR_lights_punctual directional light.
+struct DirectionalLight {
+  vec3 direction;  // unit vector the light travels along (from the light into the scene)
+  float cosAngularRadius;  // 1 for a delta light
+  vec3 radiance;  // colour * intensity (irradiance on a surface facing the light, W/m^2 style units)
+  float pad0;
+};
+
+// Per-frame uniforms (binding WB_BIND_FRAME).
+struct FrameUniforms {
+  mat4 viewInverse;
+  mat4 projInverse;
+  vec4 envColor;  // rgb constant environment radiance (used when envMapPresent == 0), a unused
+  uint lightCount;
+  uint envMapPresent;
+  uint envWidth;
+  uint envHeight;
+  float envIntensity;
+  float envRotation;  // radians about +Y
+  float envTotalWeight;  // sum of the alias table's unnormalised weights
+  float sceneScale;  // scene bounding radius (for debug views only; never an epsilon)
+};
+
+// Per-dispatch push constants (at most 128 bytes).
+struct PushConstants {
+  uint sampleIndex;  // index of the sample being accumulated (0 = overwrite)
+  uint maxBounces;
+  uint rrStart;
+  float rrMin;
+  float rrMax;
+  uint flags;
+  uint seed;
+  uint debugView;
+  uvec2 tileOffset;  // first pixel of the traced region
+  uvec2 imageSize;   // full accumulation image size
+};
+
+// Alias table entry for environment importance sampling (one per env-map pixel).
+struct EnvAliasEntry {
+  float prob;  // probability of keeping this entry (vs. its alias)
+  uint alias;
+  float pdf;  // pdf of choosing this pixel (its weight / total weight)
+  float pad0;
+};
+
+// Counters the host reads back.
+struct Counters {
+  uint droppedSamples;  // NaN/Inf samples not accumulated
+  uint rayCount;        // all rays traced (approximate, atomics per pixel)
+  uint shadowRayCount;
+  uint pathCount;
+};
+
+WB_NAMESPACE_END
+
+#endif
