@@ -31,10 +31,20 @@ fs::path projectRoot() {
   static const fs::path root = findRoot();
   return root;
 }
-fs::path shaderDir() { return projectRoot() / "shaders"; }
-fs::path assetDir() { return projectRoot() / "assets"; }
-fs::path shaderCacheDir() { return projectRoot() / "shader_cache"; }
-fs::path sharedDir() { return projectRoot().parent_path() / "shared"; }
-fs::path defaultScenePath() { return assetDir() / "default_scene.gltf"; }
+fs::path shaderDir() {
+  return projectRoot() / "shaders";
+}
+fs::path assetDir() {
+  return projectRoot() / "assets";
+}
+fs::path shaderCacheDir() {
+  return projectRoot() / "shader_cache";
+}
+fs::path sharedDir() {
+  return projectRoot().parent_path() / "shared";
+}
+fs::path defaultScenePath() {
+  return assetDir() / "default_scene.gltf";
+}
 
 }  // namespace wb

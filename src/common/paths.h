@@ -7,10 +7,10 @@ namespace wb {
 // The project root: the folder above the running binary (build/workbench -> .) when it holds shaders/,
 // else WB_ROOT from the environment, else the source folder the binary was configured from.
 std::filesystem::path projectRoot();
-std::filesystem::path shaderDir();      // projectRoot()/shaders
-std::filesystem::path assetDir();       // projectRoot()/assets
-std::filesystem::path shaderCacheDir(); // projectRoot()/shader_cache
-std::filesystem::path sharedDir();      // projectRoot()/../shared (third-party assets, references)
+std::filesystem::path shaderDir();       // projectRoot()/shaders
+std::filesystem::path assetDir();        // projectRoot()/assets
+std::filesystem::path shaderCacheDir();  // projectRoot()/shader_cache
+std::filesystem::path sharedDir();       // projectRoot()/../shared (third-party assets, references)
 std::filesystem::path defaultScenePath();
 
 }  // namespace wb

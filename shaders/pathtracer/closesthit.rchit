@@ -1,0 +1,129 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// All surface shading: material evaluation, next-event estimation (directional lights; environment with MIS),
+// BRDF sampling of the continuation ray, handed back to raygen through the payload.
+#include "common.glsl"
+#include "payload.glsl"
+#include "hit_data.glsl"
+#include "random.glsl"
+#include "environment.glsl"
+#include "../shared/brdf.h"
+
+layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
+layout(location = SHADOW_PAYLOAD_LOCATION) rayPayloadEXT ShadowPayload shadow;
+
+hitAttributeEXT vec2 attribs;
+
+bool visible(vec3 origin, vec3 dir) {
+  shadow.visible = 0u;
+  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0,
+              MISS_SHADOW, origin, 0.0, dir, 1.0e30, SHADOW_PAYLOAD_LOCATION);
+  return shadow.visible != 0u;
+}
+
+void main() {
+  const GeometryInfo g = hitGeometry();
+  const Material m = materials[g.materialIndex];
+  const HitVertexData h = fetchHit(g, gl_PrimitiveID, attribs);
+
+  const vec3 wo = -gl_WorldRayDirectionEXT;
+  const vec3 position = gl_ObjectToWorldEXT * vec4(h.position, 1.0);
+  // Normals transform with the inverse transpose: n_world = n_object * WorldToObject (3x3 part).
+  vec3 ng = normalize((h.geoNormal * gl_WorldToObjectEXT).xyz);
+  if (any(isnan(ng))) ng = wo;  // zero-area triangle: no orientation; face the viewer
+  const bool frontFace = dot(ng, wo) >= 0.0;
+  if (!frontFace) ng = -ng;  // shade the side the ray came from
+
+  vec3 ns = (h.normal * gl_WorldToObjectEXT).xyz;
+  ns = dot(ns, ns) > 1e-20 ? normalize(ns) : ng;
+  if (!frontFace) ns = -ns;
+
+  // Material inputs, textures applied.
+  vec4 baseColor = m.baseColorFactor;
+  if (m.baseColorTexture >= 0) baseColor *= sampleTexture(m.baseColorTexture, h.uv);
+  float metallic = m.metallic;
+  float roughness = m.roughness;
+  if (m.metallicRoughnessTexture >= 0) {
+    const vec4 mr = sampleTexture(m.metallicRoughnessTexture, h.uv);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  vec3 emissive = m.emissive;
+  if (m.emissiveTexture >= 0) emissive *= sampleTexture(m.emissiveTexture, h.uv).rgb;
+
+  // Normal mapping with the TBN frame (tangent sign from w); skipped when the tangent is missing or degenerate.
+  if (m.normalTexture >= 0) {
+    vec3 t = (gl_ObjectToWorldEXT * vec4(h.tangent.xyz, 0.0)).xyz;
+    t = t - ns * dot(ns, t);
+    if (dot(t, t) > 1e-20 && h.tangent.w != 0.0) {
+      t = normalize(t);
+      const vec3 b = cross(ns, t) * (h.tangent.w < 0.0 ? -1.0 : 1.0) * (frontFace ? 1.0 : -1.0);
+      vec3 tn = sampleTexture(m.normalTexture, h.uv).xyz * 2.0 - 1.0;
+      tn.xy *= m.normalScale;
+      const vec3 mapped = tn.x * t + tn.y * b + tn.z * ns;
+      if (dot(mapped, mapped) > 1e-20) ns = normalize(mapped);
+    }
+  }
+  // Keep the shading normal on the visible side of the geometric normal (no black pixels at grazing views).
+  const float minCos = 1e-3;
+  const float nsDotWo = dot(ns, wo);
+  if (nsDotWo < minCos) ns = normalize(ns + (minCos - nsDotWo) * wo);
+  if (any(isnan(ns))) ns = ng;
+
+  SurfaceMaterial sm;
+  sm.baseColor = baseColor.rgb;
+  sm.metallic = clamp(metallic, 0.0, 1.0);
+  sm.roughness = clamp(roughness, 0.0, 1.0);
+  sm.specularFactor = m.specularFactor;
+  sm.specularColor = m.specularColorFactor;
+
+  payload.hitT = gl_HitTEXT;
+  payload.albedo = baseColor.rgb;
+  payload.normal = ns;
+
+  // Emission, from the front face only unless the material is double-sided.
+  vec3 radiance = vec3(0.0);
+  if (frontFace || (m.flags & WB_MATERIAL_DOUBLE_SIDED) != 0u) radiance += emissive;
+
+  const uint bounce = payload.bounce;
+  const vec3 originOut = offsetRay(position, ng);
+  if ((pc.flags & WB_FLAG_NO_NEE) == 0u) {
+    // Directional lights: delta distributions, so plain light sampling (no MIS).
+    for (uint i = 0u; i < frame.lightCount; ++i) {
+      const vec3 wi = -lights[i].direction;
+      if (dot(wi, ng) <= 0.0) continue;
+      const vec3 f = brdfEval(sm, ns, wo, wi);
+      if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
+      if (visible(originOut, wi)) radiance += f * lights[i].radiance;
+    }
+    // Environment: importance sampled, MIS (power heuristic) against BRDF sampling.
+    vec3 wi;
+    float lightPdf;
+    const vec3 le = envSample(vec3(pathSampleBounce(bounce, WB_DIM_LIGHT_U), pathSampleBounce(bounce, WB_DIM_LIGHT_V),
+                                   pathSampleBounce(bounce, WB_DIM_LIGHT_CHOICE)),
+                              wi, lightPdf);
+    if (lightPdf > 0.0 && dot(wi, ng) > 0.0) {
+      const vec3 f = brdfEval(sm, ns, wo, wi);
+      if (max(f.x, max(f.y, f.z)) > 0.0 && visible(originOut, wi)) {
+        const float w = (pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0,
+                                                                                       brdfPdf(sm, ns, wo, wi));
+        radiance += f * le * (w / lightPdf);
+      }
+    }
+  }
+  payload.radiance = radiance;
+
+  // Continuation ray by BRDF sampling.
+  const BrdfSample s = brdfSample(sm, ns, wo,
+                                  vec3(pathSampleBounce(bounce, WB_DIM_LOBE), pathSampleBounce(bounce, WB_DIM_BRDF_U),
+                                       pathSampleBounce(bounce, WB_DIM_BRDF_V)));
+  if (s.pdf <= 0.0 || dot(s.wi, ng) <= 0.0) {
+    payload.status = PAYLOAD_ABSORBED;  // below the geometric surface: would leak light through it
+    return;
+  }
+  payload.status = PAYLOAD_CONTINUE;
+  payload.weight = s.weight;
+  payload.pdf = s.pdf;
+  payload.origin = originOut;
+  payload.direction = s.wi;
+}

@@ -1,0 +1,60 @@
+// workbench: the Vulkan ray tracing shader workbench. Subcommands: render, shaders (and the live window when
+// run with no subcommand).
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "app/cmd_render.h"
+#if __has_include("app/cmd_shaders.h")
+#include "app/cmd_shaders.h"
+#define WB_HAVE_SHADERS_CMD 1
+#endif
+#include "common/paths.h"
+
+namespace {
+
+void usage() {
+  std::printf(
+      "usage: workbench [SCENE] [render flags]        the live workbench (headless render without a "
+      "display)\n"
+      "       workbench render [SCENE] --out FILE ...  headless render (PNG tonemapped, EXR linear)\n"
+      "       workbench shaders [--json] PATH...       compile and reflect shaders\n"
+      "run 'workbench COMMAND --help' for a command's flags\n");
+}
+
+int runDefault(const std::vector<std::string>& args) {
+  // The window is not available in this build: say so and fall back to a headless render of the scene.
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display) {
+    std::printf("workbench: no display (DISPLAY is not set); rendering headless instead\n");
+  }
+  std::vector<std::string> renderArgs = args;
+  bool hasOut = false;
+  for (const auto& a : args) hasOut = hasOut || a == "--out" || a.rfind("--out=", 0) == 0;
+  const std::string out = (wb::projectRoot() / "out" / "workbench.png").string();
+  if (!hasOut) {
+    std::filesystem::create_directories(wb::projectRoot() / "out");
+    renderArgs.push_back("--out");
+    renderArgs.push_back(out);
+  }
+  return wb::app::runRenderCommand(renderArgs);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
+    usage();
+    return 0;
+  }
+  const std::string cmd = args.empty() ? "" : args[0];
+  std::vector<std::string> rest =
+      args.empty() ? args : std::vector<std::string>(args.begin() + 1, args.end());
+  if (cmd == "render") return wb::app::runRenderCommand(rest);
+#ifdef WB_HAVE_SHADERS_CMD
+  if (cmd == "shaders") return wb::app::runShadersCommand(rest);
+#endif
+  return runDefault(args);
+}

@@ -1,0 +1,31 @@
+// Command-line flags shared by `render`, the window and the other commands that render (a contract with
+// scripts outside the project: names are stable).
+#pragma once
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "render/settings.h"
+
+namespace wb::app {
+
+struct RenderOptions {
+  std::string scene;  // empty = the default scene
+  std::string size = "512x512";
+  render::RenderSettings settings;
+  std::string envColor;  // "R,G,B"
+  std::string sampler = "sobol";
+  std::string aov;  // "albedo,normal"
+  std::string device;
+  bool noRussianRoulette = false;
+  bool noNee = false;
+  bool noMis = false;
+};
+
+// Adds SCENE and the render parameter flags to a CLI11 command.
+void addRenderOptions(CLI::App& app, RenderOptions& o);
+// Validates and converts the parsed strings into o.settings; throws std::invalid_argument with a one-line
+// reason.
+void finishRenderOptions(RenderOptions& o);
+
+}  // namespace wb::app

@@ -1,0 +1,81 @@
+#include "app/render_session.h"
+
+#include <chrono>
+
+#include "common/paths.h"
+
+namespace wb::app {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settings) {
+  render::EnvironmentData d;
+  if (!settings.envPath.empty()) {
+    throw std::runtime_error("--env: environment maps are not supported yet ('" + settings.envPath + "')");
+  }
+  d.width = d.height = 1;
+  d.rgb = {settings.envColor.x, settings.envColor.y, settings.envColor.z};
+  d.isMap = false;
+  return d;
+}
+
+RenderSession::RenderSession(const SessionOptions& options) {
+  auto t0 = std::chrono::steady_clock::now();
+  const std::filesystem::path scenePath =
+      options.scenePath.empty() ? defaultScenePath() : std::filesystem::path(options.scenePath);
+  scene_ = scene::loadGltf(scenePath);  // before the device: bad input fails fast
+  const auto envData = loadEnvironmentData(options.settings);
+
+  const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;
+  shader::setMesaShaderCacheDirDefault(cacheDir);
+  ctx_ = std::make_unique<vk::Context>(options.context);
+  shader::ShaderLibrary::Options lo;
+  lo.includeRoots = {shaderDir()};
+  lo.cacheDir = cacheDir;
+  library_ = std::make_unique<shader::ShaderLibrary>(lo);
+  gpuScene_ = std::make_unique<render::GpuScene>(*ctx_, scene_);
+  env_ = std::make_unique<render::GpuEnvironment>(*ctx_, envData);
+  tracer_ = std::make_unique<render::PathTracer>(*ctx_, *library_, *gpuScene_, *env_, options.settings);
+  sceneCamera_ = render::cameraFromScene(scene_.camera);
+  tracer_->setCamera(sceneCamera_);
+  setupSeconds_ = secondsSince(t0);
+}
+
+RenderSession::~RenderSession() {
+  if (ctx_) vkDeviceWaitIdle(ctx_->device());
+  tracer_.reset();
+  env_.reset();
+  gpuScene_.reset();
+}
+
+double RenderSession::render(uint32_t spp) {
+  auto t0 = std::chrono::steady_clock::now();
+  tracer_->resetAccumulation();
+  tracer_->resetCounters();
+  tracer_->render(spp);
+  return secondsSince(t0);
+}
+
+eval::ImageRGBA RenderSession::image() const {
+  eval::ImageRGBA img;
+  img.width = tracer_->settings().width;
+  img.height = tracer_->settings().height;
+  img.pixels = tracer_->readAccumulation();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
+eval::ImageRGBA RenderSession::aov(bool normal) const {
+  eval::ImageRGBA img;
+  img.width = tracer_->settings().width;
+  img.height = tracer_->settings().height;
+  img.pixels = tracer_->readAov(normal);
+  return img;
+}
+
+}  // namespace wb::app

@@ -1,0 +1,54 @@
+// Everything a render needs, built in order: device, shader library, scene on the device, environment, and
+// the path tracer. Used by the headless commands, the window and the GPU tests.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "eval/image.h"
+#include "render/path_tracer.h"
+#include "scene/scene.h"
+#include "shader/library.h"
+#include "vk/context.h"
+
+namespace wb::app {
+
+struct SessionOptions {
+  std::string scenePath;  // empty = default scene
+  render::RenderSettings settings;
+  vk::ContextOptions context;
+  std::filesystem::path cacheDir;  // empty = shader_cache/ of the project
+  bool quiet = false;
+};
+
+render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settings);
+
+class RenderSession {
+ public:
+  explicit RenderSession(const SessionOptions& options);
+  ~RenderSession();
+
+  vk::Context& context() { return *ctx_; }
+  shader::ShaderLibrary& library() { return *library_; }
+  const scene::Scene& scene() const { return scene_; }
+  render::PathTracer& pathTracer() { return *tracer_; }
+  render::GpuScene& gpuScene() { return *gpuScene_; }
+  const render::CameraState& sceneCamera() const { return sceneCamera_; }
+  double setupSeconds() const { return setupSeconds_; }
+
+  // Renders `spp` samples from scratch; returns the wall time in seconds.
+  double render(uint32_t spp);
+  eval::ImageRGBA image() const;  // the accumulation (alpha = 1)
+  eval::ImageRGBA aov(bool normal) const;
+
+ private:
+  std::unique_ptr<vk::Context> ctx_;
+  std::unique_ptr<shader::ShaderLibrary> library_;
+  scene::Scene scene_;
+  std::unique_ptr<render::GpuScene> gpuScene_;
+  std::unique_ptr<render::GpuEnvironment> env_;
+  std::unique_ptr<render::PathTracer> tracer_;
+  render::CameraState sceneCamera_;
+  double setupSeconds_ = 0;
+};
+
+}  // namespace wb::app

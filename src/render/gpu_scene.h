@@ -1,0 +1,46 @@
+// A scene on the device: vertex/index buffers, per-geometry records, materials, lights, textures, and the
+// acceleration structures over them. Built once per loaded scene; the passes only read it.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "scene/scene.h"
+#include "vk/accel.h"
+#include "vk/resources.h"
+
+namespace wb::render {
+
+class GpuScene {
+ public:
+  GpuScene(vk::Context& ctx, const scene::Scene& scene);
+  ~GpuScene();
+  GpuScene(const GpuScene&) = delete;
+  GpuScene& operator=(const GpuScene&) = delete;
+
+  VkAccelerationStructureKHR tlas() const { return accel_->tlas(); }
+  const vk::Buffer& geometries() const { return geometries_; }
+  const vk::Buffer& materials() const { return materials_; }
+  const vk::Buffer& lights() const { return lights_; }
+  uint32_t lightCount() const { return lightCount_; }
+  // One entry per scene texture (a 1x1 white image where a texture has no usable image).
+  const std::vector<VkDescriptorImageInfo>& textureDescriptors() const { return textureInfos_; }
+  const vk::AccelerationStructures& accel() const { return *accel_; }
+  uint64_t deviceBytes() const;
+  bool anyNonOpaque() const { return anyNonOpaque_; }
+
+  // Material factors can be edited live; this rewrites the material buffer.
+  void updateMaterials(const std::vector<gpu::Material>& materials);
+
+ private:
+  vk::Context& ctx_;
+  std::vector<vk::Buffer> vertexBuffers_, indexBuffers_;
+  vk::Buffer geometries_, materials_, lights_;
+  uint32_t lightCount_ = 0;
+  std::vector<vk::Image> images_;
+  std::vector<VkSampler> samplers_;
+  std::vector<VkDescriptorImageInfo> textureInfos_;
+  std::unique_ptr<vk::AccelerationStructures> accel_;
+  bool anyNonOpaque_ = false;
+};
+
+}  // namespace wb::render

@@ -1,0 +1,222 @@
+#include "render/path_tracer.h"
+
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "common/paths.h"
+#include "render/sample_tables.h"
+
+namespace wb::render {
+namespace {
+
+constexpr uint32_t kMissCount = 2;     // environment, shadow
+constexpr uint32_t kMaxRecursion = 2;  // raygen -> closest-hit -> shadow ray
+
+float halfToFloat(uint16_t h) {
+  const uint32_t sign = (h >> 15) & 1u, exp = (h >> 10) & 0x1Fu, mant = h & 0x3FFu;
+  float v;
+  if (exp == 0) {
+    v = std::ldexp(float(mant), -24);
+  } else if (exp == 31) {
+    v = mant ? NAN : INFINITY;
+  } else {
+    v = std::ldexp(float(mant | 0x400u), int(exp) - 25);
+  }
+  return sign ? -v : v;
+}
+
+}  // namespace
+
+CameraState cameraFromScene(const scene::Camera& camera) {
+  CameraState c;
+  c.view = glm::lookAt(camera.eye, camera.target, camera.up);
+  c.yfov = camera.yfov;
+  c.znear = camera.znear > 0.0f ? camera.znear : 0.01f;
+  return c;
+}
+
+std::vector<shader::ShaderKey> PathTracer::stageKeys(const std::vector<shader::Define>& defines) {
+  const auto dir = shaderDir() / "pathtracer";
+  return {
+      {dir / "raygen.rgen", std::nullopt, defines},  {dir / "miss.rmiss", std::nullopt, defines},
+      {dir / "shadow.rmiss", std::nullopt, defines}, {dir / "closesthit.rchit", std::nullopt, defines},
+      {dir / "anyhit.rahit", std::nullopt, defines},
+  };
+}
+
+PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
+                       const GpuEnvironment& env, const RenderSettings& settings,
+                       std::vector<shader::Define> defines)
+    : ctx_(ctx), library_(library), scene_(scene), env_(env), settings_(settings) {
+  program_ = library.registerProgram("pathtracer", stageKeys(defines));
+  frameUniforms_ = vk::Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  counters_ = vk::Buffer(ctx, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  resetCounters();
+  blueNoise_ = vk::makeBuffer(ctx, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  sobol_ = vk::makeBuffer(ctx, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  createImages();
+  swapPipeline(library.buildProgram(program_));
+}
+
+PathTracer::~PathTracer() {
+  vkDeviceWaitIdle(ctx_.device());
+}
+
+void PathTracer::createImages() {
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  accum_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  albedo_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+  normal_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* img : {&accum_, &albedo_, &normal_}) {
+      vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      VkClearColorValue zero{};
+      VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    }
+  });
+  sampleIndex_ = 0;
+}
+
+void PathTracer::writeDescriptors() {
+  auto& s = *sets_;
+  s.writeAccelerationStructure(0, WB_BIND_TLAS, scene_.tlas());
+  s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
+  s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
+  s.writeStorageImage(0, WB_BIND_AOV_NORMAL, normal_.view());
+  s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
+  s.writeBuffer(0, WB_BIND_GEOMETRIES, scene_.geometries().handle());
+  s.writeBuffer(0, WB_BIND_MATERIALS, scene_.materials().handle());
+  s.writeBuffer(0, WB_BIND_LIGHTS, scene_.lights().handle());
+  s.writeSampledImages(0, WB_BIND_TEXTURES, scene_.textureDescriptors());
+  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_.descriptor()});
+  s.writeBuffer(0, WB_BIND_ENV_ALIAS, env_.aliasTable().handle());
+  s.writeBuffer(0, WB_BIND_COUNTERS, counters_.handle());
+  s.writeBuffer(0, WB_BIND_BLUE_NOISE, blueNoise_.handle());
+  s.writeBuffer(0, WB_BIND_SOBOL, sobol_.handle());
+}
+
+void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {
+  // Groups: raygen, environment miss, shadow miss, one triangle hit group (closest-hit + any-hit).
+  const std::vector<vk::RtShaderGroup> groups = {
+      {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, 4, -1}};
+  const bool newLayout = !layout_ || !layout_->compatibleWith(build.layout);
+  std::unique_ptr<vk::PipelineLayout> layout =
+      newLayout ? std::make_unique<vk::PipelineLayout>(ctx_, build.layout) : nullptr;
+  auto pipeline = std::make_unique<vk::RayTracingPipeline>(
+      ctx_, build.stages, groups, kMissCount, (layout ? *layout : *layout_).handle(), kMaxRecursion);
+  vkDeviceWaitIdle(ctx_.device());  // the old pipeline may still be in flight
+  pipeline_ = std::move(pipeline);
+  if (newLayout) {
+    sets_.reset();
+    layout_ = std::move(layout);
+    sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *layout_);
+    writeDescriptors();
+  }
+  pipelineMs_ = pipeline_->createMs();
+  sampleIndex_ = 0;
+}
+
+void PathTracer::setCamera(const CameraState& camera) {
+  camera_ = camera;
+  sampleIndex_ = 0;
+}
+
+void PathTracer::setSettings(const RenderSettings& settings) {
+  const bool resized = settings.width != settings_.width || settings.height != settings_.height;
+  settings_ = settings;
+  if (resized) {
+    vkDeviceWaitIdle(ctx_.device());
+    createImages();
+    writeDescriptors();
+  }
+  sampleIndex_ = 0;
+}
+
+void PathTracer::updateFrameUniforms() {
+  gpu::FrameUniforms f{};
+  const float aspect = float(settings_.width) / float(settings_.height);
+  glm::mat4 proj = glm::perspective(camera_.yfov, aspect, camera_.znear, 1000.0f);
+  proj[1][1] *= -1.0f;  // Vulkan: row 0 of the image is the top
+  f.viewInverse = glm::inverse(camera_.view);
+  f.projInverse = glm::inverse(proj);
+  f.envColor = glm::vec4(settings_.envColor, 1.0f);
+  f.lightCount = scene_.lightCount();
+  f.envMapPresent = env_.isMap() ? 1u : 0u;
+  f.envWidth = env_.width();
+  f.envHeight = env_.height();
+  f.envIntensity = settings_.envIntensity;
+  f.envRotation = glm::radians(settings_.envRotationDeg);
+  f.envTotalWeight = env_.totalWeight();
+  std::memcpy(frameUniforms_.mapped(), &f, sizeof(f));
+}
+
+void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) {
+  PixelRegion r = region.value_or(PixelRegion{0, 0, settings_.width, settings_.height});
+  if (sampleIndex_ == 0 && (!region || (r.x == 0 && r.y == 0))) updateFrameUniforms();
+  gpu::PushConstants pc{};
+  pc.sampleIndex = sampleIndex_;
+  pc.maxBounces = settings_.maxBounces;
+  pc.rrStart = settings_.rrStart;
+  pc.rrMin = settings_.rrMin;
+  pc.rrMax = settings_.rrMax;
+  pc.flags = (settings_.sampler == SamplerKind::Pcg ? WB_FLAG_SAMPLER_PCG : 0u) |
+             (settings_.nee ? 0u : WB_FLAG_NO_NEE) | (settings_.mis ? 0u : WB_FLAG_NO_BRDF_MIS) |
+             (settings_.russianRoulette ? 0u : WB_FLAG_NO_RR) | (settings_.aov ? WB_FLAG_AOV : 0u);
+  pc.seed = settings_.seed;
+  pc.debugView = settings_.debugView;
+  pc.tileOffset = glm::uvec2(r.x, r.y);
+  pc.imageSize = glm::uvec2(settings_.width, settings_.height);
+
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_->handle());
+  const auto& sets = sets_->sets();
+  if (!sets.empty()) {
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_->handle(), 0,
+                            static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
+  }
+  for (const auto& range : layout_->desc().pushConstants) {
+    vkCmdPushConstants(cmd, layout_->handle(), range.stageFlags, range.offset, range.size,
+                       reinterpret_cast<const char*>(&pc) + range.offset);
+  }
+  pipeline_->sbt().trace(ctx_, cmd, r.width, r.height);
+  vk::memoryBarrier(cmd);
+}
+
+void PathTracer::render(uint32_t samples) {
+  for (uint32_t i = 0; i < samples; ++i) {
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
+    advanceSample();
+  }
+}
+
+std::vector<float> PathTracer::readAccumulation() const {
+  auto bytes = accum_.download(VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<float> out(bytes.size() / sizeof(float));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
+
+std::vector<float> PathTracer::readAov(bool normal) const {
+  auto bytes = (normal ? normal_ : albedo_).download(VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<float> out(bytes.size() / 2);
+  for (size_t i = 0; i < out.size(); ++i) {
+    uint16_t h;
+    std::memcpy(&h, bytes.data() + 2 * i, 2);
+    out[i] = halfToFloat(h);
+  }
+  return out;
+}
+
+gpu::Counters PathTracer::readCounters() const {
+  gpu::Counters c;
+  std::memcpy(&c, counters_.mapped(), sizeof(c));
+  return c;
+}
+
+void PathTracer::resetCounters() {
+  std::memset(counters_.mapped(), 0, sizeof(gpu::Counters));
+}
+
+}  // namespace wb::render

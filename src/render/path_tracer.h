@@ -1,0 +1,89 @@
+// The progressive path tracer pass: the ray tracing pipeline (raygen path loop, closest-hit shading, any-hit
+// alpha, environment and shadow miss), its accumulation and AOV images, and hot-swappable pipelines.
+#pragma once
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "render/environment.h"
+#include "render/gpu_scene.h"
+#include "render/settings.h"
+#include "scene/scene.h"
+#include "shader/library.h"
+#include "vk/pipeline_layout.h"
+#include "vk/rt_pipeline.h"
+
+namespace wb::render {
+
+struct CameraState {
+  glm::mat4 view{1.0f};  // world to camera
+  float yfov = 0.7f;
+  float znear = 0.01f;
+};
+CameraState cameraFromScene(const scene::Camera& camera);
+
+struct PixelRegion {
+  uint32_t x = 0, y = 0, width = 0, height = 0;
+};
+
+class PathTracer {
+ public:
+  PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
+             const GpuEnvironment& env, const RenderSettings& settings,
+             std::vector<shader::Define> defines = {});
+  ~PathTracer();
+
+  // Shader stages of the path tracer (for registration and tests).
+  static std::vector<shader::ShaderKey> stageKeys(const std::vector<shader::Define>& defines);
+  shader::ShaderLibrary::ProgramId program() const { return program_; }
+
+  void setCamera(const CameraState& camera);
+  void setSettings(
+      const RenderSettings& settings);  // resizes images when the size changed; resets accumulation
+  const RenderSettings& settings() const { return settings_; }
+  void resetAccumulation() { sampleIndex_ = 0; }
+
+  // Records one sample for `region` (whole image when empty) into cmd. Call advanceSample() once every region
+  // of the image got this sample.
+  void record(VkCommandBuffer cmd, std::optional<PixelRegion> region = std::nullopt);
+  void advanceSample() { ++sampleIndex_; }
+  // Convenience: traces `samples` full-image samples, submitting and waiting for each.
+  void render(uint32_t samples);
+  uint32_t samplesAccumulated() const { return sampleIndex_; }
+
+  // Replaces the pipeline with one built from `build` (hot reload). The old pipeline keeps running until
+  // then.
+  void swapPipeline(const shader::ShaderLibrary::ProgramBuild& build);
+  double lastPipelineMs() const { return pipelineMs_; }
+
+  // Readbacks (they wait for the device).
+  std::vector<float> readAccumulation() const;    // RGBA32F, alpha = samples accumulated in the pixel
+  std::vector<float> readAov(bool normal) const;  // RGBA, from the half-float AOV images
+  gpu::Counters readCounters() const;
+  void resetCounters();
+
+  const vk::Image& accumulationImage() const { return accum_; }
+  const vk::PipelineLayout& layout() const { return *layout_; }
+
+ private:
+  void createImages();
+  void writeDescriptors();
+  void updateFrameUniforms();
+
+  vk::Context& ctx_;
+  shader::ShaderLibrary& library_;
+  const GpuScene& scene_;
+  const GpuEnvironment& env_;
+  RenderSettings settings_;
+  CameraState camera_;
+  shader::ShaderLibrary::ProgramId program_ = 0;
+  std::unique_ptr<vk::PipelineLayout> layout_;
+  std::unique_ptr<vk::DescriptorSets> sets_;
+  std::unique_ptr<vk::RayTracingPipeline> pipeline_;
+  vk::Image accum_, albedo_, normal_;
+  vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
+  uint32_t sampleIndex_ = 0;
+  double pipelineMs_ = 0;
+};
+
+}  // namespace wb::render

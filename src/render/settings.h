@@ -1,0 +1,32 @@
+// Every path tracer parameter, as the command line, the UI and the tests set it.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <glm/glm.hpp>
+
+namespace wb::render {
+
+enum class SamplerKind { Sobol, Pcg };
+
+struct RenderSettings {
+  uint32_t width = 512, height = 512;
+  uint32_t spp = 16;
+  uint32_t maxBounces = 8;
+  uint32_t rrStart = 2;  // first bounce at which Russian roulette may end a path
+  float rrMin = 0.05f, rrMax = 0.95f;
+  bool russianRoulette = true;
+  bool nee = true;  // next-event estimation (lights + environment)
+  bool mis = true;  // MIS between environment NEE and BRDF sampling (off: light sampling only)
+  SamplerKind sampler = SamplerKind::Sobol;
+  uint32_t seed = 0;
+  bool aov = false;  // albedo + normal AOVs
+  uint32_t debugView = 0;
+
+  // Environment: an equirectangular .hdr, or a constant colour.
+  std::string envPath;
+  glm::vec3 envColor{0.4f, 0.45f, 0.5f};
+  float envRotationDeg = 0.0f;
+  float envIntensity = 1.0f;
+};
+
+}  // namespace wb::render

@@ -1,0 +1,331 @@
+#include "vk/context.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "vk/device_select.h"
+
+namespace wb::vk {
+namespace {
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                             VkDebugUtilsMessageTypeFlagsEXT /*types*/,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  static_cast<Context*>(user)->onValidationMessage(severity, data->pMessage ? data->pMessage : "");
+  return VK_FALSE;
+}
+
+bool layerAvailable(const char* name) {
+  uint32_t n = 0;
+  vkEnumerateInstanceLayerProperties(&n, nullptr);
+  std::vector<VkLayerProperties> layers(n);
+  vkEnumerateInstanceLayerProperties(&n, layers.data());
+  for (const auto& l : layers) {
+    if (std::strcmp(l.layerName, name) == 0) return true;
+  }
+  return false;
+}
+
+bool envFlag(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v && std::strcmp(v, "0") != 0;
+}
+
+template <typename T>
+void load(VkDevice device, T& fn, const char* name) {
+  fn = reinterpret_cast<T>(vkGetDeviceProcAddr(device, name));
+  if (!fn) throw VulkanError(std::string("device entry point missing: ") + name);
+}
+
+}  // namespace
+
+Context::Context(const ContextOptions& options) {
+  try {
+    createInstance(options);
+    pickDevice(options);
+    createDevice(options);
+  } catch (...) {
+    destroy();
+    throw;
+  }
+}
+
+Context::~Context() {
+  destroy();
+}
+
+void Context::destroy() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    if (fence_) vkDestroyFence(device_, fence_, nullptr);
+    if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+    messenger_ = VK_NULL_HANDLE;
+  }
+  if (instance_) {
+    vkDestroyInstance(instance_, nullptr);
+    instance_ = VK_NULL_HANDLE;
+  }
+}
+
+void Context::onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, const char* message) {
+  if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return;
+  bool error = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  if (error) validationErrors_++;
+  std::fprintf(stderr, "[vulkan %s] %s\n", error ? "error" : "warning", message);
+  std::lock_guard lock(messagesMutex_);
+  if (error) messages_.emplace_back(message);
+}
+
+std::vector<std::string> Context::validationMessages() const {
+  std::lock_guard lock(messagesMutex_);
+  return messages_;
+}
+
+void Context::createInstance(const ContextOptions& options) {
+  const char* kValidation = "VK_LAYER_KHRONOS_validation";
+  bool wantValidation = options.validation || envFlag("WB_VALIDATION");
+  validation_ = wantValidation && layerAvailable(kValidation);
+  if (wantValidation && !validation_) {
+    std::fprintf(stderr, "warning: validation requested but %s is not installed\n", kValidation);
+  }
+
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "rt-workbench";
+  app.apiVersion = VK_API_VERSION_1_3;
+
+  std::vector<const char*> extensions = options.instanceExtensions;
+  std::vector<const char*> layers;
+  if (validation_) {
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    layers.push_back(kValidation);
+  }
+  VkDebugUtilsMessengerCreateInfoEXT dbg{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  dbg.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  dbg.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                    VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                    VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  dbg.pfnUserCallback = debugCallback;
+  dbg.pUserData = this;
+
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ci.pApplicationInfo = &app;
+  ci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  ci.ppEnabledExtensionNames = extensions.data();
+  ci.enabledLayerCount = static_cast<uint32_t>(layers.size());
+  ci.ppEnabledLayerNames = layers.data();
+  if (validation_) ci.pNext = &dbg;
+  WB_VK(vkCreateInstance(&ci, nullptr, &instance_));
+
+  if (validation_) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    if (create) WB_VK(create(instance_, &dbg, nullptr, &messenger_));
+  }
+}
+
+void Context::pickDevice(const ContextOptions& options) {
+  uint32_t n = 0;
+  WB_VK(vkEnumeratePhysicalDevices(instance_, &n, nullptr));
+  std::vector<VkPhysicalDevice> devices(n);
+  WB_VK(vkEnumeratePhysicalDevices(instance_, &n, devices.data()));
+
+  std::vector<DeviceCandidate> candidates;
+  for (auto d : devices) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(d, &p);
+    DeviceCandidate c;
+    c.name = p.deviceName;
+    c.discrete = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+    c.integrated = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU;
+    c.cpu = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    c.apiVersion = p.apiVersion;
+    uint32_t e = 0;
+    vkEnumerateDeviceExtensionProperties(d, nullptr, &e, nullptr);
+    std::vector<VkExtensionProperties> exts(e);
+    vkEnumerateDeviceExtensionProperties(d, nullptr, &e, exts.data());
+    for (const auto& x : exts) c.extensions.emplace_back(x.extensionName);
+    candidates.push_back(std::move(c));
+  }
+  auto required = requiredDeviceExtensions();
+  if (options.presentation) required.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  DeviceChoice choice = chooseDevice(candidates, required, options.deviceName);
+  if (!choice.index) throw VulkanError(choice.error);
+  physical_ = devices[*choice.index];
+  deviceName_ = candidates[*choice.index].name;
+  for (const auto& e : candidates[*choice.index].extensions) {
+    if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
+  }
+
+  VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR asProps{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  rtProps.pNext = &asProps;
+  asProps.pNext = &driver;
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props.pNext = &rtProps;
+  vkGetPhysicalDeviceProperties2(physical_, &props);
+  rt_.handleSize = rtProps.shaderGroupHandleSize;
+  rt_.handleAlignment = rtProps.shaderGroupHandleAlignment;
+  rt_.baseAlignment = rtProps.shaderGroupBaseAlignment;
+  rt_.maxRecursionDepth = rtProps.maxRayRecursionDepth;
+  rt_.minScratchAlignment = asProps.minAccelerationStructureScratchOffsetAlignment;
+  timestampPeriod_ = props.properties.limits.timestampPeriod;
+  driverInfo_ = std::string(driver.driverName) + " " + driver.driverInfo;
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+}
+
+void Context::createDevice(const ContextOptions& options) {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> families(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, families.data());
+  bool found = false;
+  for (uint32_t i = 0; i < n; ++i) {
+    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
+      queueFamily_ = i;
+      found = true;
+      break;
+    }
+  }
+  if (!found) throw VulkanError("device '" + deviceName_ + "' has no graphics+compute queue");
+
+  // Features: Vulkan 1.2/1.3 core pieces plus ray tracing.
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  asFeatures.accelerationStructure = VK_TRUE;
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  rtFeatures.rayTracingPipeline = VK_TRUE;
+  rtFeatures.pNext = &asFeatures;
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.dynamicRendering = VK_TRUE;
+  f13.synchronization2 = VK_TRUE;
+  f13.maintenance4 = VK_TRUE;
+  f13.pNext = &rtFeatures;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f12.bufferDeviceAddress = VK_TRUE;
+  f12.descriptorIndexing = VK_TRUE;
+  f12.runtimeDescriptorArray = VK_TRUE;
+  f12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
+  f12.shaderStorageBufferArrayNonUniformIndexing = VK_TRUE;
+  f12.descriptorBindingPartiallyBound = VK_TRUE;
+  f12.descriptorBindingVariableDescriptorCount = VK_TRUE;
+  f12.scalarBlockLayout = VK_TRUE;
+  f12.hostQueryReset = VK_TRUE;
+  f12.timelineSemaphore = VK_TRUE;
+  f12.pNext = &f13;
+  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  features.features.shaderInt64 = VK_TRUE;
+  features.features.samplerAnisotropy = VK_FALSE;
+  features.pNext = &f12;
+
+  // Check what the device supports and refuse clearly if something essential is missing.
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR asHave{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtHave{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  rtHave.pNext = &asHave;
+  VkPhysicalDeviceVulkan13Features h13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  h13.pNext = &rtHave;
+  VkPhysicalDeviceVulkan12Features h12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  h12.pNext = &h13;
+  VkPhysicalDeviceFeatures2 have{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  have.pNext = &h12;
+  vkGetPhysicalDeviceFeatures2(physical_, &have);
+  std::string missing;
+  if (!h12.bufferDeviceAddress) missing += " bufferDeviceAddress";
+  if (!h12.runtimeDescriptorArray) missing += " runtimeDescriptorArray";
+  if (!h12.descriptorBindingPartiallyBound) missing += " descriptorBindingPartiallyBound";
+  if (!h12.scalarBlockLayout) missing += " scalarBlockLayout";
+  if (!h13.dynamicRendering) missing += " dynamicRendering";
+  if (!h13.synchronization2) missing += " synchronization2";
+  if (!rtHave.rayTracingPipeline) missing += " rayTracingPipeline";
+  if (!asHave.accelerationStructure) missing += " accelerationStructure";
+  if (!missing.empty()) throw VulkanError("device '" + deviceName_ + "' lacks features:" + missing);
+  f12.shaderStorageBufferArrayNonUniformIndexing = h12.shaderStorageBufferArrayNonUniformIndexing;
+  f12.shaderSampledImageArrayNonUniformIndexing = h12.shaderSampledImageArrayNonUniformIndexing;
+  f12.descriptorBindingVariableDescriptorCount = h12.descriptorBindingVariableDescriptorCount;
+  f12.hostQueryReset = h12.hostQueryReset;
+  f13.maintenance4 = h13.maintenance4;
+  features.features.shaderInt64 = have.features.shaderInt64;
+
+  std::vector<const char*> extensions;
+  for (const auto& e : requiredDeviceExtensions()) extensions.push_back(e.c_str());
+  if (pipelineLibrary_) extensions.push_back(VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME);
+  if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  qci.queueFamilyIndex = queueFamily_;
+  qci.queueCount = 1;
+  qci.pQueuePriorities = &priority;
+  VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  dci.pNext = &features;
+  dci.queueCreateInfoCount = 1;
+  dci.pQueueCreateInfos = &qci;
+  dci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+  dci.ppEnabledExtensionNames = extensions.data();
+  WB_VK(vkCreateDevice(physical_, &dci, nullptr, &device_));
+  vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+  load(device_, vkCreateAccelerationStructureKHR, "vkCreateAccelerationStructureKHR");
+  load(device_, vkDestroyAccelerationStructureKHR, "vkDestroyAccelerationStructureKHR");
+  load(device_, vkGetAccelerationStructureBuildSizesKHR, "vkGetAccelerationStructureBuildSizesKHR");
+  load(device_, vkCmdBuildAccelerationStructuresKHR, "vkCmdBuildAccelerationStructuresKHR");
+  load(device_, vkGetAccelerationStructureDeviceAddressKHR, "vkGetAccelerationStructureDeviceAddressKHR");
+  load(device_, vkCreateRayTracingPipelinesKHR, "vkCreateRayTracingPipelinesKHR");
+  load(device_, vkGetRayTracingShaderGroupHandlesKHR, "vkGetRayTracingShaderGroupHandlesKHR");
+  load(device_, vkCmdTraceRaysKHR, "vkCmdTraceRaysKHR");
+
+  VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pci.queueFamilyIndex = queueFamily_;
+  WB_VK(vkCreateCommandPool(device_, &pci, nullptr, &pool_));
+  VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  WB_VK(vkCreateFence(device_, &fci, nullptr, &fence_));
+}
+
+uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags wanted) const {
+  for (uint32_t i = 0; i < memory_.memoryTypeCount; ++i) {
+    if ((typeBits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
+  }
+  throw VulkanError("no memory type with the wanted properties");
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+  std::lock_guard lock(submitMutex_);
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  WB_VK(vkAllocateCommandBuffers(device_, &ai, &cmd));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  WB_VK(vkBeginCommandBuffer(cmd, &bi));
+  record(cmd);
+  WB_VK(vkEndCommandBuffer(cmd));
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd;
+  {
+    std::lock_guard qlock(queueMutex_);
+    WB_VK(vkQueueSubmit(queue_, 1, &si, fence_));
+  }
+  WB_VK(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX));
+  WB_VK(vkResetFences(device_, 1, &fence_));
+  vkFreeCommandBuffers(device_, pool_, 1, &cmd);
+}
+
+}  // namespace wb::vk

@@ -1,0 +1,100 @@
+// The Vulkan instance, the chosen device with ray tracing enabled, one queue, and one-shot command helpers.
+#pragma once
+#include <atomic>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+#include "vk/check.h"
+
+namespace wb::vk {
+
+struct ContextOptions {
+  std::string deviceName;   // --device override (substring match)
+  bool validation = false;  // Khronos validation layer, if installed (also on with WB_VALIDATION=1)
+  std::vector<const char*> instanceExtensions;  // e.g. from glfwGetRequiredInstanceExtensions
+  bool presentation = false;                    // enable VK_KHR_swapchain on the device
+};
+
+struct RayTracingProperties {
+  uint32_t handleSize = 0;
+  uint32_t handleAlignment = 0;
+  uint32_t baseAlignment = 0;
+  uint32_t maxRecursionDepth = 0;
+  uint32_t minScratchAlignment = 0;
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const std::string& deviceName() const { return deviceName_; }
+  const std::string& driverInfo() const { return driverInfo_; }
+  const RayTracingProperties& rayTracing() const { return rt_; }
+  bool validationEnabled() const { return validation_; }
+  bool pipelineLibrarySupported() const { return pipelineLibrary_; }
+  float timestampPeriodNs() const { return timestampPeriod_; }
+
+  // Validation messages of severity error seen so far (tests assert zero).
+  uint32_t validationErrors() const { return validationErrors_.load(); }
+  std::vector<std::string> validationMessages() const;
+
+  uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags wanted) const;
+
+  // Records with `record` into a fresh command buffer, submits and waits.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+  // The queue is shared by the render loop and background work: hold this while submitting.
+  std::mutex& queueMutex() { return queueMutex_; }
+
+  // Extension entry points.
+  PFN_vkCreateAccelerationStructureKHR vkCreateAccelerationStructureKHR = nullptr;
+  PFN_vkDestroyAccelerationStructureKHR vkDestroyAccelerationStructureKHR = nullptr;
+  PFN_vkGetAccelerationStructureBuildSizesKHR vkGetAccelerationStructureBuildSizesKHR = nullptr;
+  PFN_vkCmdBuildAccelerationStructuresKHR vkCmdBuildAccelerationStructuresKHR = nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR vkGetAccelerationStructureDeviceAddressKHR = nullptr;
+  PFN_vkCreateRayTracingPipelinesKHR vkCreateRayTracingPipelinesKHR = nullptr;
+  PFN_vkGetRayTracingShaderGroupHandlesKHR vkGetRayTracingShaderGroupHandlesKHR = nullptr;
+  PFN_vkCmdTraceRaysKHR vkCmdTraceRaysKHR = nullptr;
+
+  // Called from the debug messenger.
+  void onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, const char* message);
+
+ private:
+  void createInstance(const ContextOptions& options);
+  void pickDevice(const ContextOptions& options);
+  void createDevice(const ContextOptions& options);
+  void destroy();
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  std::string deviceName_;
+  std::string driverInfo_;
+  RayTracingProperties rt_;
+  VkPhysicalDeviceMemoryProperties memory_{};
+  bool validation_ = false;
+  bool pipelineLibrary_ = false;
+  float timestampPeriod_ = 1.0f;
+  std::atomic<uint32_t> validationErrors_{0};
+  mutable std::mutex messagesMutex_;
+  std::vector<std::string> messages_;
+  std::mutex queueMutex_;
+  std::mutex submitMutex_;
+};
+
+}  // namespace wb::vk
