@@ -28,7 +28,8 @@ RenderSession::RenderSession(const SessionOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   const std::filesystem::path scenePath =
       options.scenePath.empty() ? defaultScenePath() : std::filesystem::path(options.scenePath);
-  scene_ = scene::loadGltf(scenePath);  // before the device: bad input fails fast
+  scene_ =
+      options.sceneData ? *options.sceneData : scene::loadGltf(scenePath);  // before the device: fail fast
   const auto envData = loadEnvironmentData(options.settings);
 
   const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;

@@ -2,6 +2,7 @@
 // the path tracer. Used by the headless commands, the window and the GPU tests.
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "eval/image.h"
@@ -13,7 +14,8 @@
 namespace wb::app {
 
 struct SessionOptions {
-  std::string scenePath;  // empty = default scene
+  std::string scenePath;                  // empty = default scene
+  std::optional<scene::Scene> sceneData;  // a scene built in code (tests); used instead of scenePath
   render::RenderSettings settings;
   vk::ContextOptions context;
   std::filesystem::path cacheDir;  // empty = shader_cache/ of the project

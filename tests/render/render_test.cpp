@@ -1,0 +1,108 @@
+// Small renders on the real device (lavapipe here), checked for numbers, not by eye.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "common/paths.h"
+#include "gpu_fixture.h"
+#include "test_scenes.h"
+
+using namespace wb;
+using namespace wb::testing;
+
+namespace {
+
+// The camera ray through image point (px, py) in pixels, exactly as raygen builds it.
+void cameraRay(const render::CameraState& cam, uint32_t w, uint32_t h, float px, float py, glm::vec3& origin,
+               glm::vec3& dir) {
+  glm::mat4 proj = glm::perspective(cam.yfov, float(w) / float(h), cam.znear, 1000.0f);
+  proj[1][1] *= -1.0f;
+  const glm::vec2 ndc(px / w * 2.0f - 1.0f, py / h * 2.0f - 1.0f);
+  glm::vec4 target = glm::inverse(proj) * glm::vec4(ndc, 1.0f, 1.0f);
+  glm::mat4 vi = glm::inverse(cam.view);
+  origin = glm::vec3(vi * glm::vec4(0, 0, 0, 1));
+  dir = glm::normalize(glm::vec3(vi * glm::vec4(glm::normalize(glm::vec3(target) / target.w), 0.0f)));
+}
+
+bool hitsBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
+  float t0 = 0.0f, t1 = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    float inv = 1.0f / d[a];
+    float tn = (lo[a] - o[a]) * inv, tf = (hi[a] - o[a]) * inv;
+    if (tn > tf) std::swap(tn, tf);
+    t0 = std::max(t0, tn);
+    t1 = std::min(t1, tf);
+  }
+  return t0 <= t1;
+}
+
+// 0 = hits the plane in the sun, 1 = hits the plane in shadow, 2 = other (box, sky).
+int classify(const ShadowScene& s, const render::CameraState& cam, uint32_t w, uint32_t h, float px,
+             float py) {
+  glm::vec3 o, d;
+  cameraRay(cam, w, h, px, py, o, d);
+  if (hitsBox(o, d, s.boxMin, s.boxMax) || d.y >= 0.0f) return 2;
+  const glm::vec3 p = o + d * (-o.y / d.y);
+  if (std::abs(p.x) > 50 || std::abs(p.z) > 50) return 2;
+  return hitsBox(p + glm::vec3(0, 1e-4f, 0), -s.sunDirection, s.boxMin, s.boxMax) ? 1 : 0;
+}
+
+}  // namespace
+
+TEST(Render, ShadowFallsWhereGeometryBlocksTheSunAndLambertMatchesAnalytic) {
+  ShadowScene s = makeShadowScene();
+  app::SessionOptions o;
+  o.sceneData = s.scene;
+  o.settings.width = 64;
+  o.settings.height = 64;
+  o.settings.envColor = glm::vec3(0.0f);
+  auto session = makeSession(o);
+  session->render(2);
+  const auto img = session->image();
+  const auto stats = imageStats(img);
+  EXPECT_EQ(stats.nonFinite, 0u);
+  EXPECT_EQ(session->pathTracer().readCounters().droppedSamples, 0u);
+
+  // Lambertian plane under a directional light: L = albedo * E * cos(theta) / pi, exactly (no other light).
+  const float cosTheta = -s.sunDirection.y;
+  const float expectedLit = s.albedo * s.sunRadiance * cosTheta / 3.14159265f;
+  const auto& cam = session->sceneCamera();
+  int lit = 0, shadowed = 0;
+  for (uint32_t y = 0; y < img.height; ++y) {
+    for (uint32_t x = 0; x < img.width; ++x) {
+      // Only pixels whose whole footprint falls in one class (edges mix classes through the pixel filter).
+      int c = classify(s, cam, img.width, img.height, x + 0.5f, y + 0.5f);
+      bool uniform = true;
+      for (float dy : {0.0f, 1.0f}) {
+        for (float dx : {0.0f, 1.0f})
+          uniform = uniform && classify(s, cam, img.width, img.height, x + dx, y + dy) == c;
+      }
+      if (!uniform || c == 2) continue;
+      for (int ch = 0; ch < 3; ++ch) {
+        const float v = img.at(x, y, ch);
+        if (c == 0) {
+          EXPECT_NEAR(v, expectedLit, 1e-3f * expectedLit) << "lit pixel " << x << "," << y;
+        } else {
+          EXPECT_LT(v, 1e-6f) << "shadowed pixel " << x << "," << y;
+        }
+      }
+      (c == 0 ? lit : shadowed)++;
+    }
+  }
+  EXPECT_GT(lit, 500) << "the test should see plenty of sunlit floor";
+  EXPECT_GT(shadowed, 50) << "the test should see the box's shadow";
+  expectNoValidationErrors(*session);
+}
+
+TEST(Render, SharedGltfModelIsNotBlackAndFinite) {
+  app::SessionOptions o;
+  o.scenePath = (sharedDir() / "assets/gltf/Box/glTF-Embedded/Box.gltf").string();
+  o.settings.width = 48;
+  o.settings.height = 48;
+  auto session = makeSession(o);
+  session->render(2);
+  const auto stats = imageStats(session->image());
+  EXPECT_EQ(stats.nonFinite, 0u);
+  EXPECT_GT(stats.mean[0] + stats.mean[1] + stats.mean[2], 0.05);
+  expectNoValidationErrors(*session);
+}
