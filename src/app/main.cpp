@@ -6,10 +6,7 @@
 #include <vector>
 
 #include "app/cmd_render.h"
-#if __has_include("app/cmd_shaders.h")
 #include "app/cmd_shaders.h"
-#define WB_HAVE_SHADERS_CMD 1
-#endif
 #include "common/paths.h"
 
 namespace {
@@ -53,8 +50,6 @@ int main(int argc, char** argv) {
   std::vector<std::string> rest =
       args.empty() ? args : std::vector<std::string>(args.begin() + 1, args.end());
   if (cmd == "render") return wb::app::runRenderCommand(rest);
-#ifdef WB_HAVE_SHADERS_CMD
-  if (cmd == "shaders") return wb::app::runShadersCommand(rest);
-#endif
+  if (cmd == "shaders") return wb::runShadersCommand(rest);
   return runDefault(args);
 }

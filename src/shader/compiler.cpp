@@ -1,0 +1,185 @@
+#include "shader/compiler.h"
+
+#include "shader/hash.h"
+#include "shader/includer.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <glslang/build_info.h>
+#include <spirv-tools/libspirv.hpp>
+
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <regex>
+#include <sstream>
+
+namespace wb::shader {
+
+namespace {
+
+EShLanguage toLanguage(Stage s) {
+  switch (s) {
+    case Stage::Vertex:
+      return EShLangVertex;
+    case Stage::Fragment:
+      return EShLangFragment;
+    case Stage::Compute:
+      return EShLangCompute;
+    case Stage::RayGen:
+      return EShLangRayGen;
+    case Stage::AnyHit:
+      return EShLangAnyHit;
+    case Stage::ClosestHit:
+      return EShLangClosestHit;
+    case Stage::Miss:
+      return EShLangMiss;
+    case Stage::Intersection:
+      return EShLangIntersect;
+    case Stage::Callable:
+      return EShLangCallable;
+  }
+  return EShLangCompute;
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\n' || s.back() == '\r' || s.back() == '\t'))
+    s.pop_back();
+  size_t i = 0;
+  while (i < s.size() && s[i] == ' ') ++i;
+  return s.substr(i);
+}
+
+}  // namespace
+
+void initCompiler() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+std::string compilerFingerprint() {
+  static const std::string fp = [] {
+    std::ostringstream os;
+    os << "glslang " << GLSLANG_VERSION_MAJOR << '.' << GLSLANG_VERSION_MINOR << '.' << GLSLANG_VERSION_PATCH
+       << GLSLANG_VERSION_FLAVOR << "; vulkan1.2; spv1.4; " << spvSoftwareVersionDetailsString();
+    return os.str();
+  }();
+  return fp;
+}
+
+std::vector<Diagnostic> parseGlslangLog(const std::string& log, const fs::path& defaultFile) {
+  static const std::regex located(R"(^(ERROR|WARNING): (.+?):(\d+): (.*)$)");
+  static const std::regex unlocated(R"(^(ERROR|WARNING): (.*)$)");
+  std::vector<Diagnostic> out;
+  std::istringstream is(log);
+  std::string line;
+  while (std::getline(is, line)) {
+    line = trim(line);
+    if (line.empty()) continue;
+    std::smatch m;
+    if (std::regex_match(line, m, located)) {
+      Diagnostic d;
+      d.severity = m[1] == "ERROR" ? "error" : "warning";
+      std::string file = m[2];
+      // glslang names unnamed strings by number ("0:12"); the main file is always named.
+      d.file = (file.find_first_not_of("0123456789") == std::string::npos) ? defaultFile : fs::path(file);
+      d.line = std::stoi(m[3]);
+      d.message = trim(m[4]);
+      out.push_back(std::move(d));
+    } else if (std::regex_match(line, m, unlocated)) {
+      const std::string msg = m[2];
+      // Summary lines repeat what was already said.
+      if (msg.find("compilation errors.") != std::string::npos ||
+          msg.find("compilation warnings.") != std::string::npos)
+        continue;
+      out.push_back({defaultFile, 0, m[1] == "ERROR" ? "error" : "warning", trim(msg)});
+    } else if (!out.empty()) {
+      out.back().message += " " + line;  // continuation
+    }
+  }
+  return out;
+}
+
+CompileOutput compileGlsl(const CompileInput& in) {
+  initCompiler();
+  const auto t0 = std::chrono::steady_clock::now();
+  const EShLanguage lang = toLanguage(in.stage);
+  const std::string mainName = in.path.string();
+
+  std::string preamble;
+  for (const auto& d : in.defines)
+    preamble += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
+
+  auto shader = std::make_unique<glslang::TShader>(lang);
+  const char* strings[] = {in.source.c_str()};
+  const int lengths[] = {static_cast<int>(in.source.size())};
+  const char* names[] = {mainName.c_str()};
+  shader->setStringsWithLengthsAndNames(strings, lengths, names, 1);
+  shader->setPreamble(preamble.c_str());
+  shader->setEntryPoint(in.entry.c_str());
+  shader->setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
+  shader->setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+  shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_4);
+
+  Includer includer(in.path, hash64(in.source), in.includeRoots);
+  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+  const bool parsed = shader->parse(GetDefaultResources(), 460, false, messages, includer);
+  std::vector<Diagnostic> diags = parseGlslangLog(shader->getInfoLog(), in.path);
+  auto failWith = [&](std::vector<Diagnostic> d, const std::string& fallback) -> CompileError {
+    bool anyError = false;
+    for (const auto& x : d) anyError |= x.severity == "error";
+    if (!anyError) d.push_back({in.path, 0, "error", fallback});
+    return CompileError(std::move(d));
+  };
+  if (!parsed) throw failWith(diags, "compile failed");
+
+  glslang::TProgram program;
+  program.addShader(shader.get());
+  if (!program.link(messages)) {
+    auto linkDiags = parseGlslangLog(program.getInfoLog(), in.path);
+    diags.insert(diags.end(), linkDiags.begin(), linkDiags.end());
+    throw failWith(diags, "link failed");
+  }
+
+  CompileOutput out;
+  glslang::SpvOptions spvOptions;
+  spvOptions.disableOptimizer = !in.options.optimize;
+  spvOptions.optimizeSize = in.options.optimize;
+  spvOptions.validate = false;
+  spv::SpvBuildLogger logger;
+  glslang::GlslangToSpv(*program.getIntermediate(lang), out.spirv, &logger, &spvOptions);
+  const std::string spvLog = logger.getAllMessages();
+  if (!spvLog.empty()) {
+    for (auto& d : parseGlslangLog(spvLog, in.path)) diags.push_back(std::move(d));
+  }
+
+  if (in.options.validate) {
+    spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_2);
+    std::string validationLog;
+    tools.SetMessageConsumer(
+        [&](spv_message_level_t, const char*, const spv_position_t& pos, const char* msg) {
+          validationLog += "SPIR-V validation (word " + std::to_string(pos.index) + "): " + msg + "\n";
+        });
+    spvtools::ValidatorOptions vopts;
+    if (in.source.find("GL_EXT_scalar_block_layout") != std::string::npos ||
+        includer.mentions("GL_EXT_scalar_block_layout"))
+      vopts.SetScalarBlockLayout(true);
+    if (!tools.Validate(out.spirv.data(), out.spirv.size(), vopts)) {
+      diags.push_back(
+          {in.path, 0, "error", trim(validationLog.empty() ? "SPIR-V validation failed" : validationLog)});
+      throw CompileError(std::move(diags));
+    }
+  }
+
+  for (auto& d : diags)
+    if (d.severity == "warning") out.warnings.push_back(std::move(d));
+  for (const auto& f : includer.files()) {
+    out.files.push_back(f.path);
+    out.contentHashes.push_back(f.contentHash);
+  }
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace wb::shader

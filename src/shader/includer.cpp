@@ -1,0 +1,91 @@
+#include "shader/includer.h"
+
+#include "shader/hash.h"
+
+#include <algorithm>
+
+namespace wb::shader {
+
+namespace {
+struct Owned {
+  std::string name, data;
+};
+}  // namespace
+
+Includer::Includer(fs::path mainFile, uint64_t mainHash, std::vector<fs::path> roots)
+    : roots_(std::move(roots)) {
+  files_.push_back({mainFile, mainHash});
+  stack_.push_back(std::move(mainFile));
+}
+
+glslang::TShader::Includer::IncludeResult* Includer::includeLocal(const char* h, const char* by, size_t d) {
+  return include(h, by, d, true);
+}
+glslang::TShader::Includer::IncludeResult* Includer::includeSystem(const char* h, const char* by, size_t d) {
+  if (!pendingError_.empty() && pendingHeader_ == h) {
+    std::string e = std::move(pendingError_);
+    pendingError_.clear();
+    return fail(std::move(e));
+  }
+  return include(h, by, d, false);
+}
+
+glslang::TShader::Includer::IncludeResult* Includer::fail(std::string message) {
+  pendingError_ = message;
+  // An empty header name makes glslang report headerData as the error, at the #include line.
+  auto* owned = new Owned{"", std::move(message)};
+  return new IncludeResult("", owned->data.data(), owned->data.size(), owned);
+}
+
+glslang::TShader::Includer::IncludeResult* Includer::include(const char* headerName, const char* includerName,
+                                                             size_t depth, bool local) {
+  pendingHeader_ = headerName;
+  pendingError_.clear();
+  const fs::path includer = includerName && *includerName ? fs::path(includerName) : stack_.front();
+  // depth is the depth of the file being included (1 for an #include in the main file).
+  if (depth >= 1 && depth <= stack_.size()) stack_.resize(depth);
+  std::vector<fs::path> candidates;
+  const fs::path name(headerName);
+  if (name.is_absolute()) {
+    candidates.push_back(name);
+  } else {
+    if (local) candidates.push_back(includer.parent_path() / name);
+    for (const auto& r : roots_) candidates.push_back(r / name);
+  }
+  std::error_code ec;
+  for (const auto& c : candidates) {
+    if (!fs::is_regular_file(c, ec)) continue;
+    fs::path canon = fs::canonical(c, ec);
+    if (ec) continue;
+    if (std::find(stack_.begin(), stack_.end(), canon) != stack_.end()) {
+      std::string chain;
+      for (const auto& s : stack_) chain += s.filename().string() + " -> ";
+      return fail("include cycle: " + chain + canon.filename().string() + " (" + canon.string() + ")");
+    }
+    auto data = readFile(canon);
+    if (!data) return fail("cannot read include file " + canon.string());
+    const uint64_t h = hash64(*data);
+    if (std::none_of(files_.begin(), files_.end(), [&](const File& f) { return f.path == canon; }))
+      files_.push_back({canon, h});
+    stack_.push_back(canon);
+    texts_.push_back(*data);
+    auto* owned = new Owned{canon.string(), std::move(*data)};
+    return new IncludeResult(owned->name, owned->data.data(), owned->data.size(), owned);
+  }
+  std::string searched;
+  for (const auto& c : candidates) searched += (searched.empty() ? "" : ", ") + c.lexically_normal().string();
+  return fail("include file not found: \"" + std::string(headerName) + "\" (searched: " + searched + ")");
+}
+
+bool Includer::mentions(const std::string& word) const {
+  return std::any_of(texts_.begin(), texts_.end(),
+                     [&](const std::string& t) { return t.find(word) != std::string::npos; });
+}
+
+void Includer::releaseInclude(IncludeResult* r) {
+  if (!r) return;
+  delete static_cast<Owned*>(r->userData);
+  delete r;
+}
+
+}  // namespace wb::shader

@@ -1,0 +1,42 @@
+// glslang TShader::Includer for GL_GOOGLE_include_directive: "x" relative to the including file, then the
+// include roots; <x> the include roots only. Records every file read (canonical path + content hash) and
+// turns include cycles and missing includes into clear errors at the #include line.
+#pragma once
+#include <glslang/Public/ShaderLang.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wb::shader {
+
+namespace fs = std::filesystem;
+
+class Includer : public glslang::TShader::Includer {
+ public:
+  struct File {
+    fs::path path;  // canonical
+    uint64_t contentHash;
+  };
+  Includer(fs::path mainFile, uint64_t mainHash, std::vector<fs::path> roots);
+
+  IncludeResult* includeLocal(const char* headerName, const char* includerName, size_t depth) override;
+  IncludeResult* includeSystem(const char* headerName, const char* includerName, size_t depth) override;
+  void releaseInclude(IncludeResult* r) override;
+
+  const std::vector<File>& files() const { return files_; }  // main file first, then first-seen order
+  bool mentions(const std::string& word) const;              // does any included file's text contain word
+
+ private:
+  IncludeResult* include(const char* headerName, const char* includerName, size_t depth, bool local);
+  IncludeResult* fail(std::string message);
+  std::vector<fs::path> roots_;
+  std::vector<File> files_;
+  std::vector<std::string> texts_;
+  // glslang retries a failed "local" include as a <system> one; keep the first (more precise) error.
+  std::string pendingHeader_, pendingError_;
+  std::vector<fs::path> stack_;  // stack_[0] = main file, stack_[d] = file at include depth d
+};
+
+}  // namespace wb::shader

@@ -1,0 +1,373 @@
+#include "shader/library.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <set>
+
+namespace wb::shader {
+
+namespace {
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+ShaderLibrary::ShaderLibrary(Options o)
+    : options_(std::move(o)), disk_(options_.cacheDir, [this](const std::string& w) { warn(w); }) {
+  for (auto& r : options_.includeRoots) {
+    std::error_code ec;
+    auto c = fs::weakly_canonical(r, ec);
+    if (!ec) r = c;
+  }
+}
+
+ShaderLibrary::~ShaderLibrary() = default;
+
+void ShaderLibrary::warn(const std::string& w) {
+  if (options_.printWarnings) std::cerr << "warning: " << w << '\n';
+  std::lock_guard lock(warnMutex_);
+  warnings_.push_back(w);
+}
+
+std::vector<std::string> ShaderLibrary::cacheWarnings() const {
+  std::lock_guard lock(warnMutex_);
+  return warnings_;
+}
+
+ShaderLibrary::Stats ShaderLibrary::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+ShaderLibrary::Resolved ShaderLibrary::resolve(const ShaderKey& key) const {
+  std::error_code ec;
+  fs::path path = fs::canonical(key.path, ec);
+  if (ec || !fs::is_regular_file(path))
+    throw CompileError({{fs::absolute(key.path).lexically_normal(), 0, "error", "shader file not found"}});
+  std::optional<Stage> stage = key.stage ? key.stage : stageFromPath(path);
+  if (!stage)
+    throw CompileError(
+        {{path, 0, "error",
+          "unknown shader stage (use .rgen .rmiss .rchit .rahit .rint .rcall .vert .frag .comp or "
+          "name.<stage>.glsl, or set ShaderKey::stage)"}});
+  Hasher h;
+  h.add(uint64_t{DiskCache::kFormatVersion}).add(compilerFingerprint()).add(path.string());
+  h.add(uint64_t(static_cast<int>(*stage))).add(key.entry);
+  h.add(uint64_t(key.defines.size()));
+  for (const auto& d : key.defines) h.add(d.name).add(d.value);
+  h.add(uint64_t(options_.optimize)).add(uint64_t(options_.validate));
+  h.add(uint64_t(options_.includeRoots.size()));
+  for (const auto& r : options_.includeRoots) h.add(r.string());
+  return {path, *stage, h.finish()};
+}
+
+std::optional<Hash128> ShaderLibrary::contentKey(const Hash128& variant, const std::vector<fs::path>& files,
+                                                 std::vector<uint64_t>* hashes) {
+  Hasher h;
+  h.add(variant.lo).add(variant.hi);
+  for (const auto& f : files) {
+    auto fh = hashes_.hash(f);
+    if (!fh) return std::nullopt;  // a dependency vanished: must recompile (and fail properly)
+    h.add(f.string()).add(*fh);
+    if (hashes) hashes->push_back(*fh);
+  }
+  return h.finish();
+}
+
+void ShaderLibrary::recordStatus(const fs::path& file, const std::vector<Diagnostic>& diags, bool ok,
+                                 double ms, bool hit) {
+  std::lock_guard lock(mutex_);
+  auto& st = statuses_[file];
+  st.ok = ok;
+  st.diagnostics.clear();
+  st.lastCompileMs = ms;
+  st.lastCacheHit = hit;
+  for (const auto& d : diags) {
+    if (d.file == file || d.file.empty()) {
+      st.diagnostics.push_back(d);
+    } else {
+      // Keep included files' messages under their own file too.
+      auto& inc = statuses_[d.file];
+      if (inc.ok || !ok) inc.diagnostics.clear();
+      inc.ok = ok ? inc.ok : false;
+      inc.diagnostics.push_back(d);
+      st.diagnostics.push_back(d);
+    }
+  }
+}
+
+void ShaderLibrary::markIncludesOk(const CompiledShader& s) {
+  // Included files compiled cleanly now (caller holds mutex_).
+  for (size_t i = 1; i < s.files.size(); ++i) {
+    auto it = statuses_.find(s.files[i]);
+    if (it != statuses_.end() && !it->second.ok) {
+      it->second.ok = true;
+      it->second.diagnostics.clear();
+    }
+  }
+}
+
+std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& key) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Resolved r;
+  try {
+    r = resolve(key);
+  } catch (const CompileError& e) {
+    recordStatus(e.diagnostics.front().file, e.diagnostics, false, 0, false);
+    throw;
+  }
+  const std::string vid = r.variant.hex();
+
+  // 1. Memory: same files with the same contents as last time -> the same object.
+  {
+    std::shared_ptr<const CompiledShader> cached;
+    std::vector<uint64_t> expected;
+    {
+      std::lock_guard lock(mutex_);
+      auto it = memory_.find(vid);
+      if (it != memory_.end()) {
+        cached = it->second.shader;
+        expected = it->second.hashes;
+      }
+    }
+    if (cached) {
+      bool same = true;
+      for (size_t i = 0; same && i < cached->files.size(); ++i) {
+        auto h = hashes_.hash(cached->files[i]);
+        same = h && *h == expected[i];
+      }
+      if (same) {
+        std::lock_guard lock(mutex_);
+        ++stats_.hits;
+        auto& st = statuses_[r.path];
+        st.ok = true;
+        st.diagnostics = cached->warnings;
+        st.lastCacheHit = true;
+        st.lastCompileMs = 0;
+        markIncludesOk(*cached);
+        return cached;
+      }
+    }
+  }
+
+  auto finish = [&](std::shared_ptr<CompiledShader> s, std::vector<uint64_t> hashes) {
+    std::lock_guard lock(mutex_);
+    memory_[vid] = MemEntry{s, std::move(hashes)};
+    graph_.setStageFiles(vid, s->files);
+    auto& st = statuses_[r.path];
+    st.ok = true;
+    st.diagnostics = s->warnings;
+    st.lastCompileMs = s->compileMs;
+    st.lastCacheHit = s->cacheHit;
+    markIncludesOk(*s);
+    return std::shared_ptr<const CompiledShader>(std::move(s));
+  };
+
+  // 2. Disk: the index gives the dependency list; the content key is recomputed from current contents.
+  if (disk_.enabled()) {
+    if (auto deps = disk_.loadIndex(r.variant); deps && deps->front() == r.path) {
+      std::vector<uint64_t> hashes;
+      if (auto k = contentKey(r.variant, *deps, &hashes)) {
+        if (auto e = disk_.load(*k); e && e->files == *deps) {
+          auto s = std::make_shared<CompiledShader>();
+          s->key = key;
+          s->stage = r.stage;
+          s->spirv = std::move(e->spirv);
+          s->files = std::move(e->files);
+          s->warnings = std::move(e->warnings);
+          s->cacheHit = true;
+          s->reflection = reflectSpirv(s->spirv, r.stage, r.path);
+          s->compileMs = msSince(t0);
+          {
+            std::lock_guard lock(mutex_);
+            ++stats_.hits;
+          }
+          return finish(std::move(s), std::move(hashes));
+        }
+      }
+    }
+  }
+
+  // 3. Compile.
+  CompileInput in;
+  in.path = r.path;
+  auto source = readFile(r.path);
+  if (!source) throw CompileError({{r.path, 0, "error", "cannot read shader file"}});
+  in.source = std::move(*source);
+  in.stage = r.stage;
+  in.defines = key.defines;
+  in.entry = key.entry;
+  in.includeRoots = options_.includeRoots;
+  in.options = {options_.optimize, options_.validate};
+  CompileOutput out;
+  try {
+    out = compileGlsl(in);
+  } catch (const CompileError& e) {
+    const double ms = msSince(t0);
+    {
+      std::lock_guard lock(mutex_);
+      ++stats_.misses;
+      ++stats_.compiles;
+      stats_.compileMs += ms;
+      // Keep the graph useful while broken: previous files + files named by the errors.
+      std::set<fs::path> files{r.path};
+      if (auto it = memory_.find(vid); it != memory_.end())
+        files.insert(it->second.shader->files.begin(), it->second.shader->files.end());
+      for (const auto& d : e.diagnostics)
+        if (!d.file.empty()) files.insert(d.file);
+      std::vector<fs::path> list{r.path};
+      for (const auto& f : files)
+        if (f != r.path) list.push_back(f);
+      graph_.setStageFiles(vid, list);
+    }
+    recordStatus(r.path, e.diagnostics, false, ms, false);
+    throw;
+  }
+  auto s = std::make_shared<CompiledShader>();
+  s->key = key;
+  s->stage = r.stage;
+  s->spirv = std::move(out.spirv);
+  s->files = out.files;
+  s->warnings = std::move(out.warnings);
+  s->cacheHit = false;
+  s->reflection = reflectSpirv(s->spirv, r.stage, r.path);
+  s->compileMs = out.ms;
+  {
+    std::lock_guard lock(mutex_);
+    ++stats_.misses;
+    ++stats_.compiles;
+    stats_.compileMs += out.ms;
+  }
+  if (disk_.enabled()) {
+    // The key is built from exactly the bytes glslang compiled.
+    Hasher h;
+    h.add(r.variant.lo).add(r.variant.hi);
+    for (size_t i = 0; i < out.files.size(); ++i) h.add(out.files[i].string()).add(out.contentHashes[i]);
+    disk_.store(CacheEntry{h.finish(), s->spirv, s->files, s->warnings});
+    disk_.storeIndex(r.variant, s->files);
+  }
+  return finish(std::move(s), std::move(out.contentHashes));
+}
+
+ShaderLibrary::ProgramId ShaderLibrary::registerProgram(std::string name, std::vector<ShaderKey> stages) {
+  Program p;
+  p.name = std::move(name);
+  for (const auto& k : stages) {
+    std::string id;
+    try {
+      Resolved r = resolve(k);
+      id = r.variant.hex();
+      std::lock_guard lock(mutex_);
+      if (!memory_.count(id)) graph_.setStageFiles(id, {r.path});
+    } catch (const CompileError&) {
+      // Missing file or unknown stage: reported by buildProgram. Depend on the path as given.
+      id = "unresolved:" + fs::absolute(k.path).lexically_normal().string();
+      std::lock_guard lock(mutex_);
+      graph_.setStageFiles(id, {fs::absolute(k.path).lexically_normal()});
+    }
+    p.stageIds.push_back(id);
+  }
+  p.stages = std::move(stages);
+  std::lock_guard lock(mutex_);
+  const auto pid = static_cast<ProgramId>(programs_.size());
+  graph_.setProgramStages(pid, p.stageIds);
+  programs_.push_back(std::move(p));
+  return pid;
+}
+
+ShaderLibrary::ProgramBuild ShaderLibrary::buildProgram(ProgramId id) {
+  std::vector<ShaderKey> keys;
+  {
+    std::lock_guard lock(mutex_);
+    if (id >= programs_.size()) throw std::out_of_range("unknown program id");
+    keys = programs_[id].stages;
+  }
+  ProgramBuild b;
+  std::vector<Diagnostic> errors;
+  std::vector<std::string> stageIds;
+  for (const auto& k : keys) {
+    try {
+      auto s = compile(k);
+      b.stages.push_back(s);
+      stageIds.push_back(resolve(k).variant.hex());
+    } catch (const CompileError& e) {
+      errors.insert(errors.end(), e.diagnostics.begin(), e.diagnostics.end());
+      try {
+        stageIds.push_back(resolve(k).variant.hex());
+      } catch (const CompileError&) {
+        stageIds.push_back("unresolved:" + fs::absolute(k.path).lexically_normal().string());
+      }
+    }
+  }
+  {
+    std::lock_guard lock(mutex_);
+    programs_[id].stageIds = stageIds;
+    graph_.setProgramStages(id, stageIds);
+  }
+  if (errors.empty()) {
+    try {
+      b.layout = mergeLayouts(b.stages);
+    } catch (const CompileError& e) {
+      errors = e.diagnostics;
+      for (const auto& d : e.diagnostics) recordStatus(d.file, {d}, false, 0, false);
+    }
+  }
+  {
+    std::lock_guard lock(mutex_);
+    programs_[id].ok = errors.empty();
+  }
+  if (!errors.empty()) throw CompileError(std::move(errors));
+  return b;
+}
+
+std::vector<ShaderLibrary::ProgramId> ShaderLibrary::programsDependingOn(const fs::path& file) const {
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(file, ec);
+  if (ec) p = fs::absolute(file).lexically_normal();
+  std::lock_guard lock(mutex_);
+  return graph_.programsDependingOn(p);
+}
+
+std::vector<ShaderLibrary::ProgramId> ShaderLibrary::programs() const {
+  std::lock_guard lock(mutex_);
+  std::vector<ProgramId> out;
+  for (ProgramId i = 0; i < programs_.size(); ++i) out.push_back(i);
+  return out;
+}
+
+std::string ShaderLibrary::programName(ProgramId id) const {
+  std::lock_guard lock(mutex_);
+  return id < programs_.size() ? programs_[id].name : std::string();
+}
+
+std::vector<ShaderKey> ShaderLibrary::programStages(ProgramId id) const {
+  std::lock_guard lock(mutex_);
+  return programs_.at(id).stages;
+}
+
+std::optional<bool> ShaderLibrary::programOk(ProgramId id) const {
+  std::lock_guard lock(mutex_);
+  return id < programs_.size() ? programs_[id].ok : std::nullopt;
+}
+
+std::map<fs::path, ShaderLibrary::FileStatus> ShaderLibrary::fileStatuses() const {
+  std::lock_guard lock(mutex_);
+  auto out = statuses_;
+  for (auto& [file, st] : out) {
+    st.programs.clear();
+    for (auto pid : graph_.programsDependingOn(file)) st.programs.push_back(programs_[pid].name);
+  }
+  return out;
+}
+
+void ShaderLibrary::invalidateFiles(const std::vector<fs::path>& files) {
+  for (const auto& f : files) hashes_.invalidate(f);
+}
+
+void setMesaShaderCacheDirDefault(const fs::path& cacheDir) {
+  if (const char* v = std::getenv("MESA_SHADER_CACHE_DIR"); v && *v) return;
+  ::setenv("MESA_SHADER_CACHE_DIR", (cacheDir / "mesa").c_str(), 0);
+}
+
+}  // namespace wb::shader

@@ -1,0 +1,143 @@
+#include "shader/reflection.h"
+
+#include <spirv_cross/spirv_cross.hpp>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+namespace wb::shader {
+
+namespace {
+
+DescriptorBinding makeBinding(const spirv_cross::Compiler& c, const spirv_cross::Resource& r,
+                              VkDescriptorType type, Stage stage) {
+  DescriptorBinding b;
+  b.set = c.get_decoration(r.id, spv::DecorationDescriptorSet);
+  b.binding = c.get_decoration(r.id, spv::DecorationBinding);
+  b.type = type;
+  b.stages = toVkStage(stage);
+  b.name = r.name.empty() ? c.get_name(r.base_type_id) : r.name;
+  const auto& t = c.get_type(r.type_id);
+  b.count = 1;
+  for (size_t i = 0; i < t.array.size(); ++i) {
+    if (t.array[i] == 0 && t.array_size_literal[i]) {
+      b.runtimeArray = true;
+    } else if (t.array_size_literal[i]) {
+      b.count *= t.array[i];
+    }
+  }
+  if (b.runtimeArray) b.count = 0;
+  return b;
+}
+
+bool isBufferDim(const spirv_cross::Compiler& c, const spirv_cross::Resource& r) {
+  return c.get_type(r.type_id).image.dim == spv::DimBuffer;
+}
+
+}  // namespace
+
+Reflection reflectSpirv(const std::vector<uint32_t>& spirv, Stage stage, const fs::path& file) {
+  Reflection out;
+  try {
+    spirv_cross::Compiler c(spirv);
+    const auto active = c.get_active_interface_variables();
+    const auto res = c.get_shader_resources(active);
+    auto add = [&](const spirv_cross::SmallVector<spirv_cross::Resource>& list, auto typeOf) {
+      for (const auto& r : list) out.bindings.push_back(makeBinding(c, r, typeOf(r), stage));
+    };
+    add(res.uniform_buffers, [](auto&) { return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER; });
+    add(res.storage_buffers, [](auto&) { return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER; });
+    add(res.storage_images, [&](auto& r) {
+      return isBufferDim(c, r) ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    });
+    add(res.sampled_images, [&](auto& r) {
+      return isBufferDim(c, r) ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
+                               : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    });
+    add(res.separate_images, [&](auto& r) {
+      return isBufferDim(c, r) ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    });
+    add(res.separate_samplers, [](auto&) { return VK_DESCRIPTOR_TYPE_SAMPLER; });
+    add(res.acceleration_structures, [](auto&) { return VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR; });
+    add(res.subpass_inputs, [](auto&) { return VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT; });
+    for (const auto& pc : res.push_constant_buffers) {
+      const auto& type = c.get_type(pc.base_type_id);
+      const uint32_t size = static_cast<uint32_t>(c.get_declared_struct_size(type));
+      uint32_t offset = size;
+      for (uint32_t i = 0; i < type.member_types.size(); ++i)
+        offset = std::min(offset, c.type_struct_member_offset(type, i));
+      if (type.member_types.empty()) offset = 0;
+      out.pushConstants.push_back({static_cast<VkShaderStageFlags>(toVkStage(stage)), offset, size - offset});
+    }
+  } catch (const spirv_cross::CompilerError& e) {
+    throw CompileError({{file, 0, "error", std::string("SPIRV-Cross reflection: ") + e.what()}});
+  }
+  std::sort(out.bindings.begin(), out.bindings.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.set, a.binding) < std::tie(b.set, b.binding);
+  });
+  return out;
+}
+
+PipelineLayoutDesc mergeLayouts(const std::vector<std::shared_ptr<const CompiledShader>>& stages) {
+  struct Slot {
+    DescriptorBinding b;
+    fs::path file;
+  };
+  std::map<std::pair<uint32_t, uint32_t>, Slot> slots;
+  PipelineLayoutDesc out;
+  std::vector<Diagnostic> errors;
+  for (const auto& s : stages) {
+    if (!s) continue;
+    const fs::path file = s->files.empty() ? s->key.path : s->files.front();
+    for (const auto& b : s->reflection.bindings) {
+      auto [it, inserted] = slots.try_emplace({b.set, b.binding}, Slot{b, file});
+      if (inserted) continue;
+      DescriptorBinding& m = it->second.b;
+      const bool countsAgree = m.runtimeArray || b.runtimeArray || m.count == b.count;
+      if (m.type != b.type || !countsAgree) {
+        auto describe = [](const DescriptorBinding& x) {
+          std::ostringstream d;
+          d << descriptorTypeName(x.type) << " '" << x.name << "'";
+          if (x.runtimeArray)
+            d << "[]";
+          else if (x.count != 1)
+            d << '[' << x.count << ']';
+          return d.str();
+        };
+        std::ostringstream w;
+        w << "set " << b.set << " binding " << b.binding;
+        const std::string where = w.str();
+        errors.push_back({it->second.file, 0, "error",
+                          "binding conflict at " + where + ": " + describe(m) + " here, but " + describe(b) +
+                              " in " + file.string()});
+        errors.push_back({file, 0, "error",
+                          "binding conflict at " + where + ": " + describe(b) + " here, but " + describe(m) +
+                              " in " + it->second.file.string()});
+        continue;
+      }
+      m.stages |= b.stages;
+      if (b.runtimeArray && !m.runtimeArray) {
+        m.runtimeArray = true;
+        m.count = 0;
+      }
+    }
+    for (const auto& pc : s->reflection.pushConstants) {
+      if (out.pushConstants.empty()) {
+        out.pushConstants.push_back(pc);
+      } else {
+        auto& r = out.pushConstants.front();
+        const uint32_t begin = std::min(r.offset, pc.offset);
+        const uint32_t end = std::max(r.offset + r.size, pc.offset + pc.size);
+        r.offset = begin;
+        r.size = end - begin;
+        r.stageFlags |= pc.stageFlags;
+      }
+    }
+  }
+  if (!errors.empty()) throw CompileError(std::move(errors));
+  for (auto& [k, slot] : slots) out.bindings.push_back(std::move(slot.b));
+  return out;
+}
+
+}  // namespace wb::shader

@@ -1,0 +1,186 @@
+#include "shader/reloader.h"
+
+#include "shader/watcher.h"
+
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <sys/inotify.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <set>
+
+namespace wb::shader {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+bool shaderLike(const fs::path& p) {
+  if (stageFromPath(p)) return true;
+  const auto e = p.extension();
+  return e == ".glsl" || e == ".h" || e == ".inc" || e == ".hlsli";
+}
+
+std::string describe(const ShaderKey& k) {
+  std::string s = k.path.string();
+  if (!k.defines.empty()) {
+    s += " [";
+    for (size_t i = 0; i < k.defines.size(); ++i)
+      s += (i ? "," : "") + k.defines[i].name + (k.defines[i].value.empty() ? "" : "=" + k.defines[i].value);
+    s += "]";
+  }
+  return s;
+}
+}  // namespace
+
+Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs)
+    : Reloader(lib, std::move(watchDirs), {}) {}
+
+Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing)
+    : lib_(lib), dirs_(std::move(watchDirs)), timing_(timing) {}
+
+Reloader::~Reloader() {
+  stop();
+}
+
+void Reloader::start() {
+  if (running_) return;
+  watcher_ = std::make_unique<DirWatcher>(dirs_);
+  wakeFd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  running_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+void Reloader::stop() {
+  if (!running_.exchange(false)) return;
+  const uint64_t one = 1;
+  [[maybe_unused]] auto n = ::write(wakeFd_, &one, sizeof one);
+  if (thread_.joinable()) thread_.join();
+  ::close(wakeFd_);
+  wakeFd_ = -1;
+  watcher_.reset();
+}
+
+void Reloader::requestReloadAll() {
+  reloadAll_ = true;
+  if (wakeFd_ >= 0) {
+    const uint64_t one = 1;
+    [[maybe_unused]] auto n = ::write(wakeFd_, &one, sizeof one);
+  }
+}
+
+std::optional<ReloadResult> Reloader::poll() {
+  std::lock_guard lock(mutex_);
+  if (results_.empty()) return std::nullopt;
+  ReloadResult r = std::move(results_.front());
+  results_.pop_front();
+  return r;
+}
+
+void Reloader::snapshot() {
+  for (auto id : lib_.programs()) {
+    try {
+      last_[id] = lib_.buildProgram(id).stages;
+    } catch (const CompileError&) {
+    }
+  }
+}
+
+void Reloader::rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::ProgramId> programs,
+                       Clock::time_point editTime) {
+  const auto t0 = Clock::now();
+  lib_.invalidateFiles(files);
+  ReloadResult r;
+  r.filesChanged = std::move(files);
+  r.editTime = editTime;
+  std::set<std::string> recompiled;
+  for (auto id : programs) {
+    try {
+      auto b = lib_.buildProgram(id);
+      auto& prev = last_[id];
+      for (size_t i = 0; i < b.stages.size(); ++i)
+        if (i >= prev.size() || prev[i] != b.stages[i]) recompiled.insert(describe(b.stages[i]->key));
+      prev = b.stages;
+      r.programs.push_back(id);
+      r.builds.push_back(std::move(b));
+    } catch (const CompileError& e) {
+      r.ok = false;
+      r.failedPrograms.push_back(id);
+      if (!r.error.empty()) r.error += '\n';
+      r.error += lib_.programName(id) + ":\n" + e.what();
+    }
+  }
+  r.stagesRecompiled.assign(recompiled.begin(), recompiled.end());
+  r.compileMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  ++reloads_;
+  std::lock_guard lock(mutex_);
+  results_.push_back(std::move(r));
+}
+
+void Reloader::run() {
+  snapshot();
+  std::set<fs::path> pending;
+  std::set<fs::path> writing;  // modified but not yet closed
+  bool overflow = false;
+  Clock::time_point first{}, last{};
+  while (running_) {
+    int timeoutMs = -1;
+    if (!pending.empty() || overflow) {
+      const auto since = Clock::now() - last;
+      const auto wait = timing_.quiet - std::chrono::duration_cast<std::chrono::milliseconds>(since);
+      timeoutMs = std::max<int>(1, static_cast<int>(wait.count()));
+    }
+    pollfd fds[2] = {{watcher_->fd(), POLLIN, 0}, {wakeFd_, POLLIN, 0}};
+    ::poll(fds, 2, timeoutMs);
+    if (!running_) break;
+    if (fds[1].revents & POLLIN) {
+      uint64_t v;
+      [[maybe_unused]] auto n = ::read(wakeFd_, &v, sizeof v);
+    }
+    if (reloadAll_.exchange(false)) rebuild({}, lib_.programs(), Clock::now());
+    for (auto& e : watcher_->read()) {
+      const auto now = Clock::now();
+      if (pending.empty() && !overflow) first = now;
+      last = now;
+      if (e.overflow()) {
+        overflow = true;
+        continue;
+      }
+      if (e.isDir()) continue;
+      if (e.mask & IN_MODIFY) writing.insert(e.path);
+      if (e.mask & (IN_CLOSE_WRITE | IN_DELETE | IN_MOVED_FROM)) writing.erase(e.path);
+      pending.insert(e.path);
+    }
+    if (pending.empty() && !overflow) continue;
+    const auto quietFor = Clock::now() - last;
+    if (quietFor < timing_.quiet) continue;
+    if (!writing.empty() && quietFor < timing_.writeGrace) continue;  // never compile a half-written file
+    // Map files to programs.
+    std::set<ShaderLibrary::ProgramId> programs;
+    std::vector<fs::path> files;
+    bool missingDependency = false;
+    for (const auto& p : pending) {
+      auto deps = lib_.programsDependingOn(p);
+      const bool relevant = !deps.empty() || shaderLike(p);
+      if (!relevant) continue;
+      std::error_code ec;
+      if (!deps.empty() && !fs::exists(p, ec)) missingDependency = true;
+      programs.insert(deps.begin(), deps.end());
+      files.push_back(p);
+      // Programs that failed last time may be waiting for exactly this file (e.g. a missing include).
+      if (shaderLike(p))
+        for (auto id : lib_.programs())
+          if (lib_.programOk(id) == false) programs.insert(id);
+    }
+    if (missingDependency && quietFor < timing_.recreateGrace) continue;  // delete + recreate
+    if (overflow)
+      for (auto id : lib_.programs()) programs.insert(id);
+    pending.clear();
+    writing.clear();
+    overflow = false;
+    if (programs.empty()) continue;
+    rebuild(std::move(files), {programs.begin(), programs.end()}, first);
+  }
+}
+
+}  // namespace wb::shader

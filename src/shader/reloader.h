@@ -1,0 +1,67 @@
+// Hot reload: a worker thread watches the shader directories (inotify on directories), coalesces bursts of
+// events (a short quiet period, and never while a file is still being written), maps changed files to
+// programs through the include graph, rebuilds them off the caller's thread and publishes the results.
+#pragma once
+#include "shader/library.h"
+
+#include <atomic>
+#include <chrono>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+namespace wb::shader {
+
+struct ReloadResult {
+  std::vector<fs::path> filesChanged;
+  std::vector<std::string> stagesRecompiled;       // stage file paths (+ " [K=V,...]") whose SPIR-V changed
+  std::vector<ShaderLibrary::ProgramId> programs;  // rebuilt successfully, parallel to builds
+  std::vector<ShaderLibrary::ProgramBuild> builds;
+  std::vector<ShaderLibrary::ProgramId> failedPrograms;  // keep their old pipelines
+  double compileMs = 0;                                  // wall time of the rebuild
+  bool ok = true;
+  std::string error;                               // file:line: severity: message lines of every failure
+  std::chrono::steady_clock::time_point editTime;  // when the first change of the burst was seen
+};
+
+class Reloader {
+ public:
+  struct Timing {
+    std::chrono::milliseconds quiet{50};           // no events for this long = the burst is over
+    std::chrono::milliseconds writeGrace{1000};    // wait this long for a file still open for writing
+    std::chrono::milliseconds recreateGrace{300};  // wait this long for a deleted dependency to reappear
+  };
+  Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs);
+  Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing);
+  ~Reloader();
+  Reloader(const Reloader&) = delete;
+  Reloader& operator=(const Reloader&) = delete;
+
+  void start();  // adds the watches (synchronously), then starts the worker
+  void stop();
+  std::optional<ReloadResult> poll();  // non-blocking; one result per coalesced change
+  void requestReloadAll();
+  uint64_t reloadCount() const { return reloads_; }
+
+ private:
+  void run();
+  void rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::ProgramId> programs,
+               std::chrono::steady_clock::time_point editTime);
+  void snapshot();
+
+  ShaderLibrary& lib_;
+  std::vector<fs::path> dirs_;
+  Timing timing_;
+  std::unique_ptr<class DirWatcher> watcher_;
+  int wakeFd_ = -1;
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+  std::atomic<bool> reloadAll_{false};
+  std::atomic<uint64_t> reloads_{0};
+  std::mutex mutex_;
+  std::deque<ReloadResult> results_;
+  std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> last_;
+};
+
+}  // namespace wb::shader

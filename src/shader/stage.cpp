@@ -1,0 +1,104 @@
+#include "shader/types.h"
+
+#include <sstream>
+
+namespace wb::shader {
+
+namespace {
+struct StageInfo {
+  Stage stage;
+  const char* ext;
+  VkShaderStageFlagBits vk;
+};
+constexpr StageInfo kStages[] = {
+    {Stage::Vertex, "vert", VK_SHADER_STAGE_VERTEX_BIT},
+    {Stage::Fragment, "frag", VK_SHADER_STAGE_FRAGMENT_BIT},
+    {Stage::Compute, "comp", VK_SHADER_STAGE_COMPUTE_BIT},
+    {Stage::RayGen, "rgen", VK_SHADER_STAGE_RAYGEN_BIT_KHR},
+    {Stage::AnyHit, "rahit", VK_SHADER_STAGE_ANY_HIT_BIT_KHR},
+    {Stage::ClosestHit, "rchit", VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR},
+    {Stage::Miss, "rmiss", VK_SHADER_STAGE_MISS_BIT_KHR},
+    {Stage::Intersection, "rint", VK_SHADER_STAGE_INTERSECTION_BIT_KHR},
+    {Stage::Callable, "rcall", VK_SHADER_STAGE_CALLABLE_BIT_KHR},
+};
+
+std::optional<Stage> fromExt(std::string ext) {
+  if (!ext.empty() && ext[0] == '.') ext = ext.substr(1);
+  for (const auto& s : kStages)
+    if (ext == s.ext) return s.stage;
+  return std::nullopt;
+}
+}  // namespace
+
+VkShaderStageFlagBits toVkStage(Stage s) {
+  return kStages[static_cast<int>(s)].vk;
+}
+const char* stageName(Stage s) {
+  return kStages[static_cast<int>(s)].ext;
+}
+
+std::optional<Stage> stageFromPath(const fs::path& p) {
+  if (auto s = fromExt(p.extension().string())) return s;
+  if (p.extension() == ".glsl") return fromExt(p.stem().extension().string());
+  return std::nullopt;
+}
+
+std::string stageFlagsToString(VkShaderStageFlags flags) {
+  std::string out;
+  for (const auto& s : kStages) {
+    if (flags & s.vk) {
+      if (!out.empty()) out += '|';
+      out += s.ext;
+    }
+  }
+  return out.empty() ? "none" : out;
+}
+
+const char* descriptorTypeName(VkDescriptorType t) {
+  switch (t) {
+    case VK_DESCRIPTOR_TYPE_SAMPLER:
+      return "sampler";
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+      return "combined-image-sampler";
+    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+      return "sampled-image";
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+      return "storage-image";
+    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+      return "uniform-texel-buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+      return "storage-texel-buffer";
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+      return "uniform-buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+      return "storage-buffer";
+    case VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT:
+      return "input-attachment";
+    case VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR:
+      return "acceleration-structure";
+    default:
+      return "unknown";
+  }
+}
+
+std::string Diagnostic::toString() const {
+  std::ostringstream os;
+  os << file.string() << ':' << line << ": " << severity << ": " << message;
+  return os.str();
+}
+
+namespace {
+std::string joinDiagnostics(const std::vector<Diagnostic>& d) {
+  std::string out;
+  for (const auto& x : d) {
+    if (!out.empty()) out += '\n';
+    out += x.toString();
+  }
+  return out.empty() ? "shader compile error" : out;
+}
+}  // namespace
+
+CompileError::CompileError(std::vector<Diagnostic> d)
+    : std::runtime_error(joinDiagnostics(d)), diagnostics(std::move(d)) {}
+
+}  // namespace wb::shader

@@ -1,0 +1,238 @@
+// Disk cache: warm start, invalidation, corruption, unwritable directories, concurrent processes.
+#include "shader/library.h"
+#include "test_util.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+
+using namespace wb::shader;
+using namespace wb::shader::test;
+
+namespace {
+
+std::vector<fs::path> entries(const fs::path& dir, const std::string& ext = ".wbspv") {
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ext) out.push_back(e.path());
+  return out;
+}
+
+struct CacheFixture : ::testing::Test {
+  TempDir t;
+  fs::path cache() const { return t / "cache"; }
+  void SetUp() override {
+    writeFile(t / "a.comp", kComputeMain);
+    writeFile(t / "inc.glsl", "#define VALUE 1u\n");
+    writeFile(t / "b.comp", "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+  }
+  ShaderLibrary lib() { return ShaderLibrary({.cacheDir = cache(), .printWarnings = false}); }
+};
+
+}  // namespace
+
+TEST_F(CacheFixture, WarmStartHasZeroCompiles) {
+  std::vector<uint32_t> spirv;
+  {
+    auto l = lib();
+    spirv = l.compile({t / "a.comp"})->spirv;
+    l.compile({t / "b.comp"});
+    EXPECT_EQ(l.stats().compiles, 2u);
+    EXPECT_EQ(l.stats().misses, 2u);
+  }
+  auto l = lib();
+  auto a = l.compile({t / "a.comp"});
+  auto b = l.compile({t / "b.comp"});
+  EXPECT_TRUE(a->cacheHit);
+  EXPECT_TRUE(b->cacheHit);
+  EXPECT_EQ(a->spirv, spirv);
+  EXPECT_EQ(a->files, (std::vector<fs::path>{t / "a.comp", t / "inc.glsl"}));
+  EXPECT_EQ(a->reflection.bindings.size(), 1u);
+  EXPECT_EQ(l.stats().compiles, 0u);
+  EXPECT_EQ(l.stats().hits, 2u);
+  EXPECT_TRUE(l.cacheWarnings().empty());
+  // Same library again: memory hit, same object.
+  EXPECT_EQ(l.compile({t / "a.comp"}), a);
+  EXPECT_EQ(l.stats().compiles, 0u);
+}
+
+TEST_F(CacheFixture, IncludeEditInvalidatesDependentsOnly) {
+  {
+    auto l = lib();
+    l.compile({t / "a.comp"});
+    l.compile({t / "b.comp"});
+  }
+  writeFile(t / "inc.glsl", "#define VALUE 2u\n");  // same size, same clock tick: must still be seen
+  {
+    auto l = lib();
+    auto a = l.compile({t / "a.comp"});
+    auto b = l.compile({t / "b.comp"});
+    EXPECT_FALSE(a->cacheHit);
+    EXPECT_TRUE(b->cacheHit);
+    EXPECT_EQ(l.stats().compiles, 1u);
+  }
+  // In one library too.
+  auto l = lib();
+  auto a1 = l.compile({t / "a.comp"});
+  writeFile(t / "inc.glsl", "#define VALUE 3u\n");
+  auto a2 = l.compile({t / "a.comp"});
+  EXPECT_NE(a1, a2);
+  EXPECT_NE(a1->spirv, a2->spirv);
+  EXPECT_EQ(l.stats().compiles, 1u);
+  // Reverting the edit finds the old entry on disk.
+  writeFile(t / "inc.glsl", "#define VALUE 2u\n");
+  auto a3 = l.compile({t / "a.comp"});
+  EXPECT_TRUE(a3->cacheHit);
+  EXPECT_EQ(a3->spirv, a1->spirv);
+  EXPECT_EQ(l.stats().compiles, 1u);
+}
+
+TEST_F(CacheFixture, DefineChangeGivesSeparateEntry) {
+  writeFile(t / "inc.glsl", "#define VALUE BASE\n");
+  {
+    auto l = lib();
+    auto x = l.compile({t / "a.comp", std::nullopt, {{"BASE", "1u"}}});
+    auto y = l.compile({t / "a.comp", std::nullopt, {{"BASE", "2u"}}});
+    EXPECT_NE(x->spirv, y->spirv);
+    EXPECT_EQ(l.stats().compiles, 2u);
+  }
+  EXPECT_EQ(entries(cache()).size(), 2u);
+  EXPECT_EQ(entries(cache(), ".wbidx").size(), 2u);
+  auto l = lib();
+  EXPECT_TRUE(l.compile({t / "a.comp", std::nullopt, {{"BASE", "2u"}}})->cacheHit);
+  EXPECT_TRUE(l.compile({t / "a.comp", std::nullopt, {{"BASE", "1u"}}})->cacheHit);
+  EXPECT_EQ(l.stats().compiles, 0u);
+  // An option change misses too.
+  ShaderLibrary opt({.cacheDir = cache(), .optimize = true, .printWarnings = false});
+  EXPECT_FALSE(opt.compile({t / "a.comp", std::nullopt, {{"BASE", "1u"}}})->cacheHit);
+}
+
+namespace {
+enum class Corruption { Truncated, Empty, Garbage, WrongVersion, BadChecksum };
+}
+
+class CorruptEntry : public CacheFixture, public ::testing::WithParamInterface<Corruption> {};
+
+TEST_P(CorruptEntry, IsRebuiltWithWarning) {
+  std::vector<uint32_t> good;
+  {
+    auto l = lib();
+    good = l.compile({t / "a.comp"})->spirv;
+  }
+  auto files = entries(cache());
+  ASSERT_EQ(files.size(), 1u);
+  std::string data = readAll(files[0]);
+  std::string expectWord;
+  switch (GetParam()) {
+    case Corruption::Truncated:
+      data.resize(data.size() / 2);
+      expectWord = "truncated";
+      break;
+    case Corruption::Empty:
+      data.clear();
+      expectWord = "empty";
+      break;
+    case Corruption::Garbage:
+      for (size_t i = 0; i < data.size(); ++i) data[i] = static_cast<char>((i * 7919 + 13) & 0xff);
+      expectWord = "magic";
+      break;
+    case Corruption::WrongVersion:
+      data[4] = 99;
+      expectWord = "version";
+      break;
+    case Corruption::BadChecksum:
+      data[data.size() - 5] ^= 0x5a;
+      expectWord = "checksum";
+      break;
+  }
+  writeFile(files[0], data);
+  {
+    auto l = lib();
+    auto s = l.compile({t / "a.comp"});
+    EXPECT_FALSE(s->cacheHit);
+    EXPECT_EQ(s->spirv, good);
+    EXPECT_EQ(l.stats().compiles, 1u);
+    auto w = l.cacheWarnings();
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find(expectWord), std::string::npos) << w[0];
+  }
+  auto l = lib();  // rebuilt entry is valid
+  EXPECT_TRUE(l.compile({t / "a.comp"})->cacheHit);
+  EXPECT_TRUE(l.cacheWarnings().empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(All, CorruptEntry,
+                         ::testing::Values(Corruption::Truncated, Corruption::Empty, Corruption::Garbage,
+                                           Corruption::WrongVersion, Corruption::BadChecksum));
+
+TEST_F(CacheFixture, CorruptIndexIsRebuiltWithWarning) {
+  { lib().compile({t / "a.comp"}); }
+  auto idx = entries(cache(), ".wbidx");
+  ASSERT_EQ(idx.size(), 1u);
+  writeFile(idx[0], "garbage");
+  auto l = lib();
+  EXPECT_FALSE(l.compile({t / "a.comp"})->cacheHit);
+  EXPECT_EQ(l.cacheWarnings().size(), 1u);
+}
+
+TEST_F(CacheFixture, UnwritableCacheDirDegradesToMemoryOnly) {
+  // Tests run as root, where chmod does not stop writes: put the cache dir under a regular file.
+  writeFile(t / "blocker", "not a directory");
+  ShaderLibrary l({.cacheDir = t / "blocker/cache", .printWarnings = false});
+  EXPECT_FALSE(l.diskCacheEnabled());
+  ASSERT_EQ(l.cacheWarnings().size(), 1u);
+  EXPECT_NE(l.cacheWarnings()[0].find("memory-only"), std::string::npos);
+  auto s = l.compile({t / "a.comp"});
+  EXPECT_FALSE(s->spirv.empty());
+  EXPECT_EQ(l.compile({t / "a.comp"}), s);  // memory cache still works
+  EXPECT_EQ(l.stats().compiles, 1u);
+  // A directory in /proc cannot take files either.
+  ShaderLibrary p({.cacheDir = "/proc/self/wb_cache", .printWarnings = false});
+  EXPECT_FALSE(p.diskCacheEnabled());
+}
+
+TEST_F(CacheFixture, TwoProcessesWritingAtOnce) {
+  std::vector<ShaderKey> keys;
+  writeFile(t / "inc.glsl", "#define VALUE BASE\n");
+  for (int i = 0; i < 12; ++i)
+    keys.push_back({t / "a.comp", std::nullopt, {{"BASE", std::to_string(i) + "u"}}});
+  keys.push_back({t / "b.comp"});
+  std::vector<pid_t> pids;
+  for (int p = 0; p < 2; ++p) {
+    pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      int rc = 0;
+      try {
+        ShaderLibrary l({.cacheDir = cache(), .printWarnings = false});
+        for (int round = 0; round < 2; ++round)
+          for (const auto& k : keys) l.compile(k);
+        rc = l.cacheWarnings().empty() ? 0 : 2;
+      } catch (...) {
+        rc = 1;
+      }
+      _exit(rc);
+    }
+    pids.push_back(pid);
+  }
+  for (pid_t pid : pids) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+  }
+  auto l = lib();
+  for (const auto& k : keys) EXPECT_TRUE(l.compile(k)->cacheHit);
+  EXPECT_EQ(l.stats().compiles, 0u);
+  EXPECT_TRUE(l.cacheWarnings().empty());
+  for (const auto& e : fs::directory_iterator(cache()))
+    EXPECT_EQ(e.path().filename().string().rfind(".tmp.", 0), std::string::npos) << e.path();
+}
+
+TEST_F(CacheFixture, PruneBySize) {
+  { lib().compile({t / "a.comp"}); }
+  EXPECT_EQ(entries(cache()).size(), 1u);
+  DiskCache d(cache(), nullptr, CachePruneLimits{30, 0});
+  EXPECT_TRUE(entries(cache()).empty());
+}

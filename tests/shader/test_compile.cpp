@@ -1,0 +1,264 @@
+// Compiler, includes, stage detection, diagnostics and reflection.
+#include "shader/library.h"
+#include "test_util.h"
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+using namespace wb::shader;
+using namespace wb::shader::test;
+
+TEST(ShaderStage, FromPath) {
+  EXPECT_EQ(stageFromPath("a/b.rgen"), Stage::RayGen);
+  EXPECT_EQ(stageFromPath("x.rmiss"), Stage::Miss);
+  EXPECT_EQ(stageFromPath("x.rchit"), Stage::ClosestHit);
+  EXPECT_EQ(stageFromPath("x.rahit"), Stage::AnyHit);
+  EXPECT_EQ(stageFromPath("x.rint"), Stage::Intersection);
+  EXPECT_EQ(stageFromPath("x.rcall"), Stage::Callable);
+  EXPECT_EQ(stageFromPath("x.vert"), Stage::Vertex);
+  EXPECT_EQ(stageFromPath("x.frag"), Stage::Fragment);
+  EXPECT_EQ(stageFromPath("x.comp"), Stage::Compute);
+  EXPECT_EQ(stageFromPath("shade.rchit.glsl"), Stage::ClosestHit);
+  EXPECT_EQ(stageFromPath("common.glsl"), std::nullopt);
+  EXPECT_EQ(stageFromPath("x.h"), std::nullopt);
+  EXPECT_EQ(toVkStage(Stage::RayGen), VK_SHADER_STAGE_RAYGEN_BIT_KHR);
+  EXPECT_EQ(toVkStage(Stage::Fragment), VK_SHADER_STAGE_FRAGMENT_BIT);
+}
+
+TEST(ShaderCompile, IncludeAndDefines) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  writeFile(t / "inc.glsl", "#define VALUE (BASE + 1u)\n");
+  ShaderLibrary lib({});
+  auto s = lib.compile({t / "a.comp", std::nullopt, {{"BASE", "41u"}}});
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->stage, Stage::Compute);
+  EXPECT_FALSE(s->spirv.empty());
+  EXPECT_EQ(s->spirv[0], 0x07230203u);
+  ASSERT_EQ(s->files.size(), 2u);
+  EXPECT_EQ(s->files[0], t / "a.comp");
+  EXPECT_EQ(s->files[1], t / "inc.glsl");
+  ASSERT_EQ(s->reflection.bindings.size(), 1u);
+  EXPECT_EQ(s->reflection.bindings[0].type, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  // Without the define it does not compile.
+  EXPECT_THROW(lib.compile({t / "a.comp"}), CompileError);
+}
+
+TEST(ShaderCompile, IncludeRootsAndStageOverride) {
+  TempDir t;
+  writeFile(t / "src/main.glsl", kComputeMain);
+  writeFile(t / "lib/inc.glsl", "#define VALUE 7u\n");
+  ShaderLibrary lib({.includeRoots = {t / "lib"}});
+  auto s = lib.compile({t / "src/main.glsl", Stage::Compute});
+  EXPECT_EQ(s->files.back(), t / "lib/inc.glsl");
+  // No stage from the name and none given: a clear error.
+  try {
+    lib.compile({t / "src/main.glsl"});
+    FAIL();
+  } catch (const CompileError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown shader stage"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ShaderCompile, ErrorInIncludedFileHasFileAndLine) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  writeFile(t / "inc.glsl", "// line 1\n// line 2\nconst uint x = undefinedThing;\n#define VALUE 1u\n");
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "a.comp"});
+    FAIL() << "expected an error";
+  } catch (const CompileError& e) {
+    ASSERT_FALSE(e.diagnostics.empty()) << e.what();
+    const auto& d = e.diagnostics.front();
+    EXPECT_EQ(d.file, t / "inc.glsl") << e.what();
+    EXPECT_EQ(d.line, 3) << e.what();
+    EXPECT_EQ(d.severity, "error");
+    EXPECT_NE(d.toString().find((t / "inc.glsl").string() + ":3: error: "), std::string::npos)
+        << d.toString();
+  }
+  auto st = lib.fileStatuses();
+  ASSERT_TRUE(st.count(t / "inc.glsl"));
+  EXPECT_FALSE(st[t / "inc.glsl"].ok);
+  EXPECT_FALSE(st[t / "a.comp"].ok);
+}
+
+TEST(ShaderCompile, ErrorInMainFileLineIsRight) {
+  TempDir t;
+  writeFile(t / "a.comp", std::string(kComputeMain) + "void f() { int y = nope; }\n");
+  writeFile(t / "inc.glsl", "#define VALUE 1u\n");
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "a.comp", std::nullopt, {{"UNUSED", "1"}}});
+    FAIL();
+  } catch (const CompileError& e) {
+    ASSERT_FALSE(e.diagnostics.empty());
+    EXPECT_EQ(e.diagnostics.front().file, t / "a.comp") << e.what();
+    EXPECT_EQ(e.diagnostics.front().line, 7) << e.what();
+  }
+}
+
+TEST(ShaderCompile, WarningsAreKept) {
+  TempDir t;
+  writeFile(t / "a.comp", std::string(kComputeMain) + "#extension GL_EXT_nonexistent_thing : warn\n");
+  writeFile(t / "inc.glsl", "#define VALUE 1u\n");
+  ShaderLibrary lib({});
+  auto s = lib.compile({t / "a.comp"});
+  ASSERT_FALSE(s->warnings.empty());
+  EXPECT_EQ(s->warnings[0].severity, "warning");
+  EXPECT_EQ(s->warnings[0].file, t / "a.comp");
+  EXPECT_EQ(s->warnings[0].line, 7);
+}
+
+TEST(ShaderCompile, IncludeCycleIsAClearError) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  writeFile(t / "inc.glsl", "#include \"other.glsl\"\n#define VALUE 1u\n");
+  writeFile(t / "other.glsl", "\n#include \"inc.glsl\"\n");
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "a.comp"});
+    FAIL();
+  } catch (const CompileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("include cycle"), std::string::npos) << what;
+    EXPECT_NE(what.find("inc.glsl"), std::string::npos) << what;
+    EXPECT_EQ(e.diagnostics.front().file, t / "other.glsl") << what;
+    EXPECT_EQ(e.diagnostics.front().line, 2) << what;
+  }
+}
+
+TEST(ShaderCompile, MissingIncludeIsAClearError) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "a.comp"});
+    FAIL();
+  } catch (const CompileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("include file not found: \"inc.glsl\""), std::string::npos) << what;
+    EXPECT_EQ(e.diagnostics.front().file, t / "a.comp") << what;
+    EXPECT_EQ(e.diagnostics.front().line, 3) << what;
+  }
+}
+
+TEST(ShaderCompile, MissingFile) {
+  TempDir t;
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "nope.rgen"});
+    FAIL();
+  } catch (const CompileError& e) {
+    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+  }
+}
+
+namespace {
+const DescriptorBinding* find(const PipelineLayoutDesc& l, uint32_t binding) {
+  for (const auto& b : l.bindings)
+    if (b.set == 0 && b.binding == binding) return &b;
+  return nullptr;
+}
+}  // namespace
+
+TEST(ShaderReflect, RayTracingProgramLayout) {
+  ShaderLibrary lib({});
+  const fs::path d = dataDir() / "rt";
+  auto id =
+      lib.registerProgram("rt", {{d / "rt.rgen"}, {d / "rt.rmiss"}, {d / "rt.rchit"}, {d / "rt.rahit"}});
+  auto build = lib.buildProgram(id);
+  ASSERT_EQ(build.stages.size(), 4u);
+  const auto& l = build.layout;
+  ASSERT_EQ(l.bindings.size(), 6u);
+  const auto rgen = VK_SHADER_STAGE_RAYGEN_BIT_KHR, miss = VK_SHADER_STAGE_MISS_BIT_KHR,
+             chit = VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR, ahit = VK_SHADER_STAGE_ANY_HIT_BIT_KHR;
+  struct Expect {
+    uint32_t binding;
+    VkDescriptorType type;
+    VkShaderStageFlags stages;
+    bool runtime;
+  } expected[] = {
+      {0, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, rgen, false},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false},
+      {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VkShaderStageFlags(rgen | miss), false},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VkShaderStageFlags(chit | ahit), false},
+      {4, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VkShaderStageFlags(rgen | chit), false},
+      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VkShaderStageFlags(chit | ahit), true},
+  };
+  for (const auto& e : expected) {
+    const auto* b = find(l, e.binding);
+    ASSERT_TRUE(b) << "binding " << e.binding;
+    EXPECT_EQ(b->type, e.type) << "binding " << e.binding;
+    EXPECT_EQ(b->stages, e.stages) << "binding " << e.binding << ": " << stageFlagsToString(b->stages);
+    EXPECT_EQ(b->runtimeArray, e.runtime) << "binding " << e.binding;
+    if (!e.runtime) {
+      EXPECT_EQ(b->count, 1u);
+    }
+  }
+  EXPECT_EQ(find(l, 5)->name, "textures");
+  // The any-hit alone sees textures[] as a 1-element array (constant index).
+  const auto& ahitRefl = build.stages[3]->reflection;
+  auto it = std::find_if(ahitRefl.bindings.begin(), ahitRefl.bindings.end(),
+                         [](const DescriptorBinding& b) { return b.binding == 5; });
+  ASSERT_NE(it, ahitRefl.bindings.end());
+  EXPECT_FALSE(it->runtimeArray);
+  EXPECT_EQ(it->count, 1u);
+  ASSERT_EQ(l.pushConstants.size(), 1u);
+  EXPECT_EQ(l.pushConstants[0].offset, 0u);
+  EXPECT_EQ(l.pushConstants[0].size, 8u);
+  EXPECT_EQ(l.pushConstants[0].stageFlags, VkShaderStageFlags(rgen | chit));
+}
+
+TEST(ShaderReflect, BindingConflictNamesBothFiles) {
+  TempDir t;
+  writeFile(t / "a.rgen", R"(#version 460
+#extension GL_EXT_ray_tracing : require
+layout(set = 0, binding = 2) uniform U { vec4 c; } u;
+layout(set = 0, binding = 1, rgba8) uniform image2D img;
+void main() { imageStore(img, ivec2(0), u.c); }
+)");
+  writeFile(t / "b.rmiss", R"(#version 460
+#extension GL_EXT_ray_tracing : require
+layout(location = 0) rayPayloadInEXT vec4 p;
+layout(set = 0, binding = 2, std430) buffer S { vec4 c; } s;
+void main() { p = s.c; }
+)");
+  ShaderLibrary lib({});
+  auto id = lib.registerProgram("conflict", {{t / "a.rgen"}, {t / "b.rmiss"}});
+  try {
+    lib.buildProgram(id);
+    FAIL();
+  } catch (const CompileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find((t / "a.rgen").string()), std::string::npos) << what;
+    EXPECT_NE(what.find((t / "b.rmiss").string()), std::string::npos) << what;
+    EXPECT_NE(what.find("set 0 binding 2"), std::string::npos) << what;
+    EXPECT_NE(what.find("uniform-buffer"), std::string::npos) << what;
+    EXPECT_NE(what.find("storage-buffer"), std::string::npos) << what;
+  }
+}
+
+TEST(ShaderCompile, ThreadSafe) {
+  TempDir t;
+  writeFile(t / "inc.glsl", "#define VALUE BASE\n");
+  writeFile(t / "a.comp", kComputeMain);
+  ShaderLibrary lib({.cacheDir = t / "cache", .printWarnings = false});
+  std::vector<std::thread> threads;
+  std::atomic<int> failures{0};
+  for (int i = 0; i < 4; ++i)
+    threads.emplace_back([&, i] {
+      for (int j = 0; j < 8; ++j) {
+        try {
+          lib.compile({t / "a.comp", std::nullopt, {{"BASE", std::to_string((i + j) % 5) + "u"}}});
+        } catch (...) {
+          ++failures;
+        }
+      }
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(failures, 0);
+  EXPECT_EQ(lib.stats().hits + lib.stats().misses, 32u);
+  EXPECT_TRUE(lib.cacheWarnings().empty());
+}

@@ -1,0 +1,235 @@
+// Reloader: editor save patterns, broken edits, dependency-driven rebuilds.
+#include "shader/reloader.h"
+#include "shader/watcher.h"
+#include "test_util.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <thread>
+
+using namespace wb::shader;
+using namespace wb::shader::test;
+using namespace std::chrono_literals;
+
+namespace {
+
+const char* kCommon = "#define TINT vec3(1.0, 0.5, 0.25)\n";
+const char* kVert = R"(#version 460
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+layout(location = 0) out vec3 color;
+void main() {
+  color = TINT;
+  gl_Position = vec4(float(gl_VertexIndex), 0.0, 0.0, 1.0);
+}
+)";
+const char* kFrag = R"(#version 460
+layout(location = 0) in vec3 color;
+layout(location = 0) out vec4 outColor;
+void main() { outColor = vec4(color, 1.0); }
+)";
+const char* kRgen = R"(#version 460
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+layout(set = 0, binding = 0, rgba8) uniform image2D img;
+void main() { imageStore(img, ivec2(gl_LaunchIDEXT.xy), vec4(TINT, 1.0)); }
+)";
+const char* kRmiss = R"(#version 460
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+layout(location = 0) rayPayloadInEXT vec3 p;
+void main() { p = TINT; }
+)";
+
+struct ReloaderFixture : ::testing::Test {
+  TempDir t;
+  fs::path dir;
+  std::unique_ptr<ShaderLibrary> lib;
+  std::unique_ptr<Reloader> reloader;
+  ShaderLibrary::ProgramId graphics = 0, rt = 0;
+
+  void SetUp() override {
+    dir = t / "shaders";
+    writeFile(dir / "common.glsl", kCommon);
+    writeFile(dir / "g.vert", kVert);
+    writeFile(dir / "g.frag", kFrag);
+    writeFile(dir / "rt/rt.rgen", kRgen);
+    writeFile(dir / "rt/rt.rmiss", kRmiss);
+    lib = std::make_unique<ShaderLibrary>(ShaderLibrary::Options{.includeRoots = {dir}});
+    graphics = lib->registerProgram("graphics", {{dir / "g.vert"}, {dir / "g.frag"}});
+    rt = lib->registerProgram("rt", {{dir / "rt/rt.rgen"}, {dir / "rt/rt.rmiss"}});
+    lib->buildProgram(graphics);
+    lib->buildProgram(rt);
+    reloader = std::make_unique<Reloader>(*lib, std::vector<fs::path>{dir});
+    reloader->start();
+    std::this_thread::sleep_for(100ms);  // let the worker take its snapshot
+  }
+  void TearDown() override { reloader->stop(); }
+
+  std::optional<ReloadResult> waitResult(std::chrono::milliseconds timeout = 5000ms) {
+    const auto end = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < end) {
+      if (auto r = reloader->poll()) return r;
+      std::this_thread::sleep_for(5ms);
+    }
+    return std::nullopt;
+  }
+  // Exactly one reload: one result, then nothing more for a while.
+  ReloadResult expectOne() {
+    auto r = waitResult();
+    EXPECT_TRUE(r.has_value()) << "no reload";
+    if (!r) return {};
+    std::this_thread::sleep_for(600ms);
+    auto extra = reloader->poll();
+    EXPECT_FALSE(extra.has_value()) << "a second reload for one save";
+    return *r;
+  }
+  static bool has(const std::vector<std::string>& v, const fs::path& p) {
+    return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.rfind(p.string(), 0) == 0; });
+  }
+  static bool has(const std::vector<ShaderLibrary::ProgramId>& v, ShaderLibrary::ProgramId id) {
+    return std::find(v.begin(), v.end(), id) != v.end();
+  }
+};
+
+std::string edited(const char* text) {
+  return std::string(text) + "// edited\n";
+}
+
+}  // namespace
+
+TEST_F(ReloaderFixture, WriteInPlace) {
+  // Same length, no truncation: overwrite bytes of the existing file.
+  std::string text = kVert;
+  text.replace(text.find("0.0, 0.0, 1.0"), 13, "0.0, 0.5, 1.0");
+  FILE* f = std::fopen((dir / "g.vert").c_str(), "r+");
+  ASSERT_TRUE(f);
+  std::fwrite(text.data(), 1, text.size(), f);
+  std::fclose(f);
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+  EXPECT_EQ(r.stagesRecompiled, std::vector<std::string>{(dir / "g.vert").string()});
+}
+
+TEST_F(ReloaderFixture, TruncateThenSlowWriteIsNotCompiledHalfWay) {
+  const std::string text = edited(kVert);
+  const int fd = ::open((dir / "g.vert").c_str(), O_WRONLY | O_TRUNC);
+  ASSERT_GE(fd, 0);
+  const size_t half = text.size() / 2;
+  ASSERT_EQ(::write(fd, text.data(), half), ssize_t(half));
+  std::this_thread::sleep_for(250ms);  // longer than the quiet period
+  ASSERT_EQ(::write(fd, text.data() + half, text.size() - half), ssize_t(text.size() - half));
+  ::close(fd);
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+}
+
+TEST_F(ReloaderFixture, WriteTempThenRenameOver) {
+  writeFile(dir / ".g.vert.swp~", edited(kVert));
+  fs::rename(dir / ".g.vert.swp~", dir / "g.vert");
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+  EXPECT_TRUE(has(r.stagesRecompiled, dir / "g.vert"));
+}
+
+TEST_F(ReloaderFixture, DeleteThenRecreate) {
+  fs::remove(dir / "common.glsl");
+  std::this_thread::sleep_for(100ms);  // longer than the quiet period
+  writeFile(dir / "common.glsl", "#define TINT vec3(0.0, 1.0, 0.0)\n");
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(has(r.programs, graphics));
+  EXPECT_TRUE(has(r.programs, rt));
+}
+
+TEST_F(ReloaderFixture, Touch) {
+  fs::last_write_time(dir / "g.frag", fs::file_time_type::clock::now());
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+  EXPECT_TRUE(r.stagesRecompiled.empty());  // contents unchanged: nothing recompiled
+}
+
+TEST_F(ReloaderFixture, UnrelatedFileDoesNothing) {
+  writeFile(dir / "notes.txt", "hello");
+  std::this_thread::sleep_for(400ms);
+  EXPECT_FALSE(reloader->poll().has_value());
+}
+
+TEST_F(ReloaderFixture, SharedIncludeRebuildsBothVertOnlyEditRebuildsGraphics) {
+  writeFile(dir / "common.glsl", "#define TINT vec3(0.25, 0.5, 1.0)\n");
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(has(r.programs, graphics));
+  EXPECT_TRUE(has(r.programs, rt));
+  EXPECT_TRUE(has(r.stagesRecompiled, dir / "g.vert"));
+  EXPECT_TRUE(has(r.stagesRecompiled, dir / "rt/rt.rgen"));
+  EXPECT_TRUE(has(r.stagesRecompiled, dir / "rt/rt.rmiss"));
+  EXPECT_FALSE(has(r.stagesRecompiled, dir / "g.frag"));
+  EXPECT_EQ(r.builds.size(), 2u);
+
+  writeFile(dir / "g.vert", edited(kVert));
+  r = expectOne();
+  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+  EXPECT_EQ(r.stagesRecompiled, std::vector<std::string>{(dir / "g.vert").string()});
+}
+
+TEST_F(ReloaderFixture, BrokenEditReportsErrorThenFixRecovers) {
+  writeFile(dir / "common.glsl", std::string(kCommon) + "const float broken = ;\n");
+  auto r = expectOne();
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find((dir / "common.glsl").string() + ":2: error"), std::string::npos) << r.error;
+  EXPECT_TRUE(has(r.failedPrograms, graphics));
+  EXPECT_TRUE(has(r.failedPrograms, rt));
+  auto st = lib->fileStatuses();
+  EXPECT_FALSE(st[dir / "common.glsl"].ok);
+
+  writeFile(dir / "common.glsl", kCommon);
+  r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(has(r.programs, graphics));
+  EXPECT_TRUE(has(r.programs, rt));
+  EXPECT_TRUE(lib->fileStatuses()[dir / "common.glsl"].ok);
+}
+
+TEST_F(ReloaderFixture, MissingIncludeAppearsLater) {
+  writeFile(dir / "g.vert",
+            std::string(kVert).replace(std::string(kVert).find("common.glsl"), 11, "later.glsl"));
+  auto r = expectOne();
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("include file not found"), std::string::npos) << r.error;
+  writeFile(dir / "later.glsl", kCommon);
+  r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(has(r.programs, graphics));
+}
+
+TEST_F(ReloaderFixture, RequestReloadAll) {
+  reloader->requestReloadAll();
+  auto r = waitResult();
+  ASSERT_TRUE(r);
+  EXPECT_TRUE(r->ok);
+  EXPECT_EQ(r->programs.size(), 2u);
+}
+
+TEST_F(ReloaderFixture, NewSubdirectoryIsWatched) {
+  writeFile(dir / "newdir/x.glsl", kCommon);
+  std::this_thread::sleep_for(300ms);
+  while (reloader->poll()) {
+  }
+  writeFile(dir / "g.vert",
+            std::string(kVert).replace(std::string(kVert).find("common.glsl"), 11, "newdir/x.glsl"));
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  writeFile(dir / "newdir/x.glsl", "#define TINT vec3(0.0)\n");
+  r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+}
