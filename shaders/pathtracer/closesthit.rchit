@@ -16,12 +16,14 @@ hitAttributeEXT vec2 attribs;
 
 bool visible(vec3 origin, vec3 dir) {
   shadow.visible = 0u;
+  payload.shadowRays++;
   traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0,
               MISS_SHADOW, origin, 0.0, dir, 1.0e30, SHADOW_PAYLOAD_LOCATION);
   return shadow.visible != 0u;
 }
 
 void main() {
+  initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, pc.sampleIndex);
   const GeometryInfo g = hitGeometry();
   const Material m = materials[g.materialIndex];
   const HitVertexData h = fetchHit(g, gl_PrimitiveID, attribs);
@@ -80,6 +82,7 @@ void main() {
   payload.hitT = gl_HitTEXT;
   payload.albedo = baseColor.rgb;
   payload.normal = ns;
+  payload.geoNormal = ng;
 
   // Emission, from the front face only unless the material is double-sided.
   vec3 radiance = vec3(0.0);
@@ -99,8 +102,8 @@ void main() {
     // Environment: importance sampled, MIS (power heuristic) against BRDF sampling.
     vec3 wi;
     float lightPdf;
-    const vec3 le = envSample(vec3(pathSampleBounce(bounce, WB_DIM_LIGHT_U), pathSampleBounce(bounce, WB_DIM_LIGHT_V),
-                                   pathSampleBounce(bounce, WB_DIM_LIGHT_CHOICE)),
+    const vec3 le = envSample(vec3(pathSampleBounce(bounce, WB_DIM_LIGHT), pathSampleBounce(bounce, WB_DIM_LIGHT + 1u),
+                                   pathSampleBounce(bounce, WB_DIM_LIGHT + 2u)),
                               wi, lightPdf);
     if (lightPdf > 0.0 && dot(wi, ng) > 0.0) {
       const vec3 f = brdfEval(sm, ns, wo, wi);
@@ -115,8 +118,8 @@ void main() {
 
   // Continuation ray by BRDF sampling.
   const BrdfSample s = brdfSample(sm, ns, wo,
-                                  vec3(pathSampleBounce(bounce, WB_DIM_LOBE), pathSampleBounce(bounce, WB_DIM_BRDF_U),
-                                       pathSampleBounce(bounce, WB_DIM_BRDF_V)));
+                                  vec3(pathSampleBounce(bounce, WB_DIM_LOBE), pathSampleBounce(bounce, WB_DIM_BRDF),
+                                       pathSampleBounce(bounce, WB_DIM_BRDF + 1u)));
   if (s.pdf <= 0.0 || dot(s.wi, ng) <= 0.0) {
     payload.status = PAYLOAD_ABSORBED;  // below the geometric surface: would leak light through it
     return;

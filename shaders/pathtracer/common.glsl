@@ -19,20 +19,20 @@ layout(set = 0, binding = WB_BIND_MATERIALS, scalar) readonly buffer MaterialBlo
 layout(set = 0, binding = WB_BIND_LIGHTS, scalar) readonly buffer LightBlock { DirectionalLight lights[]; };
 layout(set = 0, binding = WB_BIND_TEXTURES) uniform sampler2D textures[];
 layout(set = 0, binding = WB_BIND_ENV_MAP) uniform sampler2D envMap;
-layout(set = 0, binding = WB_BIND_ENV_ALIAS, scalar) readonly buffer EnvAliasBlock { EnvAliasEntry envAlias[]; };
+layout(set = 0, binding = WB_BIND_ENV_ALIAS, scalar) readonly buffer EnvAliasBlock { EnvAliasEntry entries[]; } envAliasBuffer;
 layout(set = 0, binding = WB_BIND_COUNTERS, scalar) buffer CounterBlock { Counters counters; };
-layout(set = 0, binding = WB_BIND_BLUE_NOISE, scalar) readonly buffer BlueNoiseBlock { uint blueNoise[]; };
-layout(set = 0, binding = WB_BIND_SOBOL, scalar) readonly buffer SobolBlock { uint sobolDirections[]; };
+layout(set = 0, binding = WB_BIND_BLUE_NOISE, scalar) readonly buffer BlueNoiseBlock { uint texels[]; } blueNoiseBuffer;
+layout(set = 0, binding = WB_BIND_SOBOL, scalar) readonly buffer SobolBlock { uint dirs[]; } sobolBuffer;
 
 layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer VertexBuffer { Vertex v[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer IndexBuffer { uint i[]; };
 
-// Table accessors the shared sampling headers use (see shared/sampling.h).
-#define WB_ENV_ALIAS(i) envAlias[i]
-#define WB_SOBOL_DIR(dim, bit) sobolDirections[(dim) * 32u + (bit)]
-#define WB_BLUE_NOISE_TEXEL(x, y) blueNoise[(y) * 128u + (x)]
+// Table accessors the shared sampling headers use (shared/random.h, shared/env_sampling.h).
+#define WB_ENV_ALIAS(i) envAliasBuffer.entries[(i)]
+#define WB_SOBOL_DIR(dim, bit) sobolBuffer.dirs[(dim) * 32u + (bit)]
+#define WB_BLUE_NOISE(x, y) wbUnpackBlueNoise(blueNoiseBuffer.texels[(y) * 128u + (x)])
 
 #define SHADOW_PAYLOAD_LOCATION 1
 #define PATH_PAYLOAD_LOCATION 0

@@ -1,20 +1,22 @@
-// The environment: radiance lookup, importance sampling and its pdf.
+// The environment: radiance lookup, importance sampling (alias table) and its pdf, all consistent with the
+// equirectangular map the host uploaded (a 1x1 map for a constant colour).
 #ifndef WB_PT_ENVIRONMENT_GLSL
 #define WB_PT_ENVIRONMENT_GLSL
-#include "../shared/sampling_math.h"
+#include "../shared/env_sampling.h"
 
 vec3 envRadiance(vec3 dir) {
-  if (frame.envMapPresent == 0u) return frame.envColor.rgb * frame.envIntensity;
   const vec2 uv = directionToEquirect(dir, frame.envRotation);
   return textureLod(envMap, uv, 0.0).rgb * frame.envIntensity;
 }
 
-float envPdf(vec3 dir) { return 0.25 * kInvPi; }
+float envPdf(vec3 dir) { return envPdf(dir, frame.envWidth, frame.envHeight, frame.envRotation); }
 
+// Returns the radiance of a sampled direction; pdf 0 marks a sample to skip.
 vec3 envSample(vec3 u, out vec3 dir, out float pdf) {
-  dir = sampleUniformSphere(vec2(u.x, u.y));
-  pdf = 0.25 * kInvPi;
-  return envRadiance(dir);
+  const EnvSample s = envSample(u, frame.envWidth, frame.envHeight, frame.envRotation);
+  dir = s.dir;
+  pdf = s.pdf;
+  return pdf > 0.0 ? envRadiance(dir) : vec3(0.0);
 }
 
 #endif

@@ -22,4 +22,5 @@ void main() {
   payload.hitT = -1.0;
   payload.albedo = vec3(0.0);
   payload.normal = vec3(0.0);
+  payload.geoNormal = vec3(0.0);
 }

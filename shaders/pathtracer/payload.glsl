@@ -16,9 +16,11 @@ struct PathPayload {
   vec3 direction;  // out: continuation ray direction
   float hitT;      // out: distance along the ray (for the depth view)
   vec3 albedo;     // out at bounce 0: base colour (AOV)
-  uint debug;      // out: unused bits for debug views
+  uint shadowRays; // in/out: shadow rays traced along the path so far
   vec3 normal;     // out at bounce 0: shading normal (AOV)
   float pad;
+  vec3 geoNormal;  // out at bounce 0: geometric normal, facing the ray (AOV)
+  float pad2;
 };
 
 struct ShadowPayload {

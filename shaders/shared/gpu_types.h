@@ -14,11 +14,12 @@
 #define WB_BIND_TEXTURES 6      // sampler2D[] (runtime array, descriptor indexing)
 #define WB_BIND_ENV_MAP 7       // sampler2D: equirectangular environment (1x1 when constant colour)
 #define WB_BIND_ENV_ALIAS 8     // storage buffer EnvAliasEntry[] (importance sampling table)
-#define WB_BIND_AOV_ALBEDO 9    // rgba16f storage image
-#define WB_BIND_AOV_NORMAL 10   // rgba16f storage image
+#define WB_BIND_AOV_ALBEDO 9    // rgba16f storage image: first-hit base colour, a = fraction of samples dropped (NaN/Inf)
+#define WB_BIND_AOV_NORMAL 10   // rgba16f storage image: first-hit shading normal, a = first-hit distance (-1 = miss)
 #define WB_BIND_COUNTERS 11     // storage buffer Counters
 #define WB_BIND_BLUE_NOISE 12   // storage buffer uint[] 128x128 blue-noise (rg in 16 bits each)
 #define WB_BIND_SOBOL 13        // storage buffer uint[] Sobol direction numbers [dim * 32 + bit]
+#define WB_BIND_AOV_INFO 14     // rgba16f storage image: first-hit geometric normal, a = path vertices traced
 
 // Material alpha modes (glTF).
 #define WB_ALPHA_OPAQUE 0u
@@ -33,7 +34,7 @@
 #define WB_FLAG_NO_NEE 2u            // disable next-event estimation (BRDF sampling only)
 #define WB_FLAG_NO_BRDF_MIS 4u       // light sampling only for the environment (no MIS with BRDF)
 #define WB_FLAG_NO_RR 8u             // Russian roulette off
-#define WB_FLAG_AOV 16u              // write albedo/normal AOVs at bounce 0
+#define WB_FLAG_AOV 16u              // write the AOV images (albedo, normals, depth, bounces, dropped samples)
 
 WB_NAMESPACE_BEGIN
 

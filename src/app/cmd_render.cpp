@@ -58,8 +58,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const auto image = session.image();
     eval::writeImage(outPath, image);
     if (ro.settings.aov) {
-      eval::writeImage(aovPath(outPath, "albedo"), session.aov(false));
-      eval::writeImage(aovPath(outPath, "normal"), session.aov(true));
+      eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));
+      eval::writeImage(aovPath(outPath, "normal"), session.aov(render::Aov::Normal));
     }
     const auto counters = session.pathTracer().readCounters();
     double mean[3] = {0, 0, 0};

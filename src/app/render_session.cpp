@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "common/paths.h"
+#include "sampling/environment.h"
 
 namespace wb::app {
 namespace {
@@ -14,13 +15,15 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settings) {
+  const bool isMap = !settings.envPath.empty();
+  EnvironmentMap env = isMap ? loadHdrEnvironment(settings.envPath) : constantEnvironment(settings.envColor);
   render::EnvironmentData d;
-  if (!settings.envPath.empty()) {
-    throw std::runtime_error("--env: environment maps are not supported yet ('" + settings.envPath + "')");
-  }
-  d.width = d.height = 1;
-  d.rgb = {settings.envColor.x, settings.envColor.y, settings.envColor.z};
-  d.isMap = false;
+  d.width = uint32_t(env.width);
+  d.height = uint32_t(env.height);
+  d.rgb = std::move(env.rgb);
+  d.alias = std::move(env.alias);
+  d.totalWeight = env.totalWeight;
+  d.isMap = isMap;
   return d;
 }
 
@@ -71,11 +74,11 @@ eval::ImageRGBA RenderSession::image() const {
   return img;
 }
 
-eval::ImageRGBA RenderSession::aov(bool normal) const {
+eval::ImageRGBA RenderSession::aov(render::Aov which) const {
   eval::ImageRGBA img;
   img.width = tracer_->settings().width;
   img.height = tracer_->settings().height;
-  img.pixels = tracer_->readAov(normal);
+  img.pixels = tracer_->readAov(which);
   return img;
 }
 

@@ -40,7 +40,7 @@ class RenderSession {
   // Renders `spp` samples from scratch; returns the wall time in seconds.
   double render(uint32_t spp);
   eval::ImageRGBA image() const;  // the accumulation (alpha = 1)
-  eval::ImageRGBA aov(bool normal) const;
+  eval::ImageRGBA aov(render::Aov which) const;
 
  private:
   std::unique_ptr<vk::Context> ctx_;

@@ -69,8 +69,9 @@ void PathTracer::createImages() {
   accum_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
   albedo_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
   normal_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+  info_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* img : {&accum_, &albedo_, &normal_}) {
+    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_}) {
       vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       VkClearColorValue zero{};
       VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -86,6 +87,7 @@ void PathTracer::writeDescriptors() {
   s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
   s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
   s.writeStorageImage(0, WB_BIND_AOV_NORMAL, normal_.view());
+  s.writeStorageImage(0, WB_BIND_AOV_INFO, info_.view());
   s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
   s.writeBuffer(0, WB_BIND_GEOMETRIES, scene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, scene_.materials().handle());
@@ -198,8 +200,8 @@ std::vector<float> PathTracer::readAccumulation() const {
   return out;
 }
 
-std::vector<float> PathTracer::readAov(bool normal) const {
-  auto bytes = (normal ? normal_ : albedo_).download(VK_IMAGE_LAYOUT_GENERAL);
+std::vector<float> PathTracer::readAov(Aov aov) const {
+  auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
   std::vector<float> out(bytes.size() / 2);
   for (size_t i = 0; i < out.size(); ++i) {
     uint16_t h;

@@ -22,6 +22,9 @@ struct CameraState {
 };
 CameraState cameraFromScene(const scene::Camera& camera);
 
+// The AOV images the path tracer keeps when settings.aov is on (see gpu_types.h for their channels).
+enum class Aov { Albedo, Normal, Info };
+
 struct PixelRegion {
   uint32_t x = 0, y = 0, width = 0, height = 0;
 };
@@ -57,8 +60,11 @@ class PathTracer {
   double lastPipelineMs() const { return pipelineMs_; }
 
   // Readbacks (they wait for the device).
-  std::vector<float> readAccumulation() const;    // RGBA32F, alpha = samples accumulated in the pixel
-  std::vector<float> readAov(bool normal) const;  // RGBA, from the half-float AOV images
+  std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
+  std::vector<float> readAov(Aov aov) const;    // RGBA, from the half-float AOV images
+  const vk::Image& aovImage(Aov aov) const {
+    return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : info_;
+  }
   gpu::Counters readCounters() const;
   void resetCounters();
 
@@ -80,7 +86,7 @@ class PathTracer {
   std::unique_ptr<vk::PipelineLayout> layout_;
   std::unique_ptr<vk::DescriptorSets> sets_;
   std::unique_ptr<vk::RayTracingPipeline> pipeline_;
-  vk::Image accum_, albedo_, normal_;
+  vk::Image accum_, albedo_, normal_, info_;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   uint32_t sampleIndex_ = 0;
   double pipelineMs_ = 0;

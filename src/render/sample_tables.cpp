@@ -1,13 +1,16 @@
 #include "render/sample_tables.h"
 
+#include "sampling/blue_noise.h"
+#include "sampling/sobol.h"
+#include "shared/random.h"
+
 namespace wb::render {
 
-// Placeholder until the sampling library lands: the shaders do not read these yet.
 std::vector<uint32_t> sobolTable() {
-  return std::vector<uint32_t>(32, 0u);
+  return sobolDirectionNumbers(int(WB_SOBOL_DIMS));
 }
 std::vector<uint32_t> blueNoiseTable() {
-  return std::vector<uint32_t>(128 * 128, 0u);
+  return blueNoise128();
 }
 
 }  // namespace wb::render

@@ -132,3 +132,22 @@ ShadowScene makeShadowScene() {
 }
 
 }  // namespace wb::testing
+
+namespace wb::testing {
+
+scene::Scene makeFurnaceScene(gpu::Material material) {
+  scene::Scene sc;
+  sc.sourcePath = "furnace-test";
+  sc.materials = {material};
+  sc.materialNames = {"furnace"};
+  sc.meshes = {sphereMesh(1.0f, 0, 64, 32)};
+  sc.instances.push_back({0, glm::mat4(1.0f), "sphere"});
+  sc.camera.eye = glm::vec3(0.0f, 0.0f, 2.2f);
+  sc.camera.target = glm::vec3(0.0f);
+  sc.camera.up = glm::vec3(0, 1, 0);
+  sc.camera.yfov = 0.8f;
+  sc.bounds = {glm::vec3(-1), glm::vec3(1)};
+  return sc;
+}
+
+}  // namespace wb::testing

@@ -21,3 +21,9 @@ struct ShadowScene {
 ShadowScene makeShadowScene();
 
 }  // namespace wb::testing
+
+namespace wb::testing {
+// A white Lambertian sphere (specularFactor 0) alone in the scene, camera framing it: in a uniform
+// environment of radiance 1 every pixel converges to exactly 1 (the white furnace).
+scene::Scene makeFurnaceScene(gpu::Material material);
+}  // namespace wb::testing

@@ -1,0 +1,156 @@
+#include "scene/gltf_file.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+
+#include <stb/stb_image.h>
+
+#include "scene/load_context.h"
+#include "scene/scene.h"
+
+namespace wb::scene {
+namespace {
+
+constexpr uint32_t kGlbMagic = 0x46546C67;        // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A;       // "JSON"
+constexpr uint32_t kChunkBin = 0x004E4942;        // "BIN\0"
+constexpr size_t kMaxFileSize = size_t{2} << 30;  // 2 GiB: glTF's own limit for GLB
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& reason) {
+  throw SceneError(path.filename().string() + ": " + oneLine(reason));
+}
+
+uint32_t readU32(const std::vector<unsigned char>& data, size_t offset) {
+  uint32_t value = 0;
+  std::memcpy(&value, data.data() + offset, 4);
+  return value;
+}
+
+std::vector<unsigned char> readWholeFile(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(path, "file not found (" + path.string() + ")");
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a glTF file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open file for reading");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) fail(path, "cannot determine file size");
+  if (static_cast<uint64_t>(size) > kMaxFileSize) fail(path, "file larger than 2 GiB");
+  in.seekg(0, std::ios::beg);
+  std::vector<unsigned char> data(static_cast<size_t>(size));
+  if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size)) fail(path, "read error");
+  if (data.empty()) fail(path, "file is empty");
+  return data;
+}
+
+// tinygltf 2.7 trusts the GLB header more than it should; check every length against the file size first.
+void validateGlbContainer(const std::filesystem::path& path, const std::vector<unsigned char>& data) {
+  if (data.size() < 20) fail(path, "GLB file shorter than its 12-byte header plus a chunk header");
+  const uint32_t version = readU32(data, 4);
+  const uint32_t length = readU32(data, 8);
+  if (version != 2) fail(path, "unsupported GLB container version " + std::to_string(version));
+  if (length > data.size()) {
+    fail(path,
+         "GLB header length " + std::to_string(length) + " exceeds file size " + std::to_string(data.size()));
+  }
+  size_t offset = 12;
+  int chunkIndex = 0;
+  while (offset + 8 <= length) {
+    const uint64_t chunkLength = readU32(data, offset);
+    const uint32_t chunkType = readU32(data, offset + 4);
+    if (chunkLength == 0) {
+      fail(path, "zero-sized GLB chunk " + std::to_string(chunkIndex) +
+                     (chunkType == kChunkBin    ? " (BIN)"
+                      : chunkType == kChunkJson ? " (JSON)"
+                                                : ""));
+    }
+    if (offset + 8 + chunkLength > length) {
+      fail(path, "GLB chunk " + std::to_string(chunkIndex) + " (" + std::to_string(chunkLength) +
+                     " bytes) runs past the end of the file");
+    }
+    if (chunkIndex == 0 && chunkType != kChunkJson) fail(path, "first GLB chunk is not JSON");
+    if (chunkIndex == 1 && chunkType != kChunkBin) fail(path, "second GLB chunk is not BIN");
+    offset += 8 + static_cast<size_t>(chunkLength);
+    ++chunkIndex;
+  }
+  if (chunkIndex == 0) fail(path, "GLB file has no JSON chunk");
+}
+
+// Image callback for tinygltf: decode anything stb understands to RGBA8; leave the rest empty with a warning.
+bool decodeImageRgba8(tinygltf::Image* image, const int imageIndex, std::string* /*err*/, std::string* warn,
+                      int /*reqWidth*/, int /*reqHeight*/, const unsigned char* bytes, int size, void*) {
+  image->width = image->height = 0;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image.clear();
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels =
+      (bytes && size > 0) ? stbi_load_from_memory(bytes, size, &width, &height, &channels, 4) : nullptr;
+  if (!pixels) {
+    if (warn) {
+      const char* reason = stbi_failure_reason();
+      *warn += "image " + std::to_string(imageIndex) + " ('" + image->name + image->uri + "', " +
+               (image->mimeType.empty() ? std::string("unknown type") : image->mimeType) +
+               ") could not be decoded: " + (reason ? reason : "unknown format") + "\n";
+    }
+    return true;
+  }
+  image->width = width;
+  image->height = height;
+  image->image.assign(pixels, pixels + static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
+  stbi_image_free(pixels);
+  return true;
+}
+
+}  // namespace
+
+tinygltf::Model parseGltfFile(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+  const std::vector<unsigned char> data = readWholeFile(path);
+  const bool isGlb = data.size() >= 4 && readU32(data, 0) == kGlbMagic;
+  if (isGlb) validateGlbContainer(path, data);
+  if (data.size() > static_cast<size_t>(std::numeric_limits<unsigned int>::max()))
+    fail(path, "file too large");
+
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(decodeImageRgba8, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::filesystem::path parent = path.parent_path();
+  const std::string baseDir = parent.empty() ? std::string(".") : parent.string();
+  bool ok = false;
+  try {
+    if (isGlb) {
+      ok = parser.LoadBinaryFromMemory(&model, &err, &warn, data.data(),
+                                       static_cast<unsigned int>(data.size()), baseDir);
+    } else {
+      if (data[0] != '{' && data[0] != ' ' && data[0] != '\n' && data[0] != '\r' && data[0] != '\t' &&
+          data[0] != 0xEF) {
+        fail(path, "not a glTF file (neither JSON nor GLB)");
+      }
+      ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(data.data()),
+                                      static_cast<unsigned int>(data.size()), baseDir);
+    }
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {  // e.g. bad_alloc for absurd sizes inside tinygltf
+    fail(path, std::string("tinygltf failed: ") + e.what());
+  }
+  if (!ok) fail(path, err.empty() ? std::string("tinygltf could not parse the file") : err);
+  std::string line;
+  for (char c : warn) {
+    if (c == '\n') {
+      if (!line.empty()) warnings.push_back(line);
+      line.clear();
+    } else if (c != '\r') {
+      line += c;
+    }
+  }
+  if (!line.empty()) warnings.push_back(line);
+  return model;
+}
+
+}  // namespace wb::scene

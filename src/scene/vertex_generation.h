@@ -1,0 +1,23 @@
+// Fills in vertex attributes a glTF primitive did not provide (or provided broken).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "shared/gpu_types.h"
+
+namespace wb::scene {
+
+// Area-weighted vertex normals from the triangles (each triangle adds its unnormalised face normal, whose
+// length is twice its area). Vertices no non-degenerate triangle touches get +Y.
+void generateNormals(std::vector<gpu::Vertex>& vertices, const std::vector<uint32_t>& indices);
+
+// Tangents from UV derivatives (accumulated per vertex, Gram-Schmidt against the normal, handedness in w so
+// that cross(normal, tangent.xyz) * w points along +v). Needs normals and UVs. Vertices without usable UV
+// derivatives get an arbitrary unit tangent perpendicular to the normal (w = 1).
+void generateTangents(std::vector<gpu::Vertex>& vertices, const std::vector<uint32_t>& indices);
+
+// Any unit vector perpendicular to the unit vector n.
+glm::vec3 anyPerpendicular(const glm::vec3& n);
+
+}  // namespace wb::scene
