@@ -7,6 +7,7 @@
 
 #include "app/cmd_render.h"
 #include "app/cmd_shaders.h"
+#include "app/cmd_watch.h"
 #include "common/paths.h"
 
 namespace {
@@ -17,6 +18,7 @@ void usage() {
       "display)\n"
       "       workbench render [SCENE] --out FILE ...  headless render (PNG tonemapped, EXR linear)\n"
       "       workbench shaders [--json] PATH...       compile and reflect shaders\n"
+      "       workbench watch [SCENE] --headless ...   render while hot-reloading shaders; log reloads\n"
       "run 'workbench COMMAND --help' for a command's flags\n");
 }
 
@@ -51,5 +53,6 @@ int main(int argc, char** argv) {
       args.empty() ? args : std::vector<std::string>(args.begin() + 1, args.end());
   if (cmd == "render") return wb::app::runRenderCommand(rest);
   if (cmd == "shaders") return wb::runShadersCommand(rest);
+  if (cmd == "watch") return wb::app::runWatchCommand(rest);
   return runDefault(args);
 }

@@ -100,25 +100,31 @@ void PathTracer::writeDescriptors() {
   s.writeBuffer(0, WB_BIND_SOBOL, sobol_.handle());
 }
 
-void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {
+std::unique_ptr<PreparedPipeline> PathTracer::preparePipeline(
+    const shader::ShaderLibrary::ProgramBuild& build) const {
   // Groups: raygen, environment miss, shadow miss, one triangle hit group (closest-hit + any-hit).
   const std::vector<vk::RtShaderGroup> groups = {
       {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, 4, -1}};
-  const bool newLayout = !layout_ || !layout_->compatibleWith(build.layout);
-  std::unique_ptr<vk::PipelineLayout> layout =
-      newLayout ? std::make_unique<vk::PipelineLayout>(ctx_, build.layout) : nullptr;
-  auto pipeline = std::make_unique<vk::RayTracingPipeline>(
-      ctx_, build.stages, groups, kMissCount, (layout ? *layout : *layout_).handle(), kMaxRecursion);
-  vkDeviceWaitIdle(ctx_.device());  // the old pipeline may still be in flight
-  pipeline_ = std::move(pipeline);
-  if (newLayout) {
-    sets_.reset();
-    layout_ = std::move(layout);
-    sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *layout_);
-    writeDescriptors();
-  }
+  auto prepared = std::make_unique<PreparedPipeline>();
+  prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
+  prepared->pipeline = std::make_unique<vk::RayTracingPipeline>(ctx_, build.stages, groups, kMissCount,
+                                                                prepared->layout->handle(), kMaxRecursion);
+  return prepared;
+}
+
+void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
+  vkDeviceWaitIdle(ctx_.device());  // the old pipeline and descriptor sets may still be in flight
+  sets_.reset();
+  pipeline_ = std::move(prepared->pipeline);
+  layout_ = std::move(prepared->layout);
+  sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *layout_);
+  writeDescriptors();
   pipelineMs_ = pipeline_->createMs();
   sampleIndex_ = 0;
+}
+
+void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {
+  commitPipeline(preparePipeline(build));
 }
 
 void PathTracer::setCamera(const CameraState& camera) {

@@ -29,6 +29,12 @@ struct PixelRegion {
   uint32_t x = 0, y = 0, width = 0, height = 0;
 };
 
+// A pipeline built (off the frame path) and waiting to replace the running one at a frame boundary.
+struct PreparedPipeline {
+  std::unique_ptr<vk::PipelineLayout> layout;
+  std::unique_ptr<vk::RayTracingPipeline> pipeline;
+};
+
 class PathTracer {
  public:
   PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
@@ -54,9 +60,11 @@ class PathTracer {
   void render(uint32_t samples);
   uint32_t samplesAccumulated() const { return sampleIndex_; }
 
-  // Replaces the pipeline with one built from `build` (hot reload). The old pipeline keeps running until
-  // then.
-  void swapPipeline(const shader::ShaderLibrary::ProgramBuild& build);
+  // Hot reload in two steps: prepare (any thread; creates the layout and pipeline) and commit (render thread,
+  // at a frame boundary; resets accumulation). The old pipeline keeps rendering until the commit.
+  std::unique_ptr<PreparedPipeline> preparePipeline(const shader::ShaderLibrary::ProgramBuild& build) const;
+  void commitPipeline(std::unique_ptr<PreparedPipeline> prepared);
+  void swapPipeline(const shader::ShaderLibrary::ProgramBuild& build);  // both at once
   double lastPipelineMs() const { return pipelineMs_; }
 
   // Readbacks (they wait for the device).

@@ -1,0 +1,24 @@
+#include "app/reload_log.h"
+
+namespace wb::app {
+
+nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
+  nlohmann::json j;
+  j["time"] = std::chrono::duration<double>(e.when.time_since_epoch()).count();
+  j["files_changed"] = e.filesChanged;
+  j["stages_recompiled"] = e.stagesRecompiled;
+  j["pipelines_rebuilt"] = e.pipelinesRebuilt;
+  j["compile_ms"] = e.compileMs;
+  j["pipeline_ms"] = e.pipelineMs;
+  j["edit_to_new_pipeline_ms"] = e.editToNewPipelineMs;
+  if (e.editToFirstFrameMs >= 0) {
+    j["edit_to_first_frame_ms"] = e.editToFirstFrameMs;
+  } else {
+    j["edit_to_first_frame_ms"] = nullptr;
+  }
+  j["ok"] = e.ok;
+  j["error"] = e.error;
+  return j;
+}
+
+}  // namespace wb::app

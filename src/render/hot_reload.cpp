@@ -1,0 +1,134 @@
+#include "render/hot_reload.h"
+
+namespace wb::render {
+namespace {
+
+double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+}  // namespace
+
+HotReload::HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs)
+    : library_(library), reloader_(library, std::move(watchDirs)) {}
+
+HotReload::~HotReload() {
+  stop();
+}
+
+void HotReload::addTarget(shader::ShaderLibrary::ProgramId program, Target target) {
+  std::lock_guard lock(mutex_);
+  targets_[program] = std::move(target);
+}
+
+void HotReload::start() {
+  if (running_) return;
+  reloader_.start();
+  running_ = true;
+  thread_ = std::thread([this] { run(); });
+}
+
+void HotReload::stop() {
+  if (!running_) return;
+  running_ = false;
+  if (thread_.joinable()) thread_.join();
+  reloader_.stop();
+}
+
+void HotReload::reloadAll() {
+  manualRequest_ = true;
+  reloader_.requestReloadAll();
+}
+
+void HotReload::run() {
+  while (running_) {
+    auto result = reloader_.poll();
+    if (!result) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      continue;
+    }
+    // With auto-reload off, file changes are noticed (the UI shows them) but only a manual reload applies.
+    if (!autoReload_ && !manualRequest_.exchange(false)) continue;
+    manualRequest_ = false;
+    Pending p;
+    p.editTime = result->editTime;
+    p.event.when = std::chrono::system_clock::now();
+    for (const auto& f : result->filesChanged) p.event.filesChanged.push_back(f.string());
+    p.event.stagesRecompiled = result->stagesRecompiled;
+    p.event.compileMs = result->compileMs;
+    p.event.ok = result->ok;
+    p.event.error = result->error;
+    auto t0 = std::chrono::steady_clock::now();
+    for (size_t i = 0; i < result->programs.size(); ++i) {
+      Target target;
+      {
+        std::lock_guard lock(mutex_);
+        auto it = targets_.find(result->programs[i]);
+        if (it == targets_.end()) continue;
+        target = it->second;
+      }
+      try {
+        p.prepared.emplace_back(result->programs[i], target.prepare(result->builds[i]));
+        p.event.pipelinesRebuilt.push_back(target.name);
+      } catch (const std::exception& e) {
+        p.event.ok = false;
+        p.event.error +=
+            (p.event.error.empty() ? "" : "\n") + target.name + ": pipeline creation failed: " + e.what();
+      }
+    }
+    p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
+    {
+      std::lock_guard lock(mutex_);
+      for (auto id : result->failedPrograms) {
+        errors_[id] = result->error;
+      }
+      for (const auto& [id, ptr] : p.prepared) errors_.erase(id);
+      pending_.push_back(std::move(p));
+    }
+  }
+}
+
+std::optional<ReloadEvent> HotReload::poll() {
+  std::optional<Pending> p;
+  {
+    std::lock_guard lock(mutex_);
+    if (pending_.empty()) return std::nullopt;
+    p = std::move(pending_.front());
+    pending_.pop_front();
+  }
+  for (auto& [id, prepared] : p->prepared) {
+    Target target;
+    {
+      std::lock_guard lock(mutex_);
+      target = targets_.at(id);
+    }
+    target.commit(std::move(prepared));
+  }
+  const auto now = std::chrono::steady_clock::now();
+  p->event.editToNewPipelineMs = msBetween(p->editTime, now);
+  std::lock_guard lock(mutex_);
+  history_.push_back(p->event);
+  awaitingFrame_ = p->prepared.empty() ? std::nullopt : std::optional(p->editTime);
+  return p->event;
+}
+
+void HotReload::frameFinished() {
+  std::lock_guard lock(mutex_);
+  if (!awaitingFrame_ || history_.empty()) return;
+  history_.back().editToFirstFrameMs = msBetween(*awaitingFrame_, std::chrono::steady_clock::now());
+  awaitingFrame_.reset();
+}
+
+std::vector<ReloadEvent> HotReload::history() const {
+  std::lock_guard lock(mutex_);
+  return history_;
+}
+
+std::string HotReload::currentError() const {
+  std::lock_guard lock(mutex_);
+  std::string all;
+  for (const auto& [id, e] : errors_) all += (all.empty() ? "" : "\n") + e;
+  return all;
+}
+
+}  // namespace wb::render

@@ -1,0 +1,88 @@
+// Hot reload for the render loop: the shader Reloader compiles changed programs on its thread, this class's
+// worker builds their pipelines (still off the frame path), and the render thread commits them at a frame
+// boundary. Failures keep the last good pipeline and are kept as the current error until a later success.
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "shader/reloader.h"
+
+namespace wb::render {
+
+// One reload as the UI history and the `watch` log show it.
+struct ReloadEvent {
+  std::vector<std::string> filesChanged;
+  std::vector<std::string> stagesRecompiled;
+  std::vector<std::string> pipelinesRebuilt;
+  double compileMs = 0;            // glslang (+ cache) time of the rebuild
+  double pipelineMs = 0;           // Vulkan pipeline creation
+  double editToNewPipelineMs = 0;  // change seen on disk -> pipeline committed
+  double editToFirstFrameMs = -1;  // change seen on disk -> first frame with the new pipeline finished
+  bool ok = true;
+  std::string error;  // file:line: error: message lines
+  std::chrono::system_clock::time_point when;
+};
+
+class HotReload {
+ public:
+  // A pipeline owner: `prepare` builds a pipeline from a program build on the worker thread and returns it
+  // type-erased; `commit` installs it on the render thread.
+  struct Target {
+    std::string name;
+    std::function<std::shared_ptr<void>(const shader::ShaderLibrary::ProgramBuild&)> prepare;
+    std::function<void(std::shared_ptr<void>)> commit;
+  };
+
+  HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs);
+  ~HotReload();
+  HotReload(const HotReload&) = delete;
+  HotReload& operator=(const HotReload&) = delete;
+
+  void addTarget(shader::ShaderLibrary::ProgramId program, Target target);
+  void start();
+  void stop();
+
+  // Render thread, at a frame boundary: commits prepared pipelines. Returns the event it applied, if any.
+  std::optional<ReloadEvent> poll();
+  // Render thread: a frame that used the committed pipelines finished (fills editToFirstFrameMs once).
+  void frameFinished();
+
+  void setAutoReload(bool on) { autoReload_ = on; }
+  bool autoReload() const { return autoReload_; }
+  void reloadAll();  // rebuild every program now (the UI's reload button)
+
+  std::vector<ReloadEvent> history() const;
+  std::string currentError() const;  // empty when the last reload of every program succeeded
+
+ private:
+  struct Pending {
+    ReloadEvent event;
+    std::vector<std::pair<shader::ShaderLibrary::ProgramId, std::shared_ptr<void>>> prepared;
+    std::chrono::steady_clock::time_point editTime;
+  };
+  void run();
+
+  shader::ShaderLibrary& library_;
+  shader::Reloader reloader_;
+  std::map<shader::ShaderLibrary::ProgramId, Target> targets_;
+  std::thread thread_;
+  std::atomic<bool> running_{false};
+  std::atomic<bool> autoReload_{true};
+  std::atomic<bool> manualRequest_{false};
+  mutable std::mutex mutex_;
+  std::deque<Pending> pending_;
+  std::vector<ReloadEvent> history_;
+  std::map<shader::ShaderLibrary::ProgramId, std::string> errors_;
+  std::optional<std::chrono::steady_clock::time_point> awaitingFrame_;
+};
+
+}  // namespace wb::render
