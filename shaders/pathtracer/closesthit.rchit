@@ -50,10 +50,13 @@ void main() {
     roughness *= mr.g;
     metallic *= mr.b;
   }
+#if WB_HAS_EMISSIVE
   vec3 emissive = m.emissive;
   if (m.emissiveTexture >= 0) emissive *= sampleTexture(m.emissiveTexture, h.uv).rgb;
+#endif
 
   // Normal mapping with the TBN frame (tangent sign from w); skipped when the tangent is missing or degenerate.
+#if WB_HAS_NORMAL_MAPS
   if (m.normalTexture >= 0) {
     vec3 t = (gl_ObjectToWorldEXT * vec4(h.tangent.xyz, 0.0)).xyz;
     t = t - ns * dot(ns, t);
@@ -66,6 +69,7 @@ void main() {
       if (dot(mapped, mapped) > 1e-20) ns = normalize(mapped);
     }
   }
+#endif
   // Keep the shading normal on the visible side of the geometric normal (no black pixels at grazing views).
   const float minCos = 1e-3;
   const float nsDotWo = dot(ns, wo);
@@ -86,19 +90,22 @@ void main() {
 
   // Emission, from the front face only unless the material is double-sided.
   vec3 radiance = vec3(0.0);
+#if WB_HAS_EMISSIVE
   if (frontFace || (m.flags & WB_MATERIAL_DOUBLE_SIDED) != 0u) radiance += emissive;
+#endif
 
   const uint bounce = payload.bounce;
   const vec3 originOut = offsetRay(position, ng);
   if ((pc.flags & WB_FLAG_NO_NEE) == 0u) {
     // Directional lights: delta distributions, so plain light sampling (no MIS).
-    for (uint i = 0u; i < frame.lightCount; ++i) {
+    for (uint i = 0u; i < WB_LIGHT_COUNT; ++i) {
       const vec3 wi = -lights[i].direction;
       if (dot(wi, ng) <= 0.0) continue;
       const vec3 f = brdfEval(sm, ns, wo, wi);
       if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
       if (visible(originOut, wi)) radiance += f * lights[i].radiance;
     }
+#if WB_ENV_MODE != WB_ENV_NONE
     // Environment: importance sampled, MIS (power heuristic) against BRDF sampling.
     vec3 wi;
     float lightPdf;
@@ -113,6 +120,7 @@ void main() {
         radiance += f * le * (w / lightPdf);
       }
     }
+#endif
   }
   payload.radiance = radiance;
 

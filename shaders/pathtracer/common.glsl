@@ -12,6 +12,21 @@
 
 #include "../shared/gpu_types.h"
 
+// Scene-driven specialisation (src/scene/features.h): the host defines WB_SPECIALIZED and the WB_HAS_* / WB_LIGHT_COUNT
+// / WB_ENV_MODE values for what the scene uses; without them (or with WB_GENERIC) every feature is compiled in.
+#ifndef WB_SPECIALIZED
+#define WB_HAS_ALPHA_MASK 1
+#define WB_HAS_ALPHA_BLEND 1
+#define WB_HAS_NORMAL_MAPS 1
+#define WB_HAS_EMISSIVE 1
+#define WB_HAS_TEXTURES 1
+#define WB_LIGHT_COUNT frame.lightCount
+#define WB_ENV_MODE 2
+#endif
+#define WB_ENV_NONE 0
+#define WB_ENV_CONSTANT 1
+#define WB_ENV_MAP 2
+
 layout(set = 0, binding = WB_BIND_TLAS) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = WB_BIND_FRAME, scalar) uniform FrameBlock { FrameUniforms frame; };
 layout(set = 0, binding = WB_BIND_GEOMETRIES, scalar) readonly buffer GeometryBlock { GeometryInfo geometries[]; };
@@ -39,7 +54,12 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Ind
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u
 
-// Texture fetch in ray tracing stages: no derivatives, so the base level.
+// Texture fetch in ray tracing stages: no derivatives, so the base level. Without textures in the scene the
+// binding is not even referenced (white).
+#if WB_HAS_TEXTURES
 vec4 sampleTexture(int index, vec2 uv) { return textureLod(textures[nonuniformEXT(index)], uv, 0.0); }
+#else
+vec4 sampleTexture(int index, vec2 uv) { return vec4(1.0); }
+#endif
 
 #endif

@@ -5,8 +5,14 @@
 #include "../shared/env_sampling.h"
 
 vec3 envRadiance(vec3 dir) {
+#if WB_ENV_MODE == WB_ENV_NONE
+  return vec3(0.0);
+#elif WB_ENV_MODE == WB_ENV_CONSTANT
+  return frame.envColor.rgb * frame.envIntensity;
+#else
   const vec2 uv = directionToEquirect(dir, frame.envRotation);
   return textureLod(envMap, uv, 0.0).rgb * frame.envIntensity;
+#endif
 }
 
 float envPdf(vec3 dir) { return envPdf(dir, frame.envWidth, frame.envHeight, frame.envRotation); }

@@ -31,6 +31,7 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
   app.add_option("--aov", o.aov, "write AOVs: albedo,normal (beside --out)");
   app.add_option("--device", o.device, "Vulkan device name (substring)");
+  app.add_flag("--generic", s.generic, "all-features shaders instead of the scene-specialised build");
 }
 
 static float parseFloat(const std::string& text, const std::string& what) {

@@ -27,6 +27,15 @@ render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settin
   return d;
 }
 
+scene::SceneFeatures featuresFor(const scene::Scene& scene, const render::RenderSettings& settings) {
+  if (settings.generic) return scene::genericFeatures();
+  const bool black = settings.envColor == glm::vec3(0.0f) || settings.envIntensity == 0.0f;
+  const auto env = !settings.envPath.empty() ? scene::EnvironmentKind::Map
+                   : black                   ? scene::EnvironmentKind::None
+                                             : scene::EnvironmentKind::Constant;
+  return scene::analyzeFeatures(scene, env);
+}
+
 RenderSession::RenderSession(const SessionOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   const std::filesystem::path scenePath =
@@ -44,7 +53,8 @@ RenderSession::RenderSession(const SessionOptions& options) {
   library_ = std::make_unique<shader::ShaderLibrary>(lo);
   gpuScene_ = std::make_unique<render::GpuScene>(*ctx_, scene_);
   env_ = std::make_unique<render::GpuEnvironment>(*ctx_, envData);
-  tracer_ = std::make_unique<render::PathTracer>(*ctx_, *library_, *gpuScene_, *env_, options.settings);
+  tracer_ = std::make_unique<render::PathTracer>(*ctx_, *library_, *gpuScene_, *env_, options.settings,
+                                                 featuresFor(scene_, options.settings));
   sceneCamera_ = render::cameraFromScene(scene_.camera);
   tracer_->setCamera(sceneCamera_);
   setupSeconds_ = secondsSince(t0);

@@ -23,6 +23,8 @@ struct SessionOptions {
 };
 
 render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settings);
+// The shader specialisation for a scene and the environment the settings ask for (generic with --generic).
+scene::SceneFeatures featuresFor(const scene::Scene& scene, const render::RenderSettings& settings);
 
 class RenderSession {
  public:

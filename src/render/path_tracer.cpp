@@ -36,27 +36,51 @@ CameraState cameraFromScene(const scene::Camera& camera) {
   return c;
 }
 
-std::vector<shader::ShaderKey> PathTracer::stageKeys(const std::vector<shader::Define>& defines) {
+std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features) {
   const auto dir = shaderDir() / "pathtracer";
-  return {
-      {dir / "raygen.rgen", std::nullopt, defines},  {dir / "miss.rmiss", std::nullopt, defines},
-      {dir / "shadow.rmiss", std::nullopt, defines}, {dir / "closesthit.rchit", std::nullopt, defines},
-      {dir / "anyhit.rahit", std::nullopt, defines},
+  const auto defines = scene::featureDefines(features);
+  std::vector<shader::ShaderKey> keys = {
+      {dir / "raygen.rgen", std::nullopt, defines},
+      {dir / "miss.rmiss", std::nullopt, defines},
+      {dir / "shadow.rmiss", std::nullopt, defines},
+      {dir / "closesthit.rchit", std::nullopt, defines},
   };
+  if (features.anyAlpha()) keys.push_back({dir / "anyhit.rahit", std::nullopt, defines});
+  return keys;
 }
 
 PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
                        const GpuEnvironment& env, const RenderSettings& settings,
-                       std::vector<shader::Define> defines)
+                       const scene::SceneFeatures& features)
     : ctx_(ctx), library_(library), scene_(scene), env_(env), settings_(settings) {
-  program_ = library.registerProgram("pathtracer", stageKeys(defines));
   frameUniforms_ = vk::Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
   blueNoise_ = vk::makeBuffer(ctx, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
-  swapPipeline(library.buildProgram(program_));
+  setFeatures(features);
+}
+
+bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
+  if (pipeline_ && features == features_) return false;
+  shader::ShaderLibrary::ProgramId id = 0;
+  bool found = false;
+  for (const auto& [f, p] : variants_) {
+    if (f == features) {
+      id = p;
+      found = true;
+    }
+  }
+  if (!found) {
+    id = library_.registerProgram(features.generic ? "pathtracer" : "pathtracer (specialised)",
+                                  stageKeys(features));
+    variants_.emplace_back(features, id);
+  }
+  swapPipeline(library_.buildProgram(id));
+  program_ = id;
+  features_ = features;
+  return true;
 }
 
 PathTracer::~PathTracer() {
@@ -102,9 +126,11 @@ void PathTracer::writeDescriptors() {
 
 std::unique_ptr<PreparedPipeline> PathTracer::preparePipeline(
     const shader::ShaderLibrary::ProgramBuild& build) const {
-  // Groups: raygen, environment miss, shadow miss, one triangle hit group (closest-hit + any-hit).
+  // Groups: raygen, environment miss, shadow miss, one triangle hit group (closest-hit + any-hit when the
+  // program has an any-hit stage, i.e. some material is not opaque).
+  const int anyHit = build.stages.size() > 4 ? 4 : -1;
   const std::vector<vk::RtShaderGroup> groups = {
-      {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, 4, -1}};
+      {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, anyHit, -1}};
   auto prepared = std::make_unique<PreparedPipeline>();
   prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
   prepared->pipeline = std::make_unique<vk::RayTracingPipeline>(ctx_, build.stages, groups, kMissCount,

@@ -8,6 +8,7 @@
 #include "render/environment.h"
 #include "render/gpu_scene.h"
 #include "render/settings.h"
+#include "scene/features.h"
 #include "scene/scene.h"
 #include "shader/library.h"
 #include "vk/pipeline_layout.h"
@@ -39,12 +40,16 @@ class PathTracer {
  public:
   PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
              const GpuEnvironment& env, const RenderSettings& settings,
-             std::vector<shader::Define> defines = {});
+             const scene::SceneFeatures& features = scene::genericFeatures());
   ~PathTracer();
 
-  // Shader stages of the path tracer (for registration and tests).
-  static std::vector<shader::ShaderKey> stageKeys(const std::vector<shader::Define>& defines);
+  // Shader stages of the path tracer for a feature set: no any-hit stage when every material is opaque.
+  static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features);
   shader::ShaderLibrary::ProgramId program() const { return program_; }
+  const scene::SceneFeatures& features() const { return features_; }
+  // Switches to the variant for `features` (registering it once; compiled variants come from the cache) and
+  // rebuilds the pipeline. Returns true when the program changed (hot-reload targets follow program()).
+  bool setFeatures(const scene::SceneFeatures& features);
 
   void setCamera(const CameraState& camera);
   void setSettings(
@@ -91,6 +96,8 @@ class PathTracer {
   RenderSettings settings_;
   CameraState camera_;
   shader::ShaderLibrary::ProgramId program_ = 0;
+  scene::SceneFeatures features_;
+  std::vector<std::pair<scene::SceneFeatures, shader::ShaderLibrary::ProgramId>> variants_;
   std::unique_ptr<vk::PipelineLayout> layout_;
   std::unique_ptr<vk::DescriptorSets> sets_;
   std::unique_ptr<vk::RayTracingPipeline> pipeline_;

@@ -21,6 +21,7 @@ struct RenderSettings {
   uint32_t seed = 0;
   bool aov = false;  // albedo + normal AOVs
   uint32_t debugView = 0;
+  bool generic = false;  // the all-features shader build instead of the scene-specialised one
 
   // Environment: an equirectangular .hdr, or a constant colour.
   std::string envPath;

@@ -1,0 +1,133 @@
+#include "app/window/display_pass.h"
+
+#include "common/paths.h"
+
+namespace wb::app {
+
+PreparedDisplayPipeline::~PreparedDisplayPipeline() {
+  if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
+}
+
+std::vector<shader::ShaderKey> DisplayPass::stageKeys() {
+  const auto dir = shaderDir() / "display";
+  return {{dir / "fullscreen.vert", std::nullopt, {}}, {dir / "display.frag", std::nullopt, {}}};
+}
+
+DisplayPass::DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRenderPass renderPass)
+    : ctx_(ctx), renderPass_(renderPass) {
+  program_ = library.registerProgram("display", stageKeys());
+  commit(prepare(library.buildProgram(program_)));
+}
+
+DisplayPass::~DisplayPass() {
+  vkDeviceWaitIdle(ctx_.device());
+  sets_.reset();
+  current_.reset();
+}
+
+std::unique_ptr<PreparedDisplayPipeline> DisplayPass::prepare(
+    const shader::ShaderLibrary::ProgramBuild& build) const {
+  auto prepared = std::make_unique<PreparedDisplayPipeline>();
+  prepared->device = ctx_.device();
+  prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
+
+  std::vector<VkShaderModule> modules;
+  std::vector<VkPipelineShaderStageCreateInfo> stages;
+  for (const auto& s : build.stages) {
+    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    mi.codeSize = s->spirv.size() * sizeof(uint32_t);
+    mi.pCode = s->spirv.data();
+    VkShaderModule m = VK_NULL_HANDLE;
+    WB_VK(vkCreateShaderModule(ctx_.device(), &mi, nullptr, &m));
+    modules.push_back(m);
+    VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    si.stage = shader::toVkStage(s->stage);
+    si.module = m;
+    si.pName = s->key.entry.c_str();
+    stages.push_back(si);
+  }
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineColorBlendAttachmentState blendAttachment{};
+  blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                   VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blend.attachmentCount = 1;
+  blend.pAttachments = &blendAttachment;
+  const VkDynamicState dynamic[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dyn.dynamicStateCount = 2;
+  dyn.pDynamicStates = dynamic;
+
+  VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  ci.stageCount = static_cast<uint32_t>(stages.size());
+  ci.pStages = stages.data();
+  ci.pVertexInputState = &vertexInput;
+  ci.pInputAssemblyState = &assembly;
+  ci.pViewportState = &viewport;
+  ci.pRasterizationState = &raster;
+  ci.pMultisampleState = &ms;
+  ci.pColorBlendState = &blend;
+  ci.pDynamicState = &dyn;
+  ci.layout = prepared->layout->handle();
+  ci.renderPass = renderPass_;
+  VkResult r = vkCreateGraphicsPipelines(ctx_.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &prepared->pipeline);
+  for (auto m : modules) vkDestroyShaderModule(ctx_.device(), m, nullptr);
+  WB_VK(r);
+  return prepared;
+}
+
+void DisplayPass::commit(std::unique_ptr<PreparedDisplayPipeline> prepared) {
+  vkDeviceWaitIdle(ctx_.device());
+  sets_.reset();
+  current_ = std::move(prepared);
+  sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *current_->layout);
+  writeDescriptors();
+}
+
+void DisplayPass::setSources(const DisplaySources& sources) {
+  if (sources == sources_) return;
+  sources_ = sources;
+  writeDescriptors();
+}
+
+void DisplayPass::writeDescriptors() {
+  if (!sets_ || !sources_.accum) return;
+  auto& s = *sets_;
+  s.writeStorageImage(0, WB_DISPLAY_BIND_ACCUM, sources_.accum);
+  s.writeStorageImage(0, WB_DISPLAY_BIND_ALBEDO, sources_.albedo);
+  s.writeStorageImage(0, WB_DISPLAY_BIND_NORMAL, sources_.normal);
+  s.writeStorageImage(0, WB_DISPLAY_BIND_INFO, sources_.info);
+  s.writeStorageImage(0, WB_DISPLAY_BIND_PREVIEW, sources_.preview);
+}
+
+void DisplayPass::record(VkCommandBuffer cmd, const gpu::DisplayPush& push) const {
+  VkViewport vp{push.viewRect.x, push.viewRect.y, push.viewRect.z, push.viewRect.w, 0.0f, 1.0f};
+  VkRect2D scissor{{int32_t(push.viewRect.x), int32_t(push.viewRect.y)},
+                   {uint32_t(push.viewRect.z), uint32_t(push.viewRect.w)}};
+  vkCmdSetViewport(cmd, 0, 1, &vp);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, current_->pipeline);
+  const auto& sets = sets_->sets();
+  if (!sets.empty()) {
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, current_->layout->handle(), 0,
+                            static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
+  }
+  for (const auto& range : current_->layout->desc().pushConstants) {
+    vkCmdPushConstants(cmd, current_->layout->handle(), range.stageFlags, range.offset, range.size,
+                       reinterpret_cast<const char*>(&push) + range.offset);
+  }
+  vkCmdDraw(cmd, 3, 1, 0, 0);
+}
+
+}  // namespace wb::app

@@ -1,0 +1,57 @@
+// The display pass: a fullscreen triangle whose fragment shader reads the path tracer's accumulation and AOV
+// images and applies exposure, a tonemapper and sRGB (shaders/display/). Its layout is reflected from the
+// shaders; like the path tracer it hot reloads in two steps (prepare off the frame path, commit at a frame
+// boundary), so a broken edit keeps the last good pipeline on screen.
+#pragma once
+#include <memory>
+
+#include "display/display_types.h"
+#include "shader/library.h"
+#include "vk/pipeline_layout.h"
+
+namespace wb::app {
+
+struct PreparedDisplayPipeline {
+  std::unique_ptr<vk::PipelineLayout> layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  ~PreparedDisplayPipeline();
+};
+
+// The storage images the display reads (all in GENERAL layout).
+struct DisplaySources {
+  VkImageView accum = VK_NULL_HANDLE, albedo = VK_NULL_HANDLE, normal = VK_NULL_HANDLE, info = VK_NULL_HANDLE,
+              preview = VK_NULL_HANDLE;
+  bool operator==(const DisplaySources&) const = default;
+};
+
+class DisplayPass {
+ public:
+  DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRenderPass renderPass);
+  ~DisplayPass();
+  DisplayPass(const DisplayPass&) = delete;
+  DisplayPass& operator=(const DisplayPass&) = delete;
+
+  static std::vector<shader::ShaderKey> stageKeys();
+  shader::ShaderLibrary::ProgramId program() const { return program_; }
+
+  std::unique_ptr<PreparedDisplayPipeline> prepare(const shader::ShaderLibrary::ProgramBuild& build) const;
+  void commit(std::unique_ptr<PreparedDisplayPipeline> prepared);  // waits for the device
+
+  // Rewrites the descriptors when an image changed (call between frames, when the last frame finished).
+  void setSources(const DisplaySources& sources);
+  // Records the draw into the current render pass, with the viewport set to the image's rectangle.
+  void record(VkCommandBuffer cmd, const gpu::DisplayPush& push) const;
+
+ private:
+  void writeDescriptors();
+
+  vk::Context& ctx_;
+  VkRenderPass renderPass_;
+  shader::ShaderLibrary::ProgramId program_ = 0;
+  std::unique_ptr<PreparedDisplayPipeline> current_;
+  std::unique_ptr<vk::DescriptorSets> sets_;
+  DisplaySources sources_;
+};
+
+}  // namespace wb::app

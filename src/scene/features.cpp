@@ -1,0 +1,64 @@
+#include "scene/features.h"
+
+namespace wb::scene {
+
+SceneFeatures genericFeatures() {
+  return SceneFeatures{};
+}
+
+SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
+  SceneFeatures f;
+  f.generic = false;
+  f.alphaMask = f.alphaBlend = f.normalMaps = f.emissive = f.textures = false;
+  // Only materials that some primitive uses count.
+  std::vector<bool> used(scene.materials.size(), false);
+  for (const auto& mesh : scene.meshes) {
+    for (const auto& p : mesh.primitives) {
+      if (p.material >= 0 && size_t(p.material) < used.size()) used[p.material] = true;
+    }
+  }
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    if (!used[i]) continue;
+    const auto& m = scene.materials[i];
+    f.alphaMask = f.alphaMask || m.alphaMode == WB_ALPHA_MASK;
+    f.alphaBlend = f.alphaBlend || m.alphaMode == WB_ALPHA_BLEND;
+    f.normalMaps = f.normalMaps || m.normalTexture >= 0;
+    f.emissive = f.emissive || m.emissive.x > 0.0f || m.emissive.y > 0.0f || m.emissive.z > 0.0f;
+    f.textures = f.textures || m.baseColorTexture >= 0 || m.normalTexture >= 0 ||
+                 m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+  }
+  f.directionalLights = static_cast<uint32_t>(scene.lights.size());
+  f.environment = environment;
+  return f;
+}
+
+std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
+  if (f.generic) return {{"WB_GENERIC", "1"}};
+  auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
+  return {
+      {"WB_SPECIALIZED", "1"},
+      {"WB_HAS_ALPHA_MASK", flag(f.alphaMask)},
+      {"WB_HAS_ALPHA_BLEND", flag(f.alphaBlend)},
+      {"WB_HAS_NORMAL_MAPS", flag(f.normalMaps)},
+      {"WB_HAS_EMISSIVE", flag(f.emissive)},
+      {"WB_HAS_TEXTURES", flag(f.textures)},
+      {"WB_LIGHT_COUNT", std::to_string(f.directionalLights) + "u"},
+      {"WB_ENV_MODE", std::to_string(static_cast<int>(f.environment))},
+  };
+}
+
+std::string describeFeatures(const SceneFeatures& f) {
+  if (f.generic) return "generic (all features)";
+  std::string s = "lights=" + std::to_string(f.directionalLights) + " env=" +
+                  (f.environment == EnvironmentKind::None       ? "none"
+                   : f.environment == EnvironmentKind::Constant ? "constant"
+                                                                : "map");
+  if (f.alphaMask) s += " alpha-mask";
+  if (f.alphaBlend) s += " alpha-blend";
+  if (f.normalMaps) s += " normal-maps";
+  if (f.emissive) s += " emissive";
+  if (f.textures) s += " textures";
+  return s;
+}
+
+}  // namespace wb::scene

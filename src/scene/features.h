@@ -1,0 +1,36 @@
+// What a scene actually uses, so the path tracer is compiled for only that (scene-driven specialisation).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shader/types.h"
+
+namespace wb::scene {
+
+enum class EnvironmentKind { None, Constant, Map };
+
+struct SceneFeatures {
+  bool alphaMask = true;
+  bool alphaBlend = true;
+  bool normalMaps = true;
+  bool emissive = true;
+  bool textures = true;
+  uint32_t directionalLights = 0;
+  EnvironmentKind environment = EnvironmentKind::Map;
+  bool generic = true;  // the all-features build: every branch compiled in, light count read at run time
+
+  bool anyAlpha() const { return alphaMask || alphaBlend; }
+  bool operator==(const SceneFeatures&) const = default;
+};
+
+// The all-features build (`--generic`), for comparison and as a fallback.
+SceneFeatures genericFeatures();
+// Analyses the scene (materials, textures, lights) and the environment the render will use.
+SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment);
+// Shader defines for a feature set: part of every stage's variant key, so variants are cached like any other.
+std::vector<shader::Define> featureDefines(const SceneFeatures& f);
+// One line for logs and the UI, e.g. "lights=1 env=constant mask normal-maps emissive textures".
+std::string describeFeatures(const SceneFeatures& f);
+
+}  // namespace wb::scene

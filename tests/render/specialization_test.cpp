@@ -1,0 +1,89 @@
+// Scene-driven specialisation: the specialised build renders the same image as the all-features build,
+// carries only the stages the scene needs, and variants are cached like any other shader.
+#include <gtest/gtest.h>
+
+#include "common/paths.h"
+#include "gpu_fixture.h"
+#include "scene/features.h"
+#include "test_scenes.h"
+
+using namespace wb;
+using namespace wb::testing;
+
+namespace {
+
+eval::ImageRGBA renderDefault(bool generic) {
+  app::SessionOptions o;
+  o.settings.width = 32;
+  o.settings.height = 32;
+  o.settings.generic = generic;
+  auto session = makeSession(o);
+  EXPECT_EQ(session->pathTracer().features().generic, generic);
+  session->render(4);
+  expectNoValidationErrors(*session);
+  return session->image();
+}
+
+}  // namespace
+
+TEST(Specialization, DefaultSceneFeatures) {
+  const auto scene = scene::loadGltf(defaultScenePath());
+  const auto f = scene::analyzeFeatures(scene, scene::EnvironmentKind::Constant);
+  EXPECT_FALSE(f.generic);
+  EXPECT_TRUE(f.alphaMask);  // the leaf
+  EXPECT_FALSE(f.alphaBlend);
+  EXPECT_TRUE(f.emissive);  // the ceiling panel
+  EXPECT_TRUE(f.textures);
+  EXPECT_EQ(f.directionalLights, 1u);
+  EXPECT_EQ(render::PathTracer::stageKeys(f).size(), 5u) << "alpha-masked leaf needs the any-hit stage";
+}
+
+TEST(Specialization, OpaqueSceneHasNoAnyHitStageAndNoTextures) {
+  const auto f = scene::analyzeFeatures(makeShadowScene().scene, scene::EnvironmentKind::None);
+  EXPECT_FALSE(f.anyAlpha());
+  EXPECT_FALSE(f.textures);
+  EXPECT_FALSE(f.emissive);
+  EXPECT_FALSE(f.normalMaps);
+  const auto keys = render::PathTracer::stageKeys(f);
+  ASSERT_EQ(keys.size(), 4u);
+  for (const auto& k : keys) EXPECT_NE(k.path.extension(), ".rahit");
+  const auto defines = scene::featureDefines(f);
+  EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_LIGHT_COUNT", "1u"}), defines.end());
+  EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_ENV_MODE", "0"}), defines.end());
+}
+
+TEST(Specialization, SpecialisedAndGenericRenderTheSameImage) {
+  const auto a = renderDefault(false);
+  const auto b = renderDefault(true);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  // Same sample streams, same maths: equal up to floating-point reassociation in the compiled code.
+  double meanA = 0, meanB = 0, maxRel = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    meanA += a.pixels[i];
+    meanB += b.pixels[i];
+    maxRel = std::max(maxRel,
+                      std::abs(double(a.pixels[i]) - b.pixels[i]) / (std::abs(double(b.pixels[i])) + 1e-2));
+  }
+  EXPECT_NEAR(meanA / meanB, 1.0, 1e-4);
+  EXPECT_LT(maxRel, 1e-2) << "per-pixel difference beyond floating-point noise";
+}
+
+TEST(Specialization, SwitchingVariantsReusesCompiledShaders) {
+  app::SessionOptions o;
+  o.sceneData = makeShadowScene().scene;
+  o.settings.width = 16;
+  o.settings.height = 16;
+  o.settings.envColor = glm::vec3(0.0f);
+  auto session = makeSession(o);
+  auto& tracer = session->pathTracer();
+  const auto specialised = tracer.features();
+  EXPECT_FALSE(specialised.generic);
+  EXPECT_TRUE(tracer.setFeatures(scene::genericFeatures()));
+  const auto before = session->library().stats().compiles;
+  EXPECT_TRUE(tracer.setFeatures(specialised));  // back: every stage comes from the cache
+  EXPECT_EQ(session->library().stats().compiles, before);
+  EXPECT_FALSE(tracer.setFeatures(specialised));
+  session->render(1);
+  expectNoValidationErrors(*session);
+}
