@@ -1,6 +1,8 @@
 #include "app/cmd_watch.h"
 
+#include <algorithm>
 #include <chrono>
+#include <deque>
 #include <csignal>
 #include <cstdio>
 #include <fstream>
@@ -81,8 +83,31 @@ int runWatchCommand(const std::vector<std::string>& args) {
 
     const auto start = std::chrono::steady_clock::now();
     std::optional<render::ReloadEvent> unlogged;
+    // Frame timings, to show what a rebuild costs the frames rendered meanwhile.
+    struct FrameTime {
+      std::chrono::steady_clock::time_point begin, end;
+    };
+    std::deque<FrameTime> frameTimes;
+    auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
     auto writeEvent = [&](const render::ReloadEvent& e) {
-      const std::string line = reloadEventJson(e).dump();
+      auto j = reloadEventJson(e);
+      std::vector<double> before;
+      double duringMax = 0, firstNew = -1;
+      for (const auto& f : frameTimes) {
+        if (f.end <= e.editSeen) {
+          before.push_back(ms(f.begin, f.end));
+        } else if (&f == &frameTimes.back() && !e.pipelinesRebuilt.empty()) {
+          firstNew = ms(f.begin, f.end);  // includes the driver's compile of the new pipeline
+        } else {
+          duringMax = std::max(duringMax, ms(f.begin, f.end));
+        }
+      }
+      if (before.size() > 20) before.erase(before.begin(), before.end() - 20);
+      std::sort(before.begin(), before.end());
+      j["frame_ms_median_before"] = before.empty() ? 0.0 : before[before.size() / 2];
+      j["frame_ms_max_during_rebuild"] = duringMax;
+      j["first_new_frame_ms"] = firstNew;
+      const std::string line = j.dump();
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
       if (log) {
@@ -106,8 +131,11 @@ int runWatchCommand(const std::vector<std::string>& args) {
           unlogged = e;
         }
       }
+      const auto frameBegin = std::chrono::steady_clock::now();
       session.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.record(cmd); });
       tracer.advanceSample();
+      frameTimes.push_back({frameBegin, std::chrono::steady_clock::now()});
+      if (frameTimes.size() > 200) frameTimes.pop_front();
       ++frame;
       hot.frameFinished();
       if (unlogged) {

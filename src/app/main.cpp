@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "app/cmd_bench.h"
+#include "app/cmd_converge.h"
 #include "app/cmd_render.h"
 #include "app/cmd_shaders.h"
 #include "app/cmd_watch.h"
@@ -19,6 +21,8 @@ void usage() {
       "       workbench render [SCENE] --out FILE ...  headless render (PNG tonemapped, EXR linear)\n"
       "       workbench shaders [--json] PATH...       compile and reflect shaders\n"
       "       workbench watch [SCENE] --headless ...   render while hot-reloading shaders; log reloads\n"
+      "       workbench converge [SCENE] --out DIR ... error against a reference over time, per config\n"
+      "       workbench bench [--quick] [--out FILE]   performance suite (not a test)\n"
       "run 'workbench COMMAND --help' for a command's flags\n");
 }
 
@@ -54,5 +58,7 @@ int main(int argc, char** argv) {
   if (cmd == "render") return wb::app::runRenderCommand(rest);
   if (cmd == "shaders") return wb::runShadersCommand(rest);
   if (cmd == "watch") return wb::app::runWatchCommand(rest);
+  if (cmd == "converge") return wb::app::runConvergeCommand(rest);
+  if (cmd == "bench") return wb::app::runBenchCommand(rest);
   return runDefault(args);
 }

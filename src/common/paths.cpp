@@ -38,9 +38,11 @@ fs::path assetDir() {
   return projectRoot() / "assets";
 }
 fs::path shaderCacheDir() {
+  if (const char* env = std::getenv("WB_SHADER_CACHE_DIR"); env && *env) return fs::path(env);
   return projectRoot() / "shader_cache";
 }
 fs::path sharedDir() {
+  if (const char* env = std::getenv("WB_SHARED_DIR"); env && *env) return fs::path(env);
   return projectRoot().parent_path() / "shared";
 }
 fs::path defaultScenePath() {

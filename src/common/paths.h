@@ -9,8 +9,8 @@ namespace wb {
 std::filesystem::path projectRoot();
 std::filesystem::path shaderDir();       // projectRoot()/shaders
 std::filesystem::path assetDir();        // projectRoot()/assets
-std::filesystem::path shaderCacheDir();  // projectRoot()/shader_cache
-std::filesystem::path sharedDir();       // projectRoot()/../shared (third-party assets, references)
+std::filesystem::path shaderCacheDir();  // WB_SHADER_CACHE_DIR, else projectRoot()/shader_cache
+std::filesystem::path sharedDir();  // WB_SHARED_DIR, else projectRoot()/../shared (third-party assets)
 std::filesystem::path defaultScenePath();
 
 }  // namespace wb

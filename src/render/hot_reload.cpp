@@ -52,6 +52,7 @@ void HotReload::run() {
     manualRequest_ = false;
     Pending p;
     p.editTime = result->editTime;
+    p.event.editSeen = result->editTime;
     p.event.when = std::chrono::system_clock::now();
     for (const auto& f : result->filesChanged) p.event.filesChanged.push_back(f.string());
     p.event.stagesRecompiled = result->stagesRecompiled;

@@ -30,6 +30,7 @@ struct ReloadEvent {
   bool ok = true;
   std::string error;  // file:line: error: message lines
   std::chrono::system_clock::time_point when;
+  std::chrono::steady_clock::time_point editSeen;  // when the watcher saw the change
 };
 
 class HotReload {

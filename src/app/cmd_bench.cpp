@@ -1,0 +1,345 @@
+#include "app/cmd_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+#include <sys/resource.h>
+#include <sys/utsname.h>
+
+#include <CLI/CLI.hpp>
+
+#include "app/process.h"
+#include "app/render_session.h"
+#include "common/paths.h"
+#include "scene/procedural.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace wb::app {
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t i = std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5));
+  return v[i];
+}
+
+std::string readText(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+json machineInfo() {
+  json m;
+  std::ifstream cpu("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpu, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      m["cpu"] = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  m["cores"] = std::thread::hardware_concurrency();
+  utsname u{};
+  if (uname(&u) == 0) m["kernel"] = std::string(u.sysname) + " " + u.release;
+  std::ifstream os("/etc/os-release");
+  while (std::getline(os, line)) {
+    if (line.rfind("PRETTY_NAME=", 0) == 0) m["os"] = line.substr(13, line.size() - 14);
+  }
+  return m;
+}
+
+std::string isoDate() {
+  std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof(buf), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+double peakRssMb() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return double(r.ru_maxrss) / 1024.0;
+}
+
+struct BenchScene {
+  std::string name;
+  std::string path;  // empty: sceneData
+  std::optional<scene::Scene> data;
+};
+
+// Path tracer rates of one scene and variant: medians over `repeats` runs of `spp` samples after a warm-up.
+json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h, uint32_t spp, int repeats,
+                     const std::string& device, std::string& deviceName, std::string& driver) {
+  SessionOptions o;
+  o.scenePath = bs.path;
+  o.sceneData = bs.data;
+  o.settings.width = w;
+  o.settings.height = h;
+  o.settings.generic = generic;
+  o.context.deviceName = device;
+  RenderSession s(o);
+  deviceName = s.context().deviceName();
+  driver = s.context().driverInfo();
+  s.render(1);  // warm-up: the driver compiles the pipeline at its first trace
+  std::vector<double> paths, rays, primary, bounce, shadow, seconds;
+  for (int r = 0; r < repeats; ++r) {
+    const double t = s.render(spp);
+    const auto c = s.pathTracer().readCounters();
+    seconds.push_back(t);
+    paths.push_back(c.pathCount / t);
+    rays.push_back(c.rayCount / t);
+    primary.push_back(c.pathCount / t);  // one camera ray per path
+    shadow.push_back(c.shadowRayCount / t);
+    bounce.push_back((double(c.rayCount) - c.pathCount - c.shadowRayCount) / t);
+  }
+  json j;
+  j["features"] = scene::describeFeatures(s.pathTracer().features());
+  j["seconds_per_sample"] = median(seconds) / spp;
+  j["paths_per_second"] = median(paths);
+  j["rays_per_second"] = median(rays);
+  j["primary_rays_per_second"] = median(primary);
+  j["bounce_rays_per_second"] = median(bounce);
+  j["shadow_rays_per_second"] = median(shadow);
+  j["triangles"] = s.scene().triangleCount();
+  j["blas_build_ms"] = s.gpuScene().accel().blasBuildMs();
+  j["tlas_build_ms"] = s.gpuScene().accel().tlasBuildMs();
+  j["scene_device_bytes"] = s.gpuScene().deviceBytes();
+  return j;
+}
+
+// Cold and warm start to the first frame, as a user runs it: a new process each time.
+json benchStartup(int repeats, const fs::path& work) {
+  std::vector<double> coldMs, warmMs, coldCompiles, warmCompiles;
+  for (int r = 0; r < repeats; ++r) {
+    const fs::path cache = work / ("cache" + std::to_string(r));
+    fs::remove_all(cache);
+    fs::create_directories(cache);
+    const std::map<std::string, std::string> env = {{"WB_SHADER_CACHE_DIR", cache.string()},
+                                                    {"MESA_SHADER_CACHE_DIR", (cache / "mesa").string()}};
+    for (int pass = 0; pass < 2; ++pass) {
+      const fs::path stats = work / "startup.json";
+      auto start = std::chrono::steady_clock::now();
+      auto child = ChildProcess::spawn(selfExecutable(),
+                                       {"render", "--size", "64x64", "--spp", "1", "--out", (work / "s.png").string(),
+                                        "--stats", stats.string()},
+                                       env, (work / "startup.log").string());
+      const int rc = child.wait();
+      const double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      if (rc != 0) throw std::runtime_error("start-up run failed: " + readText(work / "startup.log"));
+      const auto j = json::parse(readText(stats));
+      (pass == 0 ? coldMs : warmMs).push_back(total);
+      (pass == 0 ? coldCompiles : warmCompiles).push_back(j["shader_cache"]["compiles"].get<double>());
+    }
+  }
+  return {{"cold_to_first_frame_ms", median(coldMs)},
+          {"warm_to_first_frame_ms", median(warmMs)},
+          {"cold_glslang_compiles", median(coldCompiles)},
+          {"warm_glslang_compiles", median(warmCompiles)},
+          {"what", "new process, render of the default scene at 64x64, 1 spp, to the written image; cold = empty "
+                   "SPIR-V and Mesa caches"}};
+}
+
+// Edits of the closest-hit shader while `watch` renders: edit-to-new-pipeline and edit-to-first-frame.
+json benchHotReload(int edits, const std::string& size, const fs::path& work) {
+  const fs::path root = work / "root";
+  fs::remove_all(root);
+  fs::create_directories(root / "shader_cache");
+  fs::copy(shaderDir(), root / "shaders", fs::copy_options::recursive);
+  fs::copy(assetDir(), root / "assets", fs::copy_options::recursive);
+  const fs::path log = work / "reloads.jsonl", out = work / "watch.log";
+  fs::remove(log);
+  auto child = ChildProcess::spawn(
+      selfExecutable(), {"watch", "--headless", "--size", size, "--seconds", "600", "--log", log.string()},
+      {{"WB_ROOT", root.string()}, {"WB_SHADER_CACHE_DIR", (root / "shader_cache").string()}}, out.string());
+  auto waitFor = [&](auto pred, double seconds) {
+    auto start = std::chrono::steady_clock::now();
+    while (!pred()) {
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return true;
+  };
+  auto logLines = [&] {
+    std::vector<json> v;
+    std::ifstream f(log);
+    std::string line;
+    while (std::getline(f, line)) {
+      if (!line.empty()) v.push_back(json::parse(line));
+    }
+    return v;
+  };
+  if (!waitFor([&] { return readText(out).find("watching") != std::string::npos; }, 60)) {
+    child.terminate();
+    throw std::runtime_error("watch did not start: " + readText(out));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // let the first frames settle
+  const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
+  const std::string original = readText(chit);
+  const std::string needle = "const float minCos = 1e-3;";
+  std::vector<double> toPipeline, toFrame, frameBefore, frameDuring, firstFrame;
+  for (int i = 0; i < edits; ++i) {
+    std::string text = original;
+    // A real code change (a different constant), so the driver really recompiles the pipeline.
+    const auto pos = text.find(needle);
+    if (pos == std::string::npos) throw std::runtime_error("bench: closesthit.rchit has no '" + needle + "'");
+    char value[64];
+    std::snprintf(value, sizeof(value), "const float minCos = %.9g;", 1e-3 * (1.0 + 1e-4 * (i + 1)));
+    text.replace(pos, needle.size(), value);
+    std::ofstream(chit, std::ios::trunc) << text;
+    if (!waitFor([&] { return logLines().size() >= size_t(i + 1); }, 60)) break;
+    const auto e = logLines()[i];
+    if (!e["ok"].get<bool>()) continue;
+    toPipeline.push_back(e["edit_to_new_pipeline_ms"].get<double>());
+    if (e["edit_to_first_frame_ms"].is_number()) toFrame.push_back(e["edit_to_first_frame_ms"].get<double>());
+    frameBefore.push_back(e["frame_ms_median_before"].get<double>());
+    frameDuring.push_back(e["frame_ms_max_during_rebuild"].get<double>());
+    firstFrame.push_back(e["first_new_frame_ms"].get<double>());
+    std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  }
+  child.terminate();
+  return {{"edits", toPipeline.size()},
+          {"trace_size", size},
+          {"edit_to_new_pipeline_ms_p50", percentile(toPipeline, 0.5)},
+          {"edit_to_new_pipeline_ms_p95", percentile(toPipeline, 0.95)},
+          {"edit_to_first_frame_ms_p50", percentile(toFrame, 0.5)},
+          {"edit_to_first_frame_ms_p95", percentile(toFrame, 0.95)},
+          {"frame_ms_median_before_edit", median(frameBefore)},
+          {"frame_ms_max_during_rebuild_median", median(frameDuring)},
+          {"first_new_frame_ms_median", median(firstFrame)}};
+}
+
+}  // namespace
+
+int runBenchCommand(const std::vector<std::string>& args) {
+  CLI::App cli("Performance suite: path tracer rates, start-up, hot reload (not a test)", "workbench bench");
+  bool quick = false;
+  std::string out, device, size;
+  int repeats = 0;
+  cli.add_flag("--quick", quick, "small sizes and few repeats (a smoke run)");
+  cli.add_option("--out", out, "write the results as JSON");
+  cli.add_option("--device", device, "Vulkan device name (substring)");
+  cli.add_option("--size", size, "trace size WxH (default 512x512, 128x128 with --quick)");
+  cli.add_option("--repeats", repeats, "repeats per measurement (median reported)");
+  std::vector<std::string> sections = {"pathtracer", "startup", "reload"};
+  cli.add_option("--only", sections, "sections to run: pathtracer startup reload");
+  try {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    cli.parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    std::printf("%s", cli.help().c_str());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
+    return 2;
+  }
+  if (size.empty()) size = quick ? "128x128" : "512x512";
+  if (repeats <= 0) repeats = quick ? 1 : 3;
+  unsigned w = 0, h = 0;
+  if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h) {
+    std::fprintf(stderr, "workbench bench: error: --size: expected WxH, got '%s'\n", size.c_str());
+    return 2;
+  }
+  const uint32_t spp = quick ? 1 : 4;
+  const auto has = [&](const char* s) { return std::find(sections.begin(), sections.end(), s) != sections.end(); };
+  std::string cmdline = "workbench bench";
+  for (const auto& a : args) cmdline += " " + a;
+
+  json result;
+  result["command"] = cmdline;
+  result["date"] = isoDate();
+  result["machine"] = machineInfo();
+  const fs::path work = fs::temp_directory_path() / ("wb_bench_" + std::to_string(::getpid()));
+  fs::create_directories(work);
+  try {
+    if (has("pathtracer")) {
+      std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};
+      const fs::path helmet = sharedDir() / "assets/gltf/DamagedHelmet/DamagedHelmet.gltf";
+      if (fs::exists(helmet)) {
+        scenes.push_back({"DamagedHelmet", helmet.string(), std::nullopt});
+      } else {
+        std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n", helmet.string().c_str());
+      }
+      scenes.push_back({"heavy-1M", "", scene::makeHeavyScene(quick ? 100000 : 1000000)});
+      json rows = json::array();
+      for (const auto& bs : scenes) {
+        for (bool generic : {false, true}) {
+          std::string deviceName, driver;
+          std::fprintf(stderr, "bench: path tracer on %s (%s) at %ux%u ...\n", bs.name.c_str(),
+                       generic ? "generic" : "specialised", w, h);
+          json r = benchPathTracer(bs, generic, w, h, spp, repeats, device, deviceName, driver);
+          r["scene"] = bs.name;
+          r["variant"] = generic ? "generic" : "specialised";
+          r["size"] = size;
+          r["spp_per_run"] = spp;
+          r["repeats"] = repeats;
+          rows.push_back(r);
+          result["device"] = deviceName;
+          result["driver"] = driver;
+        }
+      }
+      result["pathtracer"] = rows;
+    }
+    if (has("startup")) {
+      std::fprintf(stderr, "bench: start-up (cold and warm) ...\n");
+      result["startup"] = benchStartup(repeats, work);
+    }
+    if (has("reload")) {
+      std::fprintf(stderr, "bench: hot reload ...\n");
+      result["hot_reload"] = benchHotReload(quick ? 4 : 20, quick ? "64x64" : "128x128", work);
+    }
+    result["peak_rss_mb"] = peakRssMb();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
+    fs::remove_all(work);
+    return 1;
+  }
+  fs::remove_all(work);
+
+  // Summary table.
+  std::printf("%s on %s (%s), %s\n", cmdline.c_str(), result.value("device", std::string("?")).c_str(),
+              result.value("driver", std::string("?")).c_str(), result["date"].get<std::string>().c_str());
+  if (result.contains("pathtracer")) {
+    std::printf("%-14s %-12s %10s %12s %12s %12s %12s %12s %9s\n", "scene", "variant", "triangles", "paths/s",
+                "rays/s", "primary/s", "bounce/s", "shadow/s", "BLAS ms");
+    for (const auto& r : result["pathtracer"]) {
+      std::printf("%-14s %-12s %10zu %12.3g %12.3g %12.3g %12.3g %12.3g %9.1f\n",
+                  r["scene"].get<std::string>().c_str(), r["variant"].get<std::string>().c_str(),
+                  r["triangles"].get<size_t>(), r["paths_per_second"].get<double>(),
+                  r["rays_per_second"].get<double>(), r["primary_rays_per_second"].get<double>(),
+                  r["bounce_rays_per_second"].get<double>(), r["shadow_rays_per_second"].get<double>(),
+                  r["blas_build_ms"].get<double>());
+    }
+  }
+  if (result.contains("startup")) std::printf("start-up: %s\n", result["startup"].dump().c_str());
+  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", result["hot_reload"].dump().c_str());
+  std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
+  if (!out.empty()) {
+    std::ofstream f(out);
+    f << result.dump(2) << "\n";
+    if (!f) {
+      std::fprintf(stderr, "workbench bench: error: cannot write '%s'\n", out.c_str());
+      return 1;
+    }
+    std::printf("wrote %s\n", out.c_str());
+  }
+  return 0;
+}
+
+}  // namespace wb::app
