@@ -135,7 +135,8 @@ int runWatchCommand(const std::vector<std::string>& args) {
       session.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.record(cmd); });
       tracer.advanceSample();
       frameTimes.push_back({frameBegin, std::chrono::steady_clock::now()});
-      if (frameTimes.size() > 200) frameTimes.pop_front();
+      // Keep ten seconds of frames (a rebuild on a fast GPU spans thousands of sub-millisecond frames).
+      while (frameTimes.size() > 2 && ms(frameTimes.front().end, frameTimes.back().end) > 10000.0) frameTimes.pop_front();
       ++frame;
       hot.frameFinished();
       if (unlogged) {
