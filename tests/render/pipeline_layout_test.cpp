@@ -1,0 +1,63 @@
+// The path tracer's descriptor-set layout comes from reflecting its stages: check it against the bindings the
+// shared header promises, with the right types and the union of the stages that use each.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "common/paths.h"
+#include "render/path_tracer.h"
+#include "shader/library.h"
+
+using namespace wb;
+
+TEST(PathTracerLayout, ReflectedBindingsMatchTheSharedHeader) {
+  shader::ShaderLibrary::Options o;
+  o.includeRoots = {shaderDir()};
+  shader::ShaderLibrary lib(o);  // memory-only: this test must compile for real
+  const auto id = lib.registerProgram("pathtracer", render::PathTracer::stageKeys(scene::genericFeatures()));
+  const auto build = lib.buildProgram(id);
+  ASSERT_EQ(build.stages.size(), 5u);
+
+  const VkShaderStageFlags rgen = VK_SHADER_STAGE_RAYGEN_BIT_KHR, chit = VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR,
+                           ahit = VK_SHADER_STAGE_ANY_HIT_BIT_KHR, miss = VK_SHADER_STAGE_MISS_BIT_KHR;
+  struct Expected {
+    VkDescriptorType type;
+    VkShaderStageFlags stages;
+    bool runtimeArray;
+  };
+  const std::map<uint32_t, Expected> expected = {
+      {WB_BIND_TLAS, {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, rgen | chit, false}},
+      {WB_BIND_ACCUM, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
+      {WB_BIND_FRAME, {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rgen | chit | miss, false}},
+      {WB_BIND_GEOMETRIES, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | ahit, false}},
+      {WB_BIND_MATERIALS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | ahit, false}},
+      {WB_BIND_LIGHTS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},
+      {WB_BIND_TEXTURES, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, chit | ahit, true}},
+      {WB_BIND_ENV_MAP, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, chit | miss, false}},
+      {WB_BIND_ENV_ALIAS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | miss, false}},
+      {WB_BIND_AOV_ALBEDO, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
+      {WB_BIND_AOV_NORMAL, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
+      {WB_BIND_AOV_INFO, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
+      {WB_BIND_COUNTERS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen, false}},
+      {WB_BIND_BLUE_NOISE, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen | chit, false}},
+      {WB_BIND_SOBOL, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen | chit, false}},
+  };
+  std::map<uint32_t, const shader::DescriptorBinding*> got;
+  for (const auto& b : build.layout.bindings) {
+    EXPECT_EQ(b.set, 0u) << b.name;
+    got[b.binding] = &b;
+  }
+  EXPECT_EQ(got.size(), expected.size());
+  for (const auto& [binding, e] : expected) {
+    SCOPED_TRACE("binding " + std::to_string(binding));
+    ASSERT_TRUE(got.count(binding));
+    EXPECT_EQ(got[binding]->type, e.type) << got[binding]->name;
+    EXPECT_EQ(got[binding]->stages, e.stages)
+        << got[binding]->name << ": " << shader::stageFlagsToString(got[binding]->stages);
+    EXPECT_EQ(got[binding]->runtimeArray, e.runtimeArray) << got[binding]->name;
+  }
+  ASSERT_EQ(build.layout.pushConstants.size(), 1u);
+  EXPECT_EQ(build.layout.pushConstants[0].offset, 0u);
+  EXPECT_EQ(build.layout.pushConstants[0].size, sizeof(gpu::PushConstants));
+  EXPECT_EQ(build.layout.pushConstants[0].stageFlags, rgen | chit | ahit | miss);
+}
