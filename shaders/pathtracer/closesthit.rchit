@@ -7,6 +7,7 @@
 #include "hit_data.glsl"
 #include "random.glsl"
 #include "environment.glsl"
+#include "emitters.glsl"
 #include "../shared/brdf.h"
 
 layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
@@ -14,11 +15,11 @@ layout(location = SHADOW_PAYLOAD_LOCATION) rayPayloadEXT ShadowPayload shadow;
 
 hitAttributeEXT vec2 attribs;
 
-bool visible(vec3 origin, vec3 dir) {
+bool visible(vec3 origin, vec3 dir, float tMax) {
   shadow.visible = 0u;
   payload.shadowRays++;
   traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0,
-              MISS_SHADOW, origin, 0.0, dir, 1.0e30, SHADOW_PAYLOAD_LOCATION);
+              MISS_SHADOW, origin, 0.0, dir, tMax, SHADOW_PAYLOAD_LOCATION);
   return shadow.visible != 0u;
 }
 
@@ -91,7 +92,22 @@ void main() {
   // Emission, from the front face only unless the material is double-sided.
   vec3 radiance = vec3(0.0);
 #if WB_HAS_EMISSIVE
-  if (frontFace || (m.flags & WB_MATERIAL_DOUBLE_SIDED) != 0u) radiance += emissive;
+  if (frontFace || (m.flags & WB_MATERIAL_DOUBLE_SIDED) != 0u) {
+    // A BRDF-sampled ray (pdf > 0) that hits an emitter is the second strategy for it when NEE sampled it too.
+    float w = 1.0;
+    if (payload.bounce > 0u && payload.pdf > 0.0 && (pc.flags & WB_FLAG_NO_NEE) == 0u &&
+        frame.emitterCount > 0u) {
+      if ((pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u) {
+        w = 0.0;  // light sampling only: emitters are reached through NEE alone
+      } else {
+        const float cosLight = abs(dot(ng, wo));
+        const float lightPdf = (1.0 - frame.envSelectProbability) * emitterAreaPdf(m.emissive) * gl_HitTEXT *
+                               gl_HitTEXT / max(cosLight, 1e-8);
+        w = powerHeuristic(1.0, payload.pdf, 1.0, lightPdf);
+      }
+    }
+    radiance += emissive * w;
+  }
 #endif
 
   const uint bounce = payload.bounce;
@@ -103,24 +119,48 @@ void main() {
       if (dot(wi, ng) <= 0.0) continue;
       const vec3 f = brdfEval(sm, ns, wo, wi);
       if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
-      if (visible(originOut, wi)) radiance += f * lights[i].radiance;
+      if (visible(originOut, wi, 1.0e30)) radiance += f * lights[i].radiance;
     }
+    // One light sample for the environment and the area lights together: pick which with the environment's
+    // selection probability; each is MIS-weighted (power heuristic) against BRDF sampling with the pdf of this
+    // combined strategy.
+    const float uChoice = pathSampleBounce(bounce, WB_DIM_LIGHT_CHOICE);
+    const vec3 ul = vec3(pathSampleBounce(bounce, WB_DIM_LIGHT), pathSampleBounce(bounce, WB_DIM_LIGHT + 1u),
+                         pathSampleBounce(bounce, WB_DIM_LIGHT + 2u));
+    const bool noMis = (pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u;
+    if (uChoice < frame.envSelectProbability) {
 #if WB_ENV_MODE != WB_ENV_NONE
-    // Environment: importance sampled, MIS (power heuristic) against BRDF sampling.
-    vec3 wi;
-    float lightPdf;
-    const vec3 le = envSample(vec3(pathSampleBounce(bounce, WB_DIM_LIGHT), pathSampleBounce(bounce, WB_DIM_LIGHT + 1u),
-                                   pathSampleBounce(bounce, WB_DIM_LIGHT + 2u)),
-                              wi, lightPdf);
-    if (lightPdf > 0.0 && dot(wi, ng) > 0.0) {
-      const vec3 f = brdfEval(sm, ns, wo, wi);
-      if (max(f.x, max(f.y, f.z)) > 0.0 && visible(originOut, wi)) {
-        const float w = (pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0,
-                                                                                       brdfPdf(sm, ns, wo, wi));
-        radiance += f * le * (w / lightPdf);
+      // Environment: importance sampled by its alias table.
+      vec3 wi;
+      float envPdfValue;
+      const vec3 le = envSample(ul, wi, envPdfValue);
+      const float lightPdf = frame.envSelectProbability * envPdfValue;
+      if (lightPdf > 0.0 && dot(wi, ng) > 0.0) {
+        const vec3 f = brdfEval(sm, ns, wo, wi);
+        if (max(f.x, max(f.y, f.z)) > 0.0 && visible(originOut, wi, 1.0e30)) {
+          const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
+          radiance += f * le * (w / lightPdf);
+        }
       }
-    }
 #endif
+    } else {
+#if WB_HAS_EMISSIVE
+      // Area lights: a point on an emissive triangle.
+      const float uRemapped = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
+      const EmitterSample es = sampleEmitter(position, ul.x, ul.y, ul.z, min(uRemapped, 0.99999994));
+      const float lightPdf = (1.0 - frame.envSelectProbability) * es.pdf;
+      if (lightPdf > 0.0 && dot(es.wi, ng) > 0.0) {
+        const vec3 f = brdfEval(sm, ns, wo, es.wi);
+        // The shadow ray stops short of the light by leaving from an origin offset off the light's surface.
+        const vec3 lightPoint = offsetRay(es.position, dot(es.normal, es.wi) < 0.0 ? es.normal : -es.normal);
+        const float tMax = length(lightPoint - originOut);
+        if (max(f.x, max(f.y, f.z)) > 0.0 && visible(originOut, normalize(lightPoint - originOut), tMax)) {
+          const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, es.wi));
+          radiance += f * es.radiance * (w / lightPdf);
+        }
+      }
+#endif
+    }
   }
   payload.radiance = radiance;
 

@@ -12,7 +12,7 @@ void main() {
   float misWeight = 1.0;
   // A BRDF-sampled ray (pdf > 0) that escapes is the second strategy for the environment when NEE sampled it too.
   if (payload.bounce > 0u && payload.pdf > 0.0 && (pc.flags & (WB_FLAG_NO_NEE | WB_FLAG_NO_BRDF_MIS)) == 0u) {
-    misWeight = powerHeuristic(1.0, payload.pdf, 1.0, envPdf(dir));
+    misWeight = powerHeuristic(1.0, payload.pdf, 1.0, frame.envSelectProbability * envPdf(dir));
   } else if (payload.bounce > 0u && payload.pdf > 0.0 && (pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u &&
              (pc.flags & WB_FLAG_NO_NEE) == 0u) {
     misWeight = 0.0;  // light sampling only: the environment is reached through NEE alone

@@ -20,6 +20,8 @@
 #define WB_BIND_BLUE_NOISE 12   // storage buffer uint[] 128x128 blue-noise (rg in 16 bits each)
 #define WB_BIND_SOBOL 13        // storage buffer uint[] Sobol direction numbers [dim * 32 + bit]
 #define WB_BIND_AOV_INFO 14     // rgba16f storage image: first-hit geometric normal, a = path vertices traced
+#define WB_BIND_EMITTERS 15     // storage buffer EmissiveTriangle[] (world space), for next-event estimation
+#define WB_BIND_EMITTER_ALIAS 16  // storage buffer EnvAliasEntry[] over emitters, weights = luminance * area
 
 // Material alpha modes (glTF).
 #define WB_ALPHA_OPAQUE 0u
@@ -101,6 +103,10 @@ struct FrameUniforms {
   float envRotation;  // radians about +Y
   float envTotalWeight;  // sum of the alias table's unnormalised weights
   float sceneScale;  // scene bounding radius (for debug views only; never an epsilon)
+  uint emitterCount;  // emissive triangles in WB_BIND_EMITTERS
+  float emitterTotalPower;  // sum over emitters of luminance(emissive factor) * world area
+  float envSelectProbability;  // NEE picks the environment with this probability, emitters otherwise
+  float pad0;
 };
 
 // Per-dispatch push constants (at most 128 bytes).
@@ -125,12 +131,86 @@ struct EnvAliasEntry {
   float pad0;
 };
 
+// An emissive triangle in world space, for next-event estimation of area lights. Its selection probability is
+// luminance(material emissive factor) * area / FrameUniforms::emitterTotalPower, so the area-measure pdf of a point
+// on it is luminance(emissive factor) / emitterTotalPower, computable at any hit without a lookup.
+struct EmissiveTriangle {
+  vec3 p0;
+  uint materialIndex;
+  vec3 p1;
+  uint doubleSided;
+  vec3 p2;
+  float area;
+  vec2 uv0;
+  vec2 uv1;
+  vec2 uv2;
+  vec2 pad0;
+};
+
 // Counters the host reads back.
 struct Counters {
   uint droppedSamples;  // NaN/Inf samples not accumulated
   uint rayCount;        // all rays traced (approximate, atomics per pixel)
   uint shadowRayCount;
   uint pathCount;
+};
+
+WB_NAMESPACE_END
+
+// ==== Hybrid raster + ray traced modes (src/render/hybrid, shaders/hybrid) ====
+// Descriptor set 0 bindings of the hybrid programs (G-buffer raster, shadow/AO and reflection ray tracing,
+// composite compute). They also use WB_BIND_TLAS, WB_BIND_GEOMETRIES, WB_BIND_MATERIALS, WB_BIND_TEXTURES and
+// WB_BIND_ENV_MAP above with the same meaning.
+#define WB_BIND_HYBRID_FRAME 40      // uniform buffer HybridUniforms
+#define WB_BIND_GBUF_ALBEDO 41       // sampler2D rgba8: rgb base colour (linear), a metallic
+#define WB_BIND_GBUF_NORMAL 42       // sampler2D rgba16f: xyz world shading normal facing the camera, w roughness
+#define WB_BIND_GBUF_DEPTH 43        // sampler2D D32: reversed-Z depth (0 = background)
+#define WB_BIND_GBUF_EMISSIVE 44     // sampler2D rgba16f: rgb emitted radiance, a unused
+#define WB_BIND_SHADOW_MASK 45       // r8 storage image: sun visibility (temporally averaged when enabled)
+#define WB_BIND_AO_MASK 46           // r8 storage image: ambient occlusion (1 = open)
+#define WB_BIND_HYBRID_HISTORY 47    // rgba16f storage image: r shadow, g AO running averages
+#define WB_BIND_REFLECTION 48        // rgba16f storage image: rgb reflected radiance, a 1 where traced
+#define WB_BIND_HYBRID_OUTPUT 49     // rgba32f storage image: composited linear radiance
+
+#define WB_HYBRID_FLAG_REFLECTIONS 1u  // the reflection pass ran: composite uses WB_BIND_REFLECTION
+#define WB_HYBRID_FLAG_AO 2u           // ambient occlusion rays are traced
+#define WB_HYBRID_FLAG_TEMPORAL 4u     // accumulate shadow/AO over frames while frameIndex > 0
+
+WB_NAMESPACE_BEGIN
+
+// Per-frame uniforms of the hybrid modes (binding WB_BIND_HYBRID_FRAME).
+struct HybridUniforms {
+  mat4 viewProj;         // world -> clip; Vulkan y down, reversed-Z infinite projection (depth = near / distance)
+  mat4 viewProjInverse;  // clip -> world
+  vec3 cameraPosition;
+  uint frameIndex;  // frames averaged so far while the camera is still (0 = first: overwrite history)
+  vec3 sunDirection;  // unit vector the sunlight travels along
+  float sunCosAngle;  // cosine of the sun's angular radius (1 = hard shadows)
+  vec3 sunRadiance;   // irradiance of a surface facing the sun
+  uint hasSun;
+  vec3 ambient;  // constant environment radiance (times intensity) when envMapPresent == 0
+  float aoRadius;
+  uint aoRays;
+  uint flags;  // WB_HYBRID_FLAG_*
+  uint width;
+  uint height;
+  float reflectionMaxRoughness;  // reflections are traced for roughness below this
+  float envIntensity;
+  float envRotation;  // radians about +Y
+  uint envMapPresent;
+  uint seed;
+  float pad0;
+  float pad1;
+  float pad2;
+};
+
+// Push constants of the G-buffer draw: one draw per (instance, primitive).
+struct HybridDrawConstants {
+  mat4 model;  // object -> world
+  uint geometryIndex;  // GeometryInfo entry of the primitive
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 WB_NAMESPACE_END

@@ -1,5 +1,8 @@
 #include "render/gpu_scene.h"
 
+#include "sampling/environment.h"
+#include "scene/emitters.h"
+
 #include <algorithm>
 
 namespace wb::render {
@@ -62,6 +65,17 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
   lights_ = vk::makeBuffer(ctx, scene.lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   lightCount_ = static_cast<uint32_t>(scene.lights.size());
 
+  const auto emitters = scene::emissiveTriangles(scene);
+  std::vector<gpu::EnvAliasEntry> alias;
+  if (!emitters.empty()) {
+    const auto weights = scene::emitterWeights(scene, emitters);
+    for (double w : weights) emitterTotalPower_ += float(w);
+    alias = buildAliasTable(weights);
+  }
+  emitterCount_ = static_cast<uint32_t>(emitters.size());
+  emitters_ = vk::makeBuffer(ctx, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  emitterAlias_ = vk::makeBuffer(ctx, alias, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+
   std::vector<vk::TlasInstance> instances;
   for (const auto& inst : scene.instances) {
     instances.push_back(
@@ -116,6 +130,11 @@ GpuScene::~GpuScene() {
 
 void GpuScene::updateMaterials(const std::vector<gpu::Material>& materials) {
   materials_.upload(materials.data(), materials.size() * sizeof(gpu::Material));
+}
+
+void GpuScene::updateLights(const std::vector<gpu::DirectionalLight>& lights) {
+  const size_t count = std::min<size_t>(lights.size(), lightCount_);
+  if (count > 0) lights_.upload(lights.data(), count * sizeof(gpu::DirectionalLight));
 }
 
 uint64_t GpuScene::deviceBytes() const {

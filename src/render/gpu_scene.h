@@ -22,6 +22,11 @@ class GpuScene {
   const vk::Buffer& materials() const { return materials_; }
   const vk::Buffer& lights() const { return lights_; }
   uint32_t lightCount() const { return lightCount_; }
+  // Emissive triangles (area lights) and the alias table that picks one proportionally to its power.
+  const vk::Buffer& emitters() const { return emitters_; }
+  const vk::Buffer& emitterAlias() const { return emitterAlias_; }
+  uint32_t emitterCount() const { return emitterCount_; }
+  float emitterTotalPower() const { return emitterTotalPower_; }
   // One entry per scene texture (a 1x1 white image where a texture has no usable image).
   const std::vector<VkDescriptorImageInfo>& textureDescriptors() const { return textureInfos_; }
   const vk::AccelerationStructures& accel() const { return *accel_; }
@@ -30,11 +35,15 @@ class GpuScene {
 
   // Material factors can be edited live; this rewrites the material buffer.
   void updateMaterials(const std::vector<gpu::Material>& materials);
+  // Light directions and radiance can be edited live too (the light count is fixed at load).
+  void updateLights(const std::vector<gpu::DirectionalLight>& lights);
 
  private:
   vk::Context& ctx_;
   std::vector<vk::Buffer> vertexBuffers_, indexBuffers_;
-  vk::Buffer geometries_, materials_, lights_;
+  vk::Buffer geometries_, materials_, lights_, emitters_, emitterAlias_;
+  uint32_t emitterCount_ = 0;
+  float emitterTotalPower_ = 0.0f;
   uint32_t lightCount_ = 0;
   std::vector<vk::Image> images_;
   std::vector<VkSampler> samplers_;

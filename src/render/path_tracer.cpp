@@ -52,7 +52,7 @@ std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures&
 PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
                        const GpuEnvironment& env, const RenderSettings& settings,
                        const scene::SceneFeatures& features)
-    : ctx_(ctx), library_(library), scene_(scene), env_(env), settings_(settings) {
+    : ctx_(ctx), library_(library), scene_(scene), env_(&env), settings_(settings) {
   frameUniforms_ = vk::Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
@@ -117,11 +117,13 @@ void PathTracer::writeDescriptors() {
   s.writeBuffer(0, WB_BIND_MATERIALS, scene_.materials().handle());
   s.writeBuffer(0, WB_BIND_LIGHTS, scene_.lights().handle());
   s.writeSampledImages(0, WB_BIND_TEXTURES, scene_.textureDescriptors());
-  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_.descriptor()});
-  s.writeBuffer(0, WB_BIND_ENV_ALIAS, env_.aliasTable().handle());
+  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_->descriptor()});
+  s.writeBuffer(0, WB_BIND_ENV_ALIAS, env_->aliasTable().handle());
   s.writeBuffer(0, WB_BIND_COUNTERS, counters_.handle());
   s.writeBuffer(0, WB_BIND_BLUE_NOISE, blueNoise_.handle());
   s.writeBuffer(0, WB_BIND_SOBOL, sobol_.handle());
+  s.writeBuffer(0, WB_BIND_EMITTERS, scene_.emitters().handle());
+  s.writeBuffer(0, WB_BIND_EMITTER_ALIAS, scene_.emitterAlias().handle());
 }
 
 std::unique_ptr<PreparedPipeline> PathTracer::preparePipeline(
@@ -169,6 +171,13 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   sampleIndex_ = 0;
 }
 
+void PathTracer::setEnvironment(const GpuEnvironment& env) {
+  vkDeviceWaitIdle(ctx_.device());
+  env_ = &env;
+  writeDescriptors();
+  sampleIndex_ = 0;
+}
+
 void PathTracer::updateFrameUniforms() {
   gpu::FrameUniforms f{};
   const float aspect = float(settings_.width) / float(settings_.height);
@@ -178,12 +187,18 @@ void PathTracer::updateFrameUniforms() {
   f.projInverse = glm::inverse(proj);
   f.envColor = glm::vec4(settings_.envColor, 1.0f);
   f.lightCount = scene_.lightCount();
-  f.envMapPresent = env_.isMap() ? 1u : 0u;
-  f.envWidth = env_.width();
-  f.envHeight = env_.height();
+  f.envMapPresent = env_->isMap() ? 1u : 0u;
+  f.envWidth = env_->width();
+  f.envHeight = env_->height();
   f.envIntensity = settings_.envIntensity;
   f.envRotation = glm::radians(settings_.envRotationDeg);
-  f.envTotalWeight = env_.totalWeight();
+  f.envTotalWeight = env_->totalWeight();
+  f.emitterCount = scene_.emitterCount();
+  f.emitterTotalPower = scene_.emitterTotalPower();
+  // Light sampling splits between the environment and the area lights; a black environment gets none.
+  const bool envBlack =
+      settings_.envIntensity <= 0.0f || (!env_->isMap() && settings_.envColor == glm::vec3(0.0f));
+  f.envSelectProbability = f.emitterCount == 0 ? 1.0f : envBlack ? 0.0f : 0.5f;
   std::memcpy(frameUniforms_.mapped(), &f, sizeof(f));
 }
 

@@ -55,6 +55,9 @@ class PathTracer {
   void setSettings(
       const RenderSettings& settings);  // resizes images when the size changed; resets accumulation
   const RenderSettings& settings() const { return settings_; }
+  // Points the tracer at another environment (the window's environment choice); waits for the device, resets
+  // accumulation. `env` must outlive the tracer or the next setEnvironment.
+  void setEnvironment(const GpuEnvironment& env);
   void resetAccumulation() { sampleIndex_ = 0; }
 
   // Records one sample for `region` (whole image when empty) into cmd. Call advanceSample() once every region
@@ -92,7 +95,7 @@ class PathTracer {
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
   const GpuScene& scene_;
-  const GpuEnvironment& env_;
+  const GpuEnvironment* env_;
   RenderSettings settings_;
   CameraState camera_;
   shader::ShaderLibrary::ProgramId program_ = 0;
