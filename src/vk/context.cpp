@@ -58,6 +58,7 @@ Context::~Context() {
 void Context::destroy() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    pipelineCache_.reset();  // saves it
     if (fence_) vkDestroyFence(device_, fence_, nullptr);
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
@@ -287,6 +288,18 @@ void Context::createDevice(const ContextOptions& options) {
   load(device_, vkCreateRayTracingPipelinesKHR, "vkCreateRayTracingPipelinesKHR");
   load(device_, vkGetRayTracingShaderGroupHandlesKHR, "vkGetRayTracingShaderGroupHandlesKHR");
   load(device_, vkCmdTraceRaysKHR, "vkCmdTraceRaysKHR");
+
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(physical_, &props);
+  std::string cacheFile;
+  if (!options.pipelineCacheDir.empty()) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "vk_pipeline_cache_%04x_%04x.bin", props.vendorID, props.deviceID);
+    cacheFile = options.pipelineCacheDir + "/" + name;
+  }
+  pipelineCache_ = std::make_unique<PipelineCache>(device_, props, cacheFile);
+  if (!pipelineCache_->warning().empty())
+    std::fprintf(stderr, "warning: %s\n", pipelineCache_->warning().c_str());
 
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

@@ -2,12 +2,14 @@
 #pragma once
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
 
 #include "vk/check.h"
+#include "vk/pipeline_cache.h"
 
 namespace wb::vk {
 
@@ -16,6 +18,8 @@ struct ContextOptions {
   bool validation = false;  // Khronos validation layer, if installed (also on with WB_VALIDATION=1)
   std::vector<const char*> instanceExtensions;  // e.g. from glfwGetRequiredInstanceExtensions
   bool presentation = false;                    // enable VK_KHR_swapchain on the device
+  std::string
+      pipelineCacheDir;  // where the VkPipelineCache persists (a file per device); empty = memory only
 };
 
 struct RayTracingProperties {
@@ -44,6 +48,9 @@ class Context {
   bool validationEnabled() const { return validation_; }
   bool pipelineLibrarySupported() const { return pipelineLibrary_; }
   float timestampPeriodNs() const { return timestampPeriod_; }
+  // The pipeline cache every pipeline is created with (persisted at exit when a directory was given).
+  VkPipelineCache pipelineCache() const { return pipelineCache_ ? pipelineCache_->handle() : VK_NULL_HANDLE; }
+  PipelineCache* pipelineCacheObject() { return pipelineCache_.get(); }
 
   // Validation messages of severity error seen so far (tests assert zero).
   uint32_t validationErrors() const { return validationErrors_.load(); }
@@ -95,6 +102,7 @@ class Context {
   std::vector<std::string> messages_;
   std::mutex queueMutex_;
   std::mutex submitMutex_;
+  std::unique_ptr<PipelineCache> pipelineCache_;
 };
 
 }  // namespace wb::vk

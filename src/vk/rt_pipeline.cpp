@@ -62,8 +62,8 @@ RayTracingPipeline::RayTracingPipeline(
     ci.pGroups = groupInfos.data();
     ci.maxPipelineRayRecursionDepth = maxRecursionDepth;
     ci.layout = layout;
-    WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &ci, nullptr,
-                                             &pipeline_));
+    WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci,
+                                             nullptr, &pipeline_));
     const uint32_t hitCount = static_cast<uint32_t>(groups.size()) - 1 - missCount;
     sbt_ = ShaderBindingTable(ctx, pipeline_, missCount, hitCount);
   } catch (...) {

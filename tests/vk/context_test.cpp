@@ -1,6 +1,11 @@
 // The real device on this machine (lavapipe here, a GPU where there is one), under the validation layer.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
 #include "vk/context.h"
 
 using namespace wb::vk;
@@ -25,4 +30,55 @@ TEST(Context, UnknownDeviceNameIsAClearError) {
   } catch (const VulkanError& e) {
     EXPECT_NE(std::string(e.what()).find("no-such-gpu-xyz"), std::string::npos) << e.what();
   }
+}
+
+TEST(PipelineCache, PersistsAndRejectsForeignOrCorruptData) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("wb_pcache_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  ContextOptions o;
+  o.pipelineCacheDir = dir.string();
+  {
+    Context ctx(o);  // creates and, at exit, saves the cache
+    ASSERT_NE(ctx.pipelineCache(), VK_NULL_HANDLE);
+  }
+  ASSERT_FALSE(fs::is_empty(dir));
+  const fs::path file = fs::directory_iterator(dir)->path();
+  {
+    Context ctx(o);
+    EXPECT_GT(ctx.pipelineCacheObject()->loadedBytes(), 0u) << "the saved cache is loaded back";
+    EXPECT_TRUE(ctx.pipelineCacheObject()->warning().empty());
+  }
+  // Garbage of the right size but with a wrong header is discarded with a warning, not handed to the driver.
+  {
+    std::ofstream f(file, std::ios::binary | std::ios::trunc);
+    f << std::string(64, 'x');
+  }
+  {
+    Context ctx(o);
+    EXPECT_EQ(ctx.pipelineCacheObject()->loadedBytes(), 0u);
+    EXPECT_NE(ctx.pipelineCacheObject()->warning().find("another device"), std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(PipelineCache, HeaderCheck) {
+  VkPhysicalDeviceProperties props{};
+  props.vendorID = 0x10de;
+  props.deviceID = 0x2330;
+  for (uint32_t i = 0; i < VK_UUID_SIZE; ++i) props.pipelineCacheUUID[i] = uint8_t(i);
+  VkPipelineCacheHeaderVersionOne h{};
+  h.headerSize = sizeof(h);
+  h.headerVersion = VK_PIPELINE_CACHE_HEADER_VERSION_ONE;
+  h.vendorID = props.vendorID;
+  h.deviceID = props.deviceID;
+  std::memcpy(h.pipelineCacheUUID, props.pipelineCacheUUID, VK_UUID_SIZE);
+  EXPECT_TRUE(PipelineCache::headerMatches(&h, sizeof(h), props));
+  EXPECT_FALSE(PipelineCache::headerMatches(&h, sizeof(h) - 1, props)) << "truncated";
+  auto other = h;
+  other.deviceID = 0x1234;
+  EXPECT_FALSE(PipelineCache::headerMatches(&other, sizeof(other), props)) << "another GPU";
+  other = h;
+  other.pipelineCacheUUID[3] ^= 1;
+  EXPECT_FALSE(PipelineCache::headerMatches(&other, sizeof(other), props)) << "another driver build";
 }

@@ -1,0 +1,84 @@
+#include "vk/pipeline_cache.h"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <unistd.h>
+#include <vector>
+
+#include "vk/check.h"
+
+namespace wb::vk {
+
+bool PipelineCache::headerMatches(const void* data, size_t size, const VkPhysicalDeviceProperties& props) {
+  if (size < sizeof(VkPipelineCacheHeaderVersionOne)) return false;
+  VkPipelineCacheHeaderVersionOne h;
+  std::memcpy(&h, data, sizeof(h));
+  return h.headerSize >= sizeof(h) && h.headerSize <= size &&
+         h.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && h.vendorID == props.vendorID &&
+         h.deviceID == props.deviceID &&
+         std::memcmp(h.pipelineCacheUUID, props.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+}
+
+PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& props,
+                             std::filesystem::path file)
+    : device_(device), props_(props), file_(std::move(file)) {
+  std::vector<char> data;
+  if (!file_.empty()) {
+    std::ifstream f(file_, std::ios::binary);
+    if (f) data.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    if (!data.empty() && !headerMatches(data.data(), data.size(), props)) {
+      warning_ =
+          "pipeline cache " + file_.string() + " is for another device or driver, or corrupt: starting empty";
+      data.clear();
+    }
+  }
+  VkPipelineCacheCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  ci.initialDataSize = data.size();
+  ci.pInitialData = data.empty() ? nullptr : data.data();
+  if (vkCreatePipelineCache(device_, &ci, nullptr, &cache_) != VK_SUCCESS) {
+    // A driver that rejects the data: start empty.
+    warning_ = "pipeline cache " + file_.string() + " rejected by the driver: starting empty";
+    ci.initialDataSize = 0;
+    ci.pInitialData = nullptr;
+    WB_VK(vkCreatePipelineCache(device_, &ci, nullptr, &cache_));
+  } else {
+    loadedBytes_ = data.size();
+  }
+}
+
+PipelineCache::~PipelineCache() {
+  if (cache_) {
+    save();
+    vkDestroyPipelineCache(device_, cache_, nullptr);
+  }
+}
+
+bool PipelineCache::save() {
+  if (file_.empty() || !cache_) return false;
+  size_t size = 0;
+  if (vkGetPipelineCacheData(device_, cache_, &size, nullptr) != VK_SUCCESS || size == 0) return false;
+  std::vector<char> data(size);
+  if (vkGetPipelineCacheData(device_, cache_, &size, data.data()) != VK_SUCCESS) return false;
+  std::error_code ec;
+  std::filesystem::create_directories(file_.parent_path(), ec);
+  const auto tmp = file_.string() + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f.write(data.data(), std::streamsize(size));
+    if (!f) {
+      warning_ = "cannot write pipeline cache " + tmp;
+      std::filesystem::remove(tmp, ec);
+      return false;
+    }
+  }
+  std::filesystem::rename(tmp, file_, ec);
+  if (ec) {
+    warning_ = "cannot write pipeline cache " + file_.string() + ": " + ec.message();
+    std::filesystem::remove(tmp, ec);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace wb::vk
