@@ -1,9 +1,14 @@
 #include "sampling/sobol.h"
 
 #include <array>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <string>
+
+#include "common/paths.h"
 
 namespace wb {
 namespace {
@@ -160,14 +165,52 @@ std::vector<SobolPolynomial> primitivePolynomials(int count) {
   return out;
 }
 
+std::vector<uint32_t> generateSobolDirectionNumbers(int dims) {
+  if (dims < 0 || dims > 4096)
+    throw std::invalid_argument("generateSobolDirectionNumbers: dims out of range");
+  return generate(dims);
+}
+
+std::filesystem::path sobolCommittedPath() {
+  return assetDir() / "sampling" / "sobol_dirs.bin";
+}
+
+std::vector<uint32_t> loadCommittedSobolDirections() {
+  const std::filesystem::path path = sobolCommittedPath();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("sobolDirectionNumbers: cannot open " + path.string());
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t expected = static_cast<size_t>(kSobolCommittedDims) * 32u * 4u;
+  if (bytes.size() != expected) {
+    throw std::runtime_error("sobolDirectionNumbers: " + path.string() + " has " +
+                             std::to_string(bytes.size()) + " bytes, expected " + std::to_string(expected) +
+                             " (regenerate it with wb_gen_sobol)");
+  }
+  std::vector<uint32_t> out(expected / 4u);
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i] = static_cast<uint32_t>(bytes[4 * i]) | (static_cast<uint32_t>(bytes[4 * i + 1]) << 8) |
+             (static_cast<uint32_t>(bytes[4 * i + 2]) << 16) |
+             (static_cast<uint32_t>(bytes[4 * i + 3]) << 24);
+  }
+  return out;
+}
+
 std::vector<uint32_t> sobolDirectionNumbers(int dims) {
   if (dims < 0 || dims > 4096) throw std::invalid_argument("sobolDirectionNumbers: dims out of range");
   static std::mutex mutex;
   static std::map<int, std::vector<uint32_t>> cache;
+  static std::vector<uint32_t> committed;
   std::lock_guard<std::mutex> lock(mutex);
   auto it = cache.find(dims);
-  if (it == cache.end()) it = cache.emplace(dims, generate(dims)).first;
-  return it->second;
+  if (it != cache.end()) return it->second;
+  std::vector<uint32_t> result;
+  if (dims <= kSobolCommittedDims) {
+    if (committed.empty()) committed = loadCommittedSobolDirections();
+    result.assign(committed.begin(), committed.begin() + static_cast<ptrdiff_t>(dims) * 32);
+  } else {
+    result = generate(dims);  // beyond the committed table: the (slow) search
+  }
+  return cache.emplace(dims, std::move(result)).first->second;
 }
 
 int sobolPairTValue(const std::vector<uint32_t>& dirs, int dimA, int dimB, int m) {

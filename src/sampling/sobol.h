@@ -2,8 +2,13 @@
 // GF(2) are enumerated in code, and the free initial direction numbers m_1..m_s (odd, m_k < 2^k) are chosen
 // by a small deterministic search that minimises the t-values of 2D projections with the dimensions a path
 // uses together.
+//
+// The search costs about a second for 162 dimensions, so its result is generated once and committed:
+// assets/sampling/sobol_dirs.bin (tools/sampling/gen_sobol.cpp writes it; a test checks it against the
+// generator). sobolDirectionNumbers() reads that file and only searches for dimensions beyond it.
 #pragma once
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 namespace wb {
@@ -18,8 +23,22 @@ std::vector<SobolPolynomial> primitivePolynomials(int count);
 
 // Direction numbers laid out [dim * 32 + bit] (bit 0 = most significant output bit's generator, i.e. V_1 =
 // 2^31 for dim 0). dim 0 is van der Corput, dim 1 uses x + 1 with m_1 = 1 (the classical second Sobol
-// dimension). Deterministic; the result is cached per dims.
+// dimension). Deterministic; the result is cached per dims. Fast path: a prefix of the committed table
+// (sobolCommittedPath()); more dimensions than the table holds run the search. Throws std::runtime_error if
+// the committed table is missing or malformed.
 std::vector<uint32_t> sobolDirectionNumbers(int dims);
+
+// The search itself (what sobolDirectionNumbers computes, without the committed table). The result for n
+// dims is a prefix of the result for any m > n dims.
+std::vector<uint32_t> generateSobolDirectionNumbers(int dims);
+
+// Number of dimensions in the committed table, and its path: assetDir()/sampling/sobol_dirs.bin
+// (kSobolCommittedDims * 32 little-endian uint32, layout [dim * 32 + bit]).
+constexpr int kSobolCommittedDims = 162;
+std::filesystem::path sobolCommittedPath();
+
+// Loads the committed table (all of it). Throws std::runtime_error if missing or malformed.
+std::vector<uint32_t> loadCommittedSobolDirections();
 
 // t-value of the 2D projection (dimA, dimB) for the first 2^m points, from a direction-number table.
 int sobolPairTValue(const std::vector<uint32_t>& dirs, int dimA, int dimB, int m);

@@ -27,3 +27,22 @@ namespace wb::testing {
 // environment of radiance 1 every pixel converges to exactly 1 (the white furnace).
 scene::Scene makeFurnaceScene(gpu::Material material);
 }  // namespace wb::testing
+
+namespace wb::testing {
+
+// A general material (glTF metallic-roughness; specularFactor 1 = the standard 4% dielectric).
+gpu::Material pbr(glm::vec3 baseColor, float metallic, float roughness);
+
+// The same scene with every length multiplied by k: vertex positions, instance translations, camera, bounds.
+scene::Scene scaledScene(scene::Scene s, float k);
+
+// Two spheres (glossy metal at x = -1.1, rough dielectric at x = +1.1) on a grey Lambert floor, seen from the
+// front; meant for an environment map (no directional light).
+scene::Scene makeEnvSpheresScene();
+
+// Everything that tends to produce NaN/Inf: a floor seen at grazing angles, spheres of roughness 0 and 1
+// (metal and dielectric), degenerate and zero-area triangles, zero normals, normal-mapped quads with missing,
+// parallel and zero-handedness tangents, a single-sided quad seen from behind, and a directional light.
+scene::Scene makeHardCasesScene();
+
+}  // namespace wb::testing
