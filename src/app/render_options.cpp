@@ -31,7 +31,28 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
   app.add_option("--aov", o.aov, "write AOVs: albedo,normal (beside --out)");
   app.add_option("--device", o.device, "Vulkan device name (substring)");
+  app.add_option("--tile", o.tile, "trace each sample in tiles of WxH (dispatch-shape experiments)");
   app.add_flag("--generic", s.generic, "all-features shaders instead of the scene-specialised build");
+  app.add_option(
+         "--mode", o.modeName,
+         "pathtrace (reference), hybrid (raster + ray traced shadows/AO) or reflections (hybrid + ray "
+         "traced reflections); with hybrid modes --spp is the number of frames")
+      ->capture_default_str();
+  auto& h = o.hybrid;
+  app.add_option(
+      "--sun-angle", h.sunAngleDeg,
+      "hybrid: sun angular diameter in degrees for soft shadows (default: the light's, else 0.53)");
+  app.add_option("--ao-radius", h.aoRadius,
+                 "hybrid: ambient occlusion ray length (default: 15% of camera distance)");
+  app.add_option("--ao-rays", h.aoRays, "hybrid: ambient occlusion rays per pixel and frame (0 = off)")
+      ->capture_default_str();
+  app.add_flag("--no-temporal", o.noTemporal, "hybrid: no accumulation of shadows/AO over frames");
+  app.add_option("--reflection-depth", h.reflectionDepth, "reflections: mirror bounces")
+      ->capture_default_str()
+      ->check(CLI::Range(0u, 16u));
+  app.add_option("--reflection-roughness", h.reflectionMaxRoughness,
+                 "reflections: trace reflections below this roughness")
+      ->capture_default_str();
 }
 
 static float parseFloat(const std::string& text, const std::string& what) {
@@ -58,6 +79,16 @@ void finishRenderOptions(RenderOptions& o) {
   }
   s.width = w;
   s.height = h;
+  if (!o.tile.empty()) {
+    unsigned tw = 0, th = 0;
+    char tx = 0, textra = 0;
+    std::istringstream tile(o.tile);
+    if (!(tile >> tw >> tx >> th) || (tx != 'x' && tx != 'X') || (tile >> textra) || tw == 0 || th == 0) {
+      throw std::invalid_argument("--tile: expected WxH, got '" + o.tile + "'");
+    }
+    s.tileWidth = tw;
+    s.tileHeight = th;
+  }
   if (!o.envColor.empty()) {
     std::vector<float> c;
     std::stringstream ss(o.envColor);
@@ -81,6 +112,18 @@ void finishRenderOptions(RenderOptions& o) {
   }
   if (!std::isfinite(s.envIntensity) || s.envIntensity < 0) {
     throw std::invalid_argument("--env-intensity: must be a non-negative number");
+  }
+  const auto mode = render::parseRenderMode(o.modeName);
+  if (!mode)
+    throw std::invalid_argument("--mode: expected pathtrace, hybrid or reflections, got '" + o.modeName +
+                                "'");
+  o.mode = *mode;
+  o.hybrid.temporal = !o.noTemporal;
+  if (!std::isfinite(o.hybrid.aoRadius) || o.hybrid.aoRadius < 0) {
+    throw std::invalid_argument("--ao-radius: must be a non-negative number");
+  }
+  if (!std::isfinite(o.hybrid.sunAngleDeg) || o.hybrid.sunAngleDeg > 90.0f) {
+    throw std::invalid_argument("--sun-angle: must be at most 90 degrees");
   }
   s.russianRoulette = !o.noRussianRoulette;
   s.nee = !o.noNee;

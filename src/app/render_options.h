@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "render/hybrid/hybrid_settings.h"
 #include "render/settings.h"
 
 namespace wb::app {
@@ -17,9 +18,15 @@ struct RenderOptions {
   std::string sampler = "sobol";
   std::string aov;  // "albedo,normal"
   std::string device;
+  std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)
   bool noRussianRoulette = false;
   bool noNee = false;
   bool noMis = false;
+  // --mode pathtrace|hybrid|reflections and the hybrid modes' parameters.
+  std::string modeName = "pathtrace";
+  render::RenderMode mode = render::RenderMode::PathTrace;
+  render::HybridSettings hybrid;
+  bool noTemporal = false;
 };
 
 // Adds SCENE and the render parameter flags to a CLI11 command.

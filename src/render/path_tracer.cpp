@@ -234,8 +234,17 @@ void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) 
 }
 
 void PathTracer::render(uint32_t samples) {
+  const uint32_t tw = settings_.tileWidth ? settings_.tileWidth : settings_.width;
+  const uint32_t th = settings_.tileHeight ? settings_.tileHeight : settings_.height;
   for (uint32_t i = 0; i < samples; ++i) {
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+      for (uint32_t y = 0; y < settings_.height; y += th) {
+        for (uint32_t x = 0; x < settings_.width; x += tw) {
+          record(cmd,
+                 PixelRegion{x, y, std::min(tw, settings_.width - x), std::min(th, settings_.height - y)});
+        }
+      }
+    });
     advanceSample();
   }
 }

@@ -21,6 +21,8 @@ struct RenderSettings {
   uint32_t seed = 0;
   bool aov = false;  // albedo + normal AOVs
   uint32_t debugView = 0;
+  // Dispatch shape of a headless sample: tiles of this size (0 = the whole image in one vkCmdTraceRaysKHR).
+  uint32_t tileWidth = 0, tileHeight = 0;
   bool generic = false;  // the all-features shader build instead of the scene-specialised one
 
   // Environment: an equirectangular .hdr, or a constant colour.

@@ -106,3 +106,22 @@ TEST(Render, SharedGltfModelIsNotBlackAndFinite) {
   EXPECT_GT(stats.mean[0] + stats.mean[1] + stats.mean[2], 0.05);
   expectNoValidationErrors(*session);
 }
+
+TEST(Render, TiledDispatchGivesTheSameImage) {
+  // The sample streams depend on the pixel, not on the dispatch: any tiling renders the same pixels.
+  auto renderWith = [](uint32_t tw, uint32_t th) {
+    app::SessionOptions o;
+    o.sceneData = makeShadowScene().scene;
+    o.settings.width = 40;
+    o.settings.height = 24;
+    o.settings.tileWidth = tw;
+    o.settings.tileHeight = th;
+    auto session = makeSession(o);
+    session->render(2);
+    expectNoValidationErrors(*session);
+    return session->image();
+  };
+  const auto full = renderWith(0, 0), tiled = renderWith(7, 5);
+  ASSERT_EQ(full.pixels.size(), tiled.pixels.size());
+  for (size_t i = 0; i < full.pixels.size(); ++i) ASSERT_EQ(full.pixels[i], tiled.pixels[i]) << "at " << i;
+}
