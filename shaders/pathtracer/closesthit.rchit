@@ -39,7 +39,10 @@ void main() {
 
   vec3 ns = (h.normal * gl_WorldToObjectEXT).xyz;
   ns = dot(ns, ns) > 1e-20 ? normalize(ns) : ng;
-  if (!frontFace) ns = -ns;
+  // The shading normal goes to the side the ray came from, like ng: on back faces, and also where a mesh's
+  // normals were authored against its winding (common on double-sided foliage).
+  const bool nsFlipped = dot(ns, ng) < 0.0;
+  if (nsFlipped) ns = -ns;
 
   // Material inputs, textures applied.
   vec4 baseColor = m.baseColorFactor;
@@ -63,7 +66,7 @@ void main() {
     t = t - ns * dot(ns, t);
     if (dot(t, t) > 1e-20 && h.tangent.w != 0.0) {
       t = normalize(t);
-      const vec3 b = cross(ns, t) * (h.tangent.w < 0.0 ? -1.0 : 1.0) * (frontFace ? 1.0 : -1.0);
+      const vec3 b = cross(ns, t) * (h.tangent.w < 0.0 ? -1.0 : 1.0) * (nsFlipped ? -1.0 : 1.0);
       vec3 tn = sampleTexture(m.normalTexture, h.uv).xyz * 2.0 - 1.0;
       tn.xy *= m.normalScale;
       const vec3 mapped = tn.x * t + tn.y * b + tn.z * ns;

@@ -18,9 +18,10 @@
 //   Dimensions >= WB_SOBOL_DIMS (deeper bounces) fall back to PCG hashing.
 // Pairs (2j, 2j+1) share one blue-noise texel (its two channels); each pair reads the texture at its own
 // toroidal offset, so the rotations of different dimensions are decorrelated.
-// The temporal scramble adds frame * 0x9E3779B9 (golden ratio, 0.32 fixed point) to the rotation: pass a value
-// that is constant during an accumulation (e.g. PushConstants.seed) to keep the Sobol stratification across the
-// sample indices; change it to decorrelate accumulations (or pass the frame number for animated 1-spp noise).
+// The temporal scramble adds seed * 0x9E3779B9 (golden ratio, 0.32 fixed point) plus a per-dimension hash of the
+// seed to the rotation: pass a value that is constant during an accumulation (e.g. PushConstants.seed) to keep the
+// Sobol stratification across the sample indices; change it to decorrelate accumulations (different seeds give
+// independent estimates), or pass the frame number for animated 1-spp noise.
 #ifndef WB_RANDOM_H
 #define WB_RANDOM_H
 #include "sampling_math.h"
@@ -150,7 +151,9 @@ WB_FN uint blueNoiseRotationBits(uvec2 pixel, uint dim, uint seed) {
   uint oy = (pair * 2447445414u) >> 25u;
   vec2 bn = WB_BLUE_NOISE((pixel.x + ox) & (WB_BLUE_NOISE_SIZE - 1u), (pixel.y + oy) & (WB_BLUE_NOISE_SIZE - 1u));
   float c = (dim & 1u) == 0u ? bn.x : bn.y;
-  return uint(c * 4294967040.0f) + seed * 2654435769u;
+  // Temporal scramble: the golden-ratio multiple of the seed, plus a per-dimension hash of it (seed 0: neither), so
+  // accumulations with different seeds are independent estimates rather than one shift applied to every dimension.
+  return uint(c * 4294967040.0f) + seed * 2654435769u + (seed == 0u ? 0u : pcgHash(seed ^ pcgHash(dim + 0x9E3779B9u)));
 }
 
 // One sample value in [0,1) (strictly below 1) of dimension dim.

@@ -10,6 +10,7 @@
 #include "app/cmd_render.h"
 #include "app/cmd_shaders.h"
 #include "app/cmd_watch.h"
+#include "app/window/window_command.h"
 #include "common/paths.h"
 
 namespace {
@@ -27,14 +28,20 @@ void usage() {
 }
 
 int runDefault(const std::vector<std::string>& args) {
-  // The window is not available in this build: say so and fall back to a headless render of the scene.
+  // The live window; without a display, say so and fall back to a headless render of the scene.
   const char* display = std::getenv("DISPLAY");
-  if (!display || !*display) {
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((display && *display) || (wayland && *wayland)) {
+    const int code = wb::app::runWindowCommand(args);
+    if (code != wb::app::kNoDisplay) return code;
+    std::printf("workbench: cannot open a window on display '%s'; rendering headless instead\n",
+                display ? display : wayland);
+  } else {
     std::printf("workbench: no display (DISPLAY is not set); rendering headless instead\n");
   }
-  std::vector<std::string> renderArgs = args;
+  std::vector<std::string> renderArgs = wb::app::renderArgsOnly(args);
   bool hasOut = false;
-  for (const auto& a : args) hasOut = hasOut || a == "--out" || a.rfind("--out=", 0) == 0;
+  for (const auto& a : renderArgs) hasOut = hasOut || a == "--out" || a.rfind("--out=", 0) == 0;
   const std::string out = (wb::projectRoot() / "out" / "workbench.png").string();
   if (!hasOut) {
     std::filesystem::create_directories(wb::projectRoot() / "out");

@@ -1,0 +1,648 @@
+#include "app/cmd_converge.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "app/render_options.h"
+#include "app/render_session.h"
+#include "common/paths.h"
+#include "eval/hard_cases.h"
+#include "eval/metrics.h"
+
+namespace fs = std::filesystem;
+
+namespace wb::app {
+namespace {
+
+struct Config {
+  std::string name;
+  std::vector<std::string> flags;
+  RenderOptions options;
+};
+
+struct ConvergeOptions {
+  std::string reference;
+  uint32_t referenceSpp = 0;
+  double seconds = 10.0;
+  uint32_t runs = 3;
+  uint32_t maxSpp = 1u << 16;
+  double targetRelMse = 0;
+  std::vector<std::string> configs;
+  std::string out;
+  bool hardCases = false;
+};
+
+// One checkpoint of one configuration, over its independent runs.
+struct Checkpoint {
+  uint32_t spp = 0;
+  std::vector<double> seconds;  // per run
+  std::vector<double> mse, relMse;
+  std::vector<eval::Rgb> mean;
+  std::vector<eval::ImageRGBA> images;  // per run (kept for the run-to-run variance)
+  double variance = 0;                  // mean per-pixel variance of one run, from the runs
+};
+
+struct ConfigResult {
+  std::string name;
+  std::string flags;
+  std::vector<Checkpoint> checkpoints;
+  uint64_t dropped = 0;
+  eval::FireflyStats fireflies;
+  double setupSeconds = 0;
+};
+
+double mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? 0.0 : s / double(v.size());
+}
+
+std::vector<std::string> splitFlags(const std::string& text) {
+  std::vector<std::string> out;
+  std::string cur;
+  char quote = 0;
+  bool any = false;
+  for (char c : text) {
+    if (quote) {
+      if (c == quote) {
+        quote = 0;
+      } else {
+        cur += c;
+      }
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+      any = true;
+    } else if (c == ' ' || c == '\t') {
+      if (!cur.empty() || any) out.push_back(cur);
+      cur.clear();
+      any = false;
+    } else {
+      cur += c;
+    }
+  }
+  if (quote) throw std::invalid_argument("--config: unbalanced quote in '" + text + "'");
+  if (!cur.empty() || any) out.push_back(cur);
+  return out;
+}
+
+std::string safeName(const std::string& name) {
+  std::string s;
+  for (char c : name) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
+  return s.empty() ? "config" : s;
+}
+
+void addConvergeOptions(CLI::App& cli, ConvergeOptions& c) {
+  cli.add_option("--reference", c.reference,
+                 "reference image (.exr, linear; box-downsampled when an integer multiple of --size)");
+  cli.add_option("--reference-spp", c.referenceSpp,
+                 "without --reference: spp of the cached reference render (default 1024)");
+  cli.add_option("--seconds", c.seconds, "render time per configuration and run")->capture_default_str();
+  cli.add_option("--runs", c.runs, "independent runs (seeds) per configuration, for the variance")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 64u));
+  cli.add_option("--max-spp", c.maxSpp, "stop a run at this many samples per pixel")->capture_default_str();
+  cli.add_option("--target-relmse", c.targetRelMse,
+                 "relMSE for the time-to-error column (default: median of the final relMSEs)");
+  cli.add_option("--config", c.configs, "NAME:FLAGS, render flags of one configuration (repeatable)");
+  cli.add_option("--out", c.out, "output folder")->required();
+  cli.add_flag("--hard-cases", c.hardCases, "render the built-in numerical hard cases instead of SCENE");
+}
+
+// Parses the command's arguments (plus a configuration's flags, which win) into render options.
+RenderOptions parseRenderFlags(const std::vector<std::string>& args, const std::vector<std::string>& extra) {
+  CLI::App cli;
+  cli.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  RenderOptions ro;
+  ConvergeOptions ignored;
+  addRenderOptions(cli, ro);
+  addConvergeOptions(cli, ignored);
+  std::vector<std::string> all = args;
+  all.insert(all.end(), extra.begin(), extra.end());
+  std::vector<std::string> reversed(all.rbegin(), all.rend());
+  cli.parse(reversed);
+  finishRenderOptions(ro);
+  return ro;
+}
+
+// FNV-1a, stable across runs and builds (the reference cache key).
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string settingsKey(const render::RenderSettings& s) {
+  std::ostringstream k;
+  k << s.width << "x" << s.height << " bounces " << s.maxBounces << " rr " << s.russianRoulette << " "
+    << s.rrStart << " " << s.rrMin << " " << s.rrMax << " nee " << s.nee << " mis " << s.mis << " sampler "
+    << int(s.sampler) << " env '" << s.envPath << "' " << s.envColor.x << "," << s.envColor.y << ","
+    << s.envColor.z << " rot " << s.envRotationDeg << " int " << s.envIntensity;
+  return k.str();
+}
+
+std::string mtimeOf(const fs::path& p) {
+  std::error_code ec;
+  auto t = fs::last_write_time(p, ec);
+  if (ec) return "?";
+  return std::to_string(t.time_since_epoch().count());
+}
+
+class Progress {
+ public:
+  void update(const std::string& label, double fraction, const std::string& detail, bool force = false) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!force && std::chrono::duration<double>(now - last_).count() < (tty_ ? 0.1 : 5.0)) return;
+    last_ = now;
+    const int width = 30;
+    const int filled = std::clamp(int(fraction * width + 0.5), 0, width);
+    std::fprintf(stderr, "%s%-22s [%s%s] %3d%% %s%s", tty_ ? "\r" : "", label.c_str(),
+                 std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '.').c_str(),
+                 int(std::clamp(fraction, 0.0, 1.0) * 100), detail.c_str(), tty_ ? "\033[K" : "\n");
+    std::fflush(stderr);
+  }
+  void done() {
+    if (tty_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool tty_ = isatty(2) != 0;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+double timedRender(RenderSession& session, uint32_t samples) {
+  const auto t0 = std::chrono::steady_clock::now();
+  session.pathTracer().render(samples);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+SessionOptions sessionOptions(const RenderOptions& ro) {
+  SessionOptions so;
+  so.scenePath = ro.scene;
+  so.settings = ro.settings;
+  so.context.deviceName = ro.device;
+  so.quiet = true;
+  return so;
+}
+
+// The reference: a file (downsampled to the render size when needed), or a cached long render.
+eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base, Progress& progress,
+                                      std::string& description) {
+  const auto& s = base.settings;
+  if (!c.reference.empty()) {
+    eval::ImageRGBA ref = eval::readExr(c.reference);
+    if (ref.width != s.width || ref.height != s.height) {
+      ref = eval::downsampleTo(ref, s.width, s.height);
+      description = "file `" + c.reference + "` (box-downsampled to " + std::to_string(s.width) + "x" +
+                    std::to_string(s.height) + ")";
+    } else {
+      description = "file `" + c.reference + "`";
+    }
+    return ref;
+  }
+  const uint32_t spp = c.referenceSpp ? c.referenceSpp : 1024;
+  const fs::path scene = base.scene.empty() ? defaultScenePath() : fs::path(base.scene);
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(scene, ec);
+  std::string key = "scene " + canonical.string() + " mtime " + mtimeOf(scene) + " " + settingsKey(s) +
+                    " spp " + std::to_string(spp) + " v1";
+  if (!s.envPath.empty()) key += " envmtime " + mtimeOf(s.envPath);
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+  const fs::path dir = shaderCacheDir() / "references";
+  const fs::path file = dir / (std::string(hex) + ".exr");
+  if (fs::exists(file)) {
+    description = "cached render of the same scene and base flags, " + std::to_string(spp) + " spp (`" +
+                  file.string() + "`)";
+    return eval::readExr(file);
+  }
+  RenderOptions ro = base;
+  ro.settings.seed = 0x5eed0000u;  // never one of the runs' seeds
+  RenderSession session(sessionOptions(ro));
+  session.pathTracer().resetAccumulation();
+  double t = 0;
+  for (uint32_t done = 0; done < spp;) {
+    const uint32_t n = std::min<uint32_t>(8, spp - done);
+    t += timedRender(session, n);
+    done += n;
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "%u/%u spp %.1f s", done, spp, t);
+    progress.update("reference", double(done) / spp, detail, done == spp);
+  }
+  progress.done();
+  eval::ImageRGBA ref = session.image();
+  fs::create_directories(dir);
+  eval::writeExr(file, ref);
+  std::ofstream(dir / (std::string(hex) + ".txt")) << key << "\n";
+  description = "rendered now by this command and cached: " + std::to_string(spp) +
+                " spp of the same scene " + "with the base flags (`" + file.string() + "`, " +
+                std::to_string(t) + " s)";
+  return ref;
+}
+
+ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
+                       Progress& progress, size_t index, size_t count) {
+  ConfigResult result;
+  result.name = cfg.name;
+  for (const auto& f : cfg.flags) result.flags += (result.flags.empty() ? "" : " ") + f;
+  RenderSession session(sessionOptions(cfg.options));
+  result.setupSeconds = session.setupSeconds();
+  std::vector<uint32_t> schedule;  // spp of the checkpoints, set by run 0
+  for (uint32_t run = 0; run < c.runs; ++run) {
+    render::RenderSettings s = cfg.options.settings;
+    s.seed = cfg.options.settings.seed + 1 + run * 7919u;
+    session.pathTracer().setSettings(s);
+    session.pathTracer().resetAccumulation();
+    session.pathTracer().resetCounters();
+    const std::string label = "[" + std::to_string(index + 1) + "/" + std::to_string(count) + "] " +
+                              cfg.name + " run " + std::to_string(run + 1);
+    double t = 0;
+    uint32_t spp = 0;
+    size_t next = 0;  // checkpoint index
+    // Wall-time checkpoints: seconds / 64, / 32, ..., seconds.
+    double nextTick = c.seconds / 64.0;
+    auto checkpoint = [&]() {
+      if (result.checkpoints.size() <= next) result.checkpoints.emplace_back();
+      Checkpoint& cp = result.checkpoints[next];
+      cp.spp = spp;
+      eval::ImageRGBA img = session.image();
+      cp.seconds.push_back(t);
+      cp.mse.push_back(eval::mse(img, reference));
+      cp.relMse.push_back(eval::relMse(img, reference, 0.01));
+      cp.mean.push_back(eval::meanRgb(img));
+      cp.images.push_back(std::move(img));
+      ++next;
+    };
+    while (true) {
+      if (run == 0) {
+        if (t >= c.seconds || spp >= c.maxSpp) break;
+        t += timedRender(session, 1);
+        ++spp;
+        const bool pow2 = (spp & (spp - 1)) == 0;
+        bool tick = false;
+        while (t >= nextTick) {
+          tick = true;
+          nextTick *= 2;
+        }
+        if (pow2 || tick || t >= c.seconds || spp >= c.maxSpp) {
+          schedule.push_back(spp);
+          checkpoint();
+        }
+      } else {
+        if (next >= schedule.size()) break;
+        t += timedRender(session, schedule[next] - spp);
+        spp = schedule[next];
+        checkpoint();
+      }
+      char detail[96];
+      std::snprintf(detail, sizeof detail, "%.1f/%.0f s %u spp", t, c.seconds, spp);
+      const double fraction =
+          run == 0 ? t / c.seconds : double(next) / double(std::max<size_t>(1, schedule.size()));
+      progress.update(label, fraction, detail);
+    }
+    char detail[96];
+    std::snprintf(detail, sizeof detail, "%.1f/%.0f s %u spp", t, c.seconds, spp);
+    progress.update(label, 1.0, detail, true);
+    progress.done();
+    result.dropped += session.pathTracer().readCounters().droppedSamples;
+    if (run == 0 && !result.checkpoints.empty()) {
+      result.fireflies = eval::fireflyStats(result.checkpoints.back().images.back());
+    }
+  }
+  // Run-to-run variance at each checkpoint; keep only run 0's final image.
+  for (size_t i = 0; i < result.checkpoints.size(); ++i) {
+    Checkpoint& cp = result.checkpoints[i];
+    if (cp.images.size() >= 2) cp.variance = eval::runStats(cp.images).meanVariance();
+    if (i + 1 < result.checkpoints.size()) {
+      cp.images.clear();
+    } else {
+      cp.images.resize(1);
+    }
+  }
+  return result;
+}
+
+// Seconds to reach `target` relMSE, interpolated in log-log between checkpoints; empty if never reached.
+std::optional<double> timeToReach(const ConfigResult& r, double target) {
+  for (size_t i = 0; i < r.checkpoints.size(); ++i) {
+    const double e = mean(r.checkpoints[i].relMse), t = mean(r.checkpoints[i].seconds);
+    if (e <= target) {
+      if (i == 0) return t;
+      const double e0 = mean(r.checkpoints[i - 1].relMse), t0 = mean(r.checkpoints[i - 1].seconds);
+      if (e0 <= 0 || e <= 0 || t0 <= 0 || e0 == e) return t;
+      const double f = std::log(target / e0) / std::log(e / e0);
+      return std::exp(std::log(t0) + f * (std::log(t) - std::log(t0)));
+    }
+  }
+  return std::nullopt;
+}
+
+void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, const eval::Rgb& refMean) {
+  std::ofstream f(path);
+  f << "config,flags,spp,seconds,seconds_min,seconds_max,runs,mse,rmse,relmse,variance,bias2,mean_r,mean_g,"
+       "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency\n";
+  for (const auto& r : results) {
+    for (const auto& cp : r.checkpoints) {
+      const double t = mean(cp.seconds), m = mean(cp.mse);
+      eval::Rgb mm{0, 0, 0};
+      for (const auto& v : cp.mean)
+        for (int c = 0; c < 3; ++c) mm[c] += v[c] / double(cp.mean.size());
+      char line[512];
+      std::snprintf(
+          line, sizeof line,
+          "%s,\"%s\",%u,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
+          r.name.c_str(), r.flags.c_str(), cp.spp, t, *std::min_element(cp.seconds.begin(), cp.seconds.end()),
+          *std::max_element(cp.seconds.begin(), cp.seconds.end()), cp.seconds.size(), m, std::sqrt(m),
+          mean(cp.relMse), cp.variance, std::max(0.0, m - cp.variance), mm[0], mm[1], mm[2], refMean[0],
+          refMean[1], refMean[2], (m > 0 && t > 0) ? 1.0 / (m * t) : 0.0);
+      f << line;
+    }
+  }
+}
+
+// Writes the gnuplot script and runs gnuplot; returns an empty string or the reason the plot is missing.
+std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& results,
+                      const std::string& title) {
+  const fs::path script = dir / "converge.gp";
+  {
+    std::ofstream g(script);
+    g << "set terminal pngcairo size 1100,480 font 'sans,10' noenhanced\n";
+    g << "set output '" << (dir / "converge.png").string() << "'\n";
+    g << "set logscale xy\nset grid\nset key bottom left\nset xlabel 'time (s)'\n";
+    for (size_t i = 0; i < results.size(); ++i) {
+      g << "$d" << i << " << EOD\n";
+      for (const auto& cp : results[i].checkpoints) {
+        const double m = mean(cp.mse);
+        g << mean(cp.seconds) << " " << mean(cp.relMse) << " " << std::sqrt(m) << "\n";
+      }
+      g << "EOD\n";
+    }
+    g << "set multiplot layout 1,2 title '" << title << "'\n";
+    for (int panel = 0; panel < 2; ++panel) {
+      g << "set ylabel '" << (panel == 0 ? "relMSE" : "RMSE") << "'\nplot ";
+      for (size_t i = 0; i < results.size(); ++i) {
+        std::string name = results[i].name;
+        std::replace(name.begin(), name.end(), '_', '-');
+        g << (i ? ", " : "") << "$d" << i << " using 1:" << (panel == 0 ? 2 : 3)
+          << " with linespoints title '" << name << "'";
+      }
+      g << "\n";
+    }
+    g << "unset multiplot\n";
+  }
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+    return "gnuplot is not installed (scripts/setup.sh installs gnuplot-nox): no plot; the script is " +
+           script.string();
+  }
+  const std::string cmd = "gnuplot '" + script.string() + "' 2>&1";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) return "gnuplot failed (exit " + std::to_string(rc) + ") on " + script.string();
+  return "";
+}
+
+void writeErrorImages(const fs::path& dir, const std::vector<ConfigResult>& results,
+                      const eval::ImageRGBA& reference, std::ostream& md) {
+  double scale = 0;
+  md << "\n## Error images (final checkpoint of run 1)\n\n";
+  for (const auto& r : results) {
+    if (r.checkpoints.empty() || r.checkpoints.back().images.empty()) continue;
+    const auto& img = r.checkpoints.back().images.front();
+    const auto rgba = eval::errorHeatmap(img, reference, scale, &scale);  // the first sets the scale
+    const std::string file = "error_" + safeName(r.name) + ".png";
+    eval::writePng8(dir / file, img.width, img.height, rgba);
+    md << "- `" << file << "`: " << r.name << " at " << r.checkpoints.back().spp << " spp\n";
+  }
+  md << "\n|a - b| averaged over RGB, false colour black - blue - magenta - yellow - white, white = " << scale
+     << " (the 99th percentile of the first configuration's error; same scale for all).\n";
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results, const ConvergeOptions& c,
+                  const RenderOptions& base, const std::string& refDescription, const eval::Rgb& refMean,
+                  const std::string& device, const std::string& plotNote, const eval::ImageRGBA& reference) {
+  std::ofstream md(dir / "converge.md");
+  md << "# Convergence: " << (base.scene.empty() ? defaultScenePath().string() : base.scene) << "\n\n";
+  md << "- Size " << base.settings.width << "x" << base.settings.height << ", " << c.seconds << " s per run, "
+     << c.runs << " independent run(s) (seeds) per configuration, device " << device << ".\n";
+  md << "- Reference: " << refDescription << "; mean RGB " << fmt("%.5f", refMean[0]) << " "
+     << fmt("%.5f", refMean[1]) << " " << fmt("%.5f", refMean[2]) << ".\n";
+  md << "- Errors are averaged over the runs; variance is the mean per-pixel variance between runs (the "
+        "noise "
+        "part of the MSE), bias^2 ~ MSE - variance (when the reference is itself a render, its own noise is "
+        "part of this bias^2 floor). With the Sobol sampler the seeds of the runs are not independent "
+        "randomisations (the seed shifts every dimension by the same constant), so its variance column "
+        "underestimates the noise; use `--sampler pcg` where the variance matters. Efficiency = 1 / (MSE x "
+        "time).\n";
+  std::vector<double> finals;
+  for (const auto& r : results)
+    if (!r.checkpoints.empty()) finals.push_back(mean(r.checkpoints.back().relMse));
+  double target = c.targetRelMse;
+  if (target <= 0 && !finals.empty()) {
+    std::sort(finals.begin(), finals.end());
+    target = finals[finals.size() / 2];
+  }
+  md << "- Time to error: seconds to reach relMSE " << fmt("%.3g", target)
+     << (c.targetRelMse > 0 ? "" : " (the median of the final relMSEs)")
+     << ", log-log interpolated between checkpoints.\n";
+  if (!plotNote.empty()) {
+    md << "- **Plot missing:** " << plotNote << "\n";
+  } else {
+    md << "- Plot: `converge.png` (log relMSE and log RMSE against log time). Data: `converge.csv`.\n";
+  }
+  md << "\n| config | flags | spp | time (s) | RMSE | relMSE | variance | bias^2 | mean RGB vs ref (%) | "
+        "efficiency | time to relMSE "
+     << fmt("%.3g", target) << " | NaN/Inf dropped | max/mean | >10x mean |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& r : results) {
+    if (r.checkpoints.empty()) continue;
+    const auto& cp = r.checkpoints.back();
+    const double t = mean(cp.seconds), m = mean(cp.mse);
+    eval::Rgb mm{0, 0, 0};
+    for (const auto& v : cp.mean)
+      for (int k = 0; k < 3; ++k) mm[k] += v[k] / double(cp.mean.size());
+    std::string bias;
+    for (int k = 0; k < 3; ++k)
+      bias += (k ? " " : "") + fmt("%+.2f", refMean[k] != 0 ? 100.0 * (mm[k] / refMean[k] - 1.0) : 0.0);
+    const auto ttr = timeToReach(r, target);
+    md << "| " << r.name << " | `" << (r.flags.empty() ? "(base)" : r.flags) << "` | " << cp.spp << " | "
+       << fmt("%.2f", t) << " | " << fmt("%.4g", std::sqrt(m)) << " | " << fmt("%.4g", mean(cp.relMse))
+       << " | " << fmt("%.3g", cp.variance) << " | " << fmt("%.3g", std::max(0.0, m - cp.variance)) << " | "
+       << bias << " | " << fmt("%.4g", m > 0 && t > 0 ? 1.0 / (m * t) : 0.0) << " | "
+       << (ttr ? fmt("%.2f", *ttr) : std::string("not reached")) << " | " << r.dropped << " | "
+       << fmt("%.1f", r.fireflies.maxOverMean) << " | " << fmt("%.2g", r.fireflies.fractionAbove10x)
+       << " |\n";
+  }
+  writeErrorImages(dir, results, reference, md);
+}
+
+int fail(const char* what, const std::string& msg, int code) {
+  std::fprintf(stderr, "workbench converge: error: %s%s\n", what, msg.c_str());
+  return code;
+}
+
+}  // namespace
+
+int runHardCases(const std::vector<std::string>& args, const ConvergeOptions& c);
+
+int runConvergeCommand(const std::vector<std::string>& args) {
+  CLI::App cli("Render configurations progressively and measure error against a reference over time",
+               "workbench converge");
+  RenderOptions base;
+  ConvergeOptions c;
+  addRenderOptions(cli, base);
+  addConvergeOptions(cli, c);
+  std::vector<Config> configs;
+  try {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    cli.parse(reversed);
+    base = parseRenderFlags(args, {});
+    if (!c.reference.empty() && c.referenceSpp) {
+      throw std::invalid_argument("give --reference or --reference-spp, not both");
+    }
+    if (!(c.seconds > 0)) throw std::invalid_argument("--seconds must be positive");
+    if (c.configs.empty()) c.configs.push_back("base:");
+    for (const auto& text : c.configs) {
+      const auto colon = text.find(':');
+      if (colon == std::string::npos || colon == 0) {
+        throw std::invalid_argument("--config: expected NAME:FLAGS, got '" + text + "'");
+      }
+      Config cfg;
+      cfg.name = text.substr(0, colon);
+      cfg.flags = splitFlags(text.substr(colon + 1));
+      try {
+        cfg.options = parseRenderFlags(args, cfg.flags);
+      } catch (const CLI::ParseError& e) {
+        throw std::invalid_argument("--config '" + cfg.name + "': " + e.what());
+      }
+      if (cfg.options.settings.width != base.settings.width ||
+          cfg.options.settings.height != base.settings.height || cfg.options.scene != base.scene) {
+        throw std::invalid_argument("--config '" + cfg.name +
+                                    "': a configuration cannot change SCENE or --size");
+      }
+      configs.push_back(std::move(cfg));
+    }
+  } catch (const CLI::CallForHelp&) {
+    std::printf("%s", cli.help().c_str());
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    return fail("", e.what(), 2);
+  } catch (const std::invalid_argument& e) {
+    return fail("", e.what(), 2);
+  }
+  try {
+    const fs::path dir(c.out);
+    fs::create_directories(dir);
+    if (c.hardCases) return runHardCases(args, c);
+    Progress progress;
+    std::string refDescription;
+    const eval::ImageRGBA reference = loadOrRenderReference(c, base, progress, refDescription);
+    const eval::Rgb refMean = eval::meanRgb(reference);
+    std::vector<ConfigResult> results;
+    std::string device;
+    for (size_t i = 0; i < configs.size(); ++i) {
+      results.push_back(runConfig(configs[i], c, reference, progress, i, configs.size()));
+    }
+    {
+      // The device name, from a cheap context (the sessions are gone).
+      vk::ContextOptions co;
+      co.deviceName = base.device;
+      device = vk::Context(co).deviceName();
+    }
+    writeCsv(dir / "converge.csv", results, refMean);
+    const std::string sceneName =
+        fs::path(base.scene.empty() ? defaultScenePath() : fs::path(base.scene)).filename().string();
+    const std::string plotNote = writePlot(dir, results, sceneName);
+    if (!plotNote.empty()) std::fprintf(stderr, "workbench converge: warning: %s\n", plotNote.c_str());
+    writeSummary(dir, results, c, base, refDescription, refMean, device, plotNote, reference);
+    std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)\n", results.size(),
+                dir.string().c_str(), plotNote.empty() ? ", converge.png" : "");
+  } catch (const std::exception& e) {
+    return fail("", e.what(), 1);
+  }
+  return 0;
+}
+
+// ---- Hard cases ----
+
+int runHardCases(const std::vector<std::string>& args, const ConvergeOptions& c) {
+  const fs::path dir(c.out);
+  RenderOptions base = parseRenderFlags(args, {});
+  const uint32_t spp = base.settings.spp;
+  std::ofstream md(dir / "hard_cases.md");
+  md << "# Hard cases\n\n";
+  md << "Each scene isolates one numerical risk. " << base.settings.width << "x" << base.settings.height
+     << ", " << spp << " spp per configuration, max bounces " << base.settings.maxBounces
+     << " (furnaces: at least 64; the mirror corridor 256). Energy error: image mean against the analytic "
+        "furnace value where "
+        "the scene is a furnace (white, energy-preserving materials in a uniform environment of radiance 1: "
+        "every pixel converges to 1). Firefly statistics on pixel luminance.\n\n";
+  md << "| case | risk | config | NaN/Inf dropped | non-finite pixels | mean RGB | energy error | max/mean | "
+        ">10x "
+        "mean | time (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  Progress progress;
+  const auto cases = eval::hardCases();
+  int failures = 0;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const auto& hc = cases[i];
+    for (const auto& variant : hc.variants) {
+      RenderOptions ro = parseRenderFlags(args, splitFlags(variant));
+      render::RenderSettings s = ro.settings;
+      hc.adjust(s);
+      SessionOptions so = sessionOptions(ro);
+      so.sceneData = hc.scene;
+      so.settings = s;
+      progress.update("[" + std::to_string(i + 1) + "/" + std::to_string(cases.size()) + "] " + hc.name, 0.0,
+                      variant, true);
+      RenderSession session(so);
+      const double seconds = session.render(s.spp);
+      const auto img = session.image();
+      const auto counters = session.pathTracer().readCounters();
+      const auto m = eval::meanRgb(img);
+      const auto ff = eval::fireflyStats(img);
+      std::string energy = "n/a";
+      if (hc.furnaceValue > 0) {
+        double e = 0;
+        for (int k = 0; k < 3; ++k) e = std::max(e, std::abs(m[k] / hc.furnaceValue - 1.0));
+        energy = fmt("%.2f%%", 100.0 * e);
+      }
+      failures += counters.droppedSamples ? 1 : 0;
+      md << "| " << hc.name << " | " << hc.risk << " | `" << (variant.empty() ? "(default)" : variant)
+         << "` | " << counters.droppedSamples << " | " << eval::countNonFinite(img) << " | "
+         << fmt("%.4f", m[0]) << " " << fmt("%.4f", m[1]) << " " << fmt("%.4f", m[2]) << " | " << energy
+         << " | " << fmt("%.1f", ff.maxOverMean) << " | " << fmt("%.2g", ff.fractionAbove10x) << " | "
+         << fmt("%.2f", seconds) << " |\n";
+      md.flush();
+      progress.update("[" + std::to_string(i + 1) + "/" + std::to_string(cases.size()) + "] " + hc.name, 1.0,
+                      variant, true);
+      progress.done();
+    }
+  }
+  md << "\n";
+  std::string lastNote;
+  for (const auto& hc : cases) {
+    if (!hc.note.empty() && hc.note != lastNote) md << "- " << hc.name << ": " << hc.note << "\n";
+    lastNote = hc.note;
+  }
+  md << "\nGoal: 0 NaN/Inf samples dropped everywhere. " << failures
+     << " configuration(s) dropped samples.\n";
+  std::printf("converge --hard-cases: %zu case(s) -> %s\n", cases.size(),
+              (dir / "hard_cases.md").string().c_str());
+  return 0;
+}
+
+}  // namespace wb::app

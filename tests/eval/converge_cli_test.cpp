@@ -1,0 +1,81 @@
+// `workbench converge` as a user runs it: files written, CSV columns, one-line errors for bad configurations.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  Result r;
+  const std::string cmd = std::string(WB_WORKBENCH_BIN) + " converge " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+fs::path tempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("wb_converge_" + std::to_string(::getpid())) / name;
+  fs::remove_all(d);
+  return d;
+}
+
+}  // namespace
+
+TEST(ConvergeCli, WritesCsvPlotSummaryAndErrorImages) {
+  const auto dir = tempDir("ok");
+  const Result r =
+      run("--size 16x16 --seconds 0.3 --runs 2 --reference-spp 32 --config 'a:' --config "
+          "'b4:--max-bounces 4' --out " +
+          dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(dir / "converge.csv"));
+  ASSERT_TRUE(fs::exists(dir / "converge.md"));
+  EXPECT_TRUE(fs::exists(dir / "error_a.png"));
+  EXPECT_TRUE(fs::exists(dir / "error_b4.png"));
+  std::ifstream csv(dir / "converge.csv");
+  std::string header, first;
+  std::getline(csv, header);
+  std::getline(csv, first);
+  EXPECT_EQ(header.rfind("config,flags,spp,seconds,", 0), 0u) << header;
+  EXPECT_NE(header.find(",rmse,relmse,variance,"), std::string::npos) << header;
+  EXPECT_EQ(first.rfind("a,\"\",1,", 0), 0u) << first;  // the first checkpoint is 1 spp
+  std::ifstream md(dir / "converge.md");
+  const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Reference: "), std::string::npos);
+  EXPECT_NE(text.find("| b4 | `--max-bounces 4` |"), std::string::npos) << text;
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+    EXPECT_TRUE(fs::exists(dir / "converge.png")) << r.output;
+  } else {
+    EXPECT_NE(text.find("Plot missing"), std::string::npos);
+  }
+}
+
+TEST(ConvergeCli, BadConfigurationsAreOneLineErrors) {
+  const auto dir = tempDir("bad");
+  for (const char* cfg : {"--config nocolon", "--config 'x:--size 8x8'", "--config 'x:--bogus'",
+                          "--config 'x:--sampler nope'"}) {
+    const Result r = run(std::string("--size 16x16 --reference-spp 4 ") + cfg + " --out " + dir.string());
+    EXPECT_EQ(r.code, 2) << cfg << ": " << r.output;
+    EXPECT_NE(r.output.find("workbench converge: error:"), std::string::npos) << r.output;
+  }
+  const Result both = run("--reference x.exr --reference-spp 4 --out " + dir.string());
+  EXPECT_EQ(both.code, 2) << both.output;
+}
