@@ -10,35 +10,18 @@
 
 #include <stb/stb_image_write.h>
 
+#include "scene/procedural.h"
+
 namespace wb::eval {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 
 gpu::Vertex vertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv, glm::vec4 t) {
-  gpu::Vertex v{};
-  v.position = p;
-  v.normal = n;
-  v.u = uv.x;
-  v.v = uv.y;
-  v.tangent = t;
-  return v;
+  return scene::makeVertex(p, n, uv, t);
 }
 
 gpu::Material material(glm::vec3 base, float metallic, float roughness, float specular) {
-  gpu::Material m{};
-  m.baseColorFactor = glm::vec4(base, 1.0f);
-  m.emissive = glm::vec3(0.0f);
-  m.metallic = metallic;
-  m.roughness = roughness;
-  m.specularColorFactor = glm::vec3(1.0f);
-  m.specularFactor = specular;
-  m.alphaCutoff = 0.5f;
-  m.alphaMode = WB_ALPHA_OPAQUE;
-  m.flags = 0;
-  m.baseColorTexture = m.normalTexture = m.metallicRoughnessTexture = m.emissiveTexture = -1;
-  m.normalScale = 1.0f;
-  return m;
+  return scene::makeMaterial(base, metallic, roughness, specular);
 }
 
 gpu::Material whiteLambert() {
@@ -46,36 +29,11 @@ gpu::Material whiteLambert() {
 }
 
 scene::Primitive quad(float h, int mat) {
-  scene::Primitive p;
-  const glm::vec3 n(0, 1, 0);
-  const glm::vec4 t(1, 0, 0, 1);
-  p.vertices = {vertex({-h, 0, -h}, n, {0, 0}, t), vertex({h, 0, -h}, n, {1, 0}, t),
-                vertex({h, 0, h}, n, {1, 1}, t), vertex({-h, 0, h}, n, {0, 1}, t)};
-  p.indices = {0, 2, 1, 0, 3, 2};
-  p.material = mat;
-  return p;
+  return scene::makeQuad(h, mat).primitives[0];
 }
 
 scene::Primitive sphere(float r, int mat, int segments = 48, int rings = 24) {
-  scene::Primitive p;
-  for (int j = 0; j <= rings; ++j) {
-    const float theta = kPi * float(j) / float(rings);
-    for (int i = 0; i <= segments; ++i) {
-      const float phi = 2 * kPi * float(i) / float(segments);
-      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-      const glm::vec3 t(-std::sin(phi), 0, std::cos(phi));
-      p.vertices.push_back(
-          vertex(n * r, n, {float(i) / float(segments), float(j) / float(rings)}, glm::vec4(t, 1)));
-    }
-  }
-  for (int j = 0; j < rings; ++j) {
-    for (int i = 0; i < segments; ++i) {
-      const uint32_t a = uint32_t(j * (segments + 1) + i), b = a + uint32_t(segments) + 1;
-      p.indices.insert(p.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
-    }
-  }
-  p.material = mat;
-  return p;
+  return scene::makeUvSphere(r, mat, segments, rings).primitives[0];
 }
 
 scene::Scene oneMesh(const std::string& name, std::vector<gpu::Material> materials,

@@ -3,9 +3,7 @@
 #include <cmath>
 
 namespace wb::scene {
-namespace {
-
-gpu::Vertex vertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv, glm::vec4 t) {
+gpu::Vertex makeVertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv, glm::vec4 t) {
   gpu::Vertex v{};
   v.position = p;
   v.normal = n;
@@ -15,16 +13,14 @@ gpu::Vertex vertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv, glm::vec4 t) {
   return v;
 }
 
-}  // namespace
-
-gpu::Material makeMaterial(glm::vec3 baseColor, float metallic, float roughness) {
+gpu::Material makeMaterial(glm::vec3 baseColor, float metallic, float roughness, float specularFactor) {
   gpu::Material m{};
   m.baseColorFactor = glm::vec4(baseColor, 1.0f);
   m.emissive = glm::vec3(0.0f);
   m.metallic = metallic;
   m.roughness = roughness;
   m.specularColorFactor = glm::vec3(1.0f);
-  m.specularFactor = 1.0f;
+  m.specularFactor = specularFactor;
   m.alphaCutoff = 0.5f;
   m.alphaMode = WB_ALPHA_OPAQUE;
   m.flags = 0;
@@ -39,9 +35,38 @@ Mesh makeQuad(float h, int material) {
   Primitive p;
   const glm::vec3 n(0, 1, 0);
   const glm::vec4 t(1, 0, 0, 1);
-  p.vertices = {vertex({-h, 0, -h}, n, {0, 0}, t), vertex({h, 0, -h}, n, {1, 0}, t), vertex({h, 0, h}, n, {1, 1}, t),
-                vertex({-h, 0, h}, n, {0, 1}, t)};
+  p.vertices = {makeVertex({-h, 0, -h}, n, {0, 0}, t), makeVertex({h, 0, -h}, n, {1, 0}, t),
+                makeVertex({h, 0, h}, n, {1, 1}, t), makeVertex({-h, 0, h}, n, {0, 1}, t)};
   p.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from +Y
+  p.material = material;
+  mesh.primitives.push_back(std::move(p));
+  return mesh;
+}
+
+Mesh makeBox(glm::vec3 e, int material) {
+  Mesh mesh;
+  mesh.name = "box";
+  Primitive p;
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const auto& n : normals) {
+    const glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    const glm::vec3 v = glm::cross(n, u);
+    const uint32_t base = static_cast<uint32_t>(p.vertices.size());
+    for (int i = 0; i < 4; ++i) {
+      const float a = (i == 1 || i == 2) ? 1.0f : -1.0f;
+      const float b = (i >= 2) ? 1.0f : -1.0f;
+      p.vertices.push_back(
+          makeVertex((n + a * u + b * v) * e, n, {a * 0.5f + 0.5f, b * 0.5f + 0.5f}, glm::vec4(u, 1)));
+    }
+    // Winding chosen so the geometric normal (v1-v0)x(v2-v0) points along n.
+    const glm::vec3 g = glm::cross(p.vertices[base + 1].position - p.vertices[base].position,
+                                   p.vertices[base + 2].position - p.vertices[base].position);
+    if (glm::dot(g, n) > 0) {
+      p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    } else {
+      p.indices.insert(p.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+    }
+  }
   p.material = material;
   mesh.primitives.push_back(std::move(p));
   return mesh;
@@ -59,7 +84,7 @@ Mesh makeUvSphere(float r, int material, int segments, int rings) {
       const float phi = 2 * pi * i / segments;
       const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
       const glm::vec3 t(-std::sin(phi), 0, std::cos(phi));
-      p.vertices.push_back(vertex(n * r, n, {float(i) / segments, float(j) / rings}, glm::vec4(t, 1.0f)));
+      p.vertices.push_back(makeVertex(n * r, n, {float(i) / segments, float(j) / rings}, glm::vec4(t, 1.0f)));
     }
   }
   for (int j = 0; j < rings; ++j) {
@@ -77,7 +102,8 @@ Mesh makeUvSphere(float r, int material, int segments, int rings) {
 Scene makeHeavyScene(size_t minTriangles) {
   Scene s;
   s.sourcePath = "generated:heavy-" + std::to_string(minTriangles);
-  s.materials = {makeMaterial(glm::vec3(0.7f), 0.0f, 0.8f), makeMaterial(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.3f)};
+  s.materials = {makeMaterial(glm::vec3(0.7f), 0.0f, 0.8f),
+                 makeMaterial(glm::vec3(0.9f, 0.6f, 0.3f), 1.0f, 0.3f)};
   s.materialNames = {"floor", "bumpy metal"};
   s.meshes.push_back(makeQuad(20.0f, 0));
   // segments = 2 * rings gives 4 * rings * (rings - 1) triangles.
