@@ -8,6 +8,7 @@
 #include "app/render_options.h"
 #include "app/render_session.h"
 #include "common/paths.h"
+#include "eval/metrics.h"
 
 namespace wb::app {
 namespace {
@@ -23,10 +24,13 @@ std::filesystem::path aovPath(const std::filesystem::path& out, const std::strin
 int runRenderCommand(const std::vector<std::string>& args) {
   CLI::App cli("Render a scene headless and write the image", "workbench render");
   RenderOptions ro;
-  std::string out, stats;
+  std::string out, stats, reference;
   addRenderOptions(cli, ro);
   cli.add_option("--out", out, "output image (.png tonemapped, .exr linear)")->required();
   cli.add_option("--stats", stats, "write statistics as JSON");
+  cli.add_option(
+      "--reference", reference,
+      "converged reference .exr of the same view: adds error_vs_reference (RMSE, relative MSE) to --stats");
   try {
     std::vector<std::string> reversed(args.rbegin(), args.rend());
     cli.parse(reversed);
@@ -52,6 +56,10 @@ int runRenderCommand(const std::vector<std::string>& args) {
     so.scenePath = ro.scene;
     so.settings = ro.settings;
     so.context.deviceName = ro.device;
+    so.mode = ro.mode;
+    so.hybrid = ro.hybrid;
+    std::optional<eval::ImageRGBA> referenceImage;
+    if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
     RenderSession session(so);
     for (const auto& w : session.scene().warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     const double seconds = session.render(ro.settings.spp);
@@ -83,6 +91,32 @@ int runRenderCommand(const std::vector<std::string>& args) {
       j["height"] = image.height;
       j["size"] = std::to_string(image.width) + "x" + std::to_string(image.height);
       j["spp"] = ro.settings.spp;
+      j["mode"] = render::renderModeName(session.mode());
+      const auto& frames = session.frameSeconds();
+      j["frames"] = frames.size();
+      j["seconds_per_frame"] = frames.empty() ? 0.0 : seconds / double(frames.size());
+      j["frame_seconds"] = frames;
+      if (frames.size() > 1) {
+        double rest = 0;
+        for (size_t i = 1; i < frames.size(); ++i) rest += frames[i];
+        j["seconds_per_frame_after_first"] = rest / double(frames.size() - 1);
+      }
+      if (auto* hybrid = session.hybrid()) {
+        const auto& h = hybrid->hybridSettings();
+        j["hybrid"] = {{"sun_cos_angle", hybrid->sunCosAngle()},
+                       {"ao_radius", hybrid->aoRadius()},
+                       {"ao_rays", h.aoRays},
+                       {"temporal", h.temporal},
+                       {"reflection_depth", h.reflectionDepth},
+                       {"reflection_max_roughness", h.reflectionMaxRoughness}};
+      }
+      if (referenceImage) {
+        eval::requireSameSize(image, *referenceImage, "--reference");
+        j["error_vs_reference"] = {{"reference", reference},
+                                   {"rmse", eval::rmse(image, *referenceImage)},
+                                   {"rel_mse", eval::relMse(image, *referenceImage, 0.01)},
+                                   {"rel_mse_eps", 0.01}};
+      }
       j["seconds"] = seconds;
       j["setup_seconds"] = session.setupSeconds();
       j["samples_per_second"] = samples / seconds;

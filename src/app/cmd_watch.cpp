@@ -61,6 +61,8 @@ int runWatchCommand(const std::vector<std::string>& args) {
     so.scenePath = ro.scene;
     so.settings = ro.settings;
     so.context.deviceName = ro.device;
+    so.mode = ro.mode;
+    so.hybrid = ro.hybrid;
     RenderSession session(so);
     auto& tracer = session.pathTracer();
     render::HotReload hot(session.library(), {shaderDir()});
@@ -73,6 +75,8 @@ int runWatchCommand(const std::vector<std::string>& args) {
                      auto prepared = std::static_pointer_cast<render::PreparedPipeline>(p);
                      tracer.commitPipeline(std::make_unique<render::PreparedPipeline>(std::move(*prepared)));
                    }});
+    // The hybrid modes' raster and ray tracing pipelines reload through the same shader library.
+    if (auto* hybrid = session.hybrid()) hybrid->addHotReloadTargets(hot);
     hot.start();
     std::signal(SIGINT, [](int) { gInterrupted = true; });
     std::signal(SIGTERM, [](int) { gInterrupted = true; });
@@ -132,11 +136,17 @@ int runWatchCommand(const std::vector<std::string>& args) {
         }
       }
       const auto frameBegin = std::chrono::steady_clock::now();
-      session.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.record(cmd); });
-      tracer.advanceSample();
+      if (auto* hybrid = session.hybrid()) {
+        session.context().submitAndWait([&](VkCommandBuffer cmd) { hybrid->record(cmd); });
+        hybrid->advanceFrame();
+      } else {
+        session.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.record(cmd); });
+        tracer.advanceSample();
+      }
       frameTimes.push_back({frameBegin, std::chrono::steady_clock::now()});
       // Keep ten seconds of frames (a rebuild on a fast GPU spans thousands of sub-millisecond frames).
-      while (frameTimes.size() > 2 && ms(frameTimes.front().end, frameTimes.back().end) > 10000.0) frameTimes.pop_front();
+      while (frameTimes.size() > 2 && ms(frameTimes.front().end, frameTimes.back().end) > 10000.0)
+        frameTimes.pop_front();
       ++frame;
       hot.frameFinished();
       if (unlogged) {

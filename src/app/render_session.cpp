@@ -46,7 +46,9 @@ RenderSession::RenderSession(const SessionOptions& options) {
 
   const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;
   shader::setMesaShaderCacheDirDefault(cacheDir);
-  ctx_ = std::make_unique<vk::Context>(options.context);
+  vk::ContextOptions contextOptions = options.context;
+  if (contextOptions.pipelineCacheDir.empty()) contextOptions.pipelineCacheDir = cacheDir.string();
+  ctx_ = std::make_unique<vk::Context>(contextOptions);
   shader::ShaderLibrary::Options lo;
   lo.includeRoots = {shaderDir()};
   lo.cacheDir = cacheDir;
@@ -57,11 +59,18 @@ RenderSession::RenderSession(const SessionOptions& options) {
                                                  featuresFor(scene_, options.settings));
   sceneCamera_ = render::cameraFromScene(scene_.camera);
   tracer_->setCamera(sceneCamera_);
+  mode_ = options.mode;
+  if (mode_ != render::RenderMode::PathTrace) {
+    hybrid_ = std::make_unique<render::HybridRenderer>(*ctx_, *library_, *gpuScene_, scene_, *env_,
+                                                       options.settings, mode_, options.hybrid);
+    hybrid_->setCamera(sceneCamera_);
+  }
   setupSeconds_ = secondsSince(t0);
 }
 
 RenderSession::~RenderSession() {
   if (ctx_) vkDeviceWaitIdle(ctx_->device());
+  hybrid_.reset();
   tracer_.reset();
   env_.reset();
   gpuScene_.reset();
@@ -69,9 +78,19 @@ RenderSession::~RenderSession() {
 
 double RenderSession::render(uint32_t spp) {
   auto t0 = std::chrono::steady_clock::now();
+  frameSeconds_.clear();
+  if (hybrid_) {
+    hybrid_->resetAccumulation();
+    frameSeconds_ = hybrid_->render(spp);
+    return secondsSince(t0);
+  }
   tracer_->resetAccumulation();
   tracer_->resetCounters();
-  tracer_->render(spp);
+  for (uint32_t i = 0; i < spp; ++i) {
+    const auto f0 = std::chrono::steady_clock::now();
+    tracer_->render(1);
+    frameSeconds_.push_back(secondsSince(f0));
+  }
   return secondsSince(t0);
 }
 
@@ -79,7 +98,7 @@ eval::ImageRGBA RenderSession::image() const {
   eval::ImageRGBA img;
   img.width = tracer_->settings().width;
   img.height = tracer_->settings().height;
-  img.pixels = tracer_->readAccumulation();
+  img.pixels = hybrid_ ? hybrid_->readOutput() : tracer_->readAccumulation();
   for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
   return img;
 }

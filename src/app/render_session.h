@@ -6,6 +6,7 @@
 #include <string>
 
 #include "eval/image.h"
+#include "render/hybrid/hybrid_renderer.h"
 #include "render/path_tracer.h"
 #include "scene/scene.h"
 #include "shader/library.h"
@@ -20,6 +21,9 @@ struct SessionOptions {
   vk::ContextOptions context;
   std::filesystem::path cacheDir;  // empty = shader_cache/ of the project
   bool quiet = false;
+  // What render() and image() use: the path tracer, or a hybrid renderer built beside it.
+  render::RenderMode mode = render::RenderMode::PathTrace;
+  render::HybridSettings hybrid;
 };
 
 render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settings);
@@ -39,9 +43,16 @@ class RenderSession {
   const render::CameraState& sceneCamera() const { return sceneCamera_; }
   double setupSeconds() const { return setupSeconds_; }
 
-  // Renders `spp` samples from scratch; returns the wall time in seconds.
+  render::RenderMode mode() const { return mode_; }
+  // The hybrid renderer (modes hybrid and reflections; nullptr in pathtrace mode).
+  render::HybridRenderer* hybrid() { return hybrid_.get(); }
+
+  // Renders `spp` samples from scratch (hybrid modes: `spp` frames, shadows/AO averaged over them); returns
+  // the wall time in seconds.
   double render(uint32_t spp);
-  eval::ImageRGBA image() const;  // the accumulation (alpha = 1)
+  // Wall time of each sample / frame of the last render().
+  const std::vector<double>& frameSeconds() const { return frameSeconds_; }
+  eval::ImageRGBA image() const;  // the accumulation or the hybrid output (alpha = 1)
   eval::ImageRGBA aov(render::Aov which) const;
 
  private:
@@ -51,6 +62,9 @@ class RenderSession {
   std::unique_ptr<render::GpuScene> gpuScene_;
   std::unique_ptr<render::GpuEnvironment> env_;
   std::unique_ptr<render::PathTracer> tracer_;
+  std::unique_ptr<render::HybridRenderer> hybrid_;
+  render::RenderMode mode_ = render::RenderMode::PathTrace;
+  std::vector<double> frameSeconds_;
   render::CameraState sceneCamera_;
   double setupSeconds_ = 0;
 };

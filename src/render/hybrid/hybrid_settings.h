@@ -1,0 +1,24 @@
+// Render modes and the parameters of the two fast, biased counterparts of the path tracer.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace wb::render {
+
+enum class RenderMode { PathTrace, Hybrid, Reflections };
+const char* renderModeName(RenderMode m);                            // "pathtrace" | "hybrid" | "reflections"
+std::optional<RenderMode> parseRenderMode(const std::string& text);  // nullopt when unknown
+
+struct HybridSettings {
+  // Angular diameter of the sun in degrees for the cone jitter of shadow rays (0 = hard shadows); negative =
+  // from the scene light's cosAngularRadius.
+  float sunAngleDeg = -1.0f;
+  float aoRadius = 0.0f;         // world units; 0 = 15% of the camera-to-target distance
+  uint32_t aoRays = 2;           // per pixel and frame; 0 disables ambient occlusion
+  bool temporal = true;          // average shadow and AO over frames while the camera is still
+  uint32_t reflectionDepth = 2;  // reflection bounces (specialisation constant of the reflection raygen)
+  float reflectionMaxRoughness = 0.3f;  // surfaces smoother than this get traced reflections
+};
+
+}  // namespace wb::render

@@ -1,0 +1,335 @@
+// The hybrid modes on the real device (lavapipe here) under the validation layer: ray traced shadow masks
+// against the path tracer, reflections that show the reflected object, and hot reload through one
+// ShaderLibrary that tracks raster and ray tracing pipelines together.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <thread>
+#include <unistd.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "common/paths.h"
+#include "gpu_fixture.h"
+#include "render/hot_reload.h"
+#include "render/hybrid/hybrid_renderer.h"
+#include "test_scenes.h"
+
+using namespace wb;
+using namespace wb::testing;
+using Pass = render::HybridRenderer::Pass;
+
+namespace {
+
+// The camera ray through image point (px, py) in pixels, as the path tracer's raygen builds it.
+void cameraRay(const render::CameraState& cam, uint32_t w, uint32_t h, float px, float py, glm::vec3& origin,
+               glm::vec3& dir) {
+  glm::mat4 proj = glm::perspective(cam.yfov, float(w) / float(h), cam.znear, 1000.0f);
+  proj[1][1] *= -1.0f;
+  const glm::vec2 ndc(px / w * 2.0f - 1.0f, py / h * 2.0f - 1.0f);
+  glm::vec4 target = glm::inverse(proj) * glm::vec4(ndc, 1.0f, 1.0f);
+  glm::mat4 vi = glm::inverse(cam.view);
+  origin = glm::vec3(vi * glm::vec4(0, 0, 0, 1));
+  dir = glm::normalize(glm::vec3(vi * glm::vec4(glm::normalize(glm::vec3(target) / target.w), 0.0f)));
+}
+
+// Slab test; returns the entry distance or -1.
+float hitBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
+  float t0 = 0.0f, t1 = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    float inv = 1.0f / d[a];
+    float tn = (lo[a] - o[a]) * inv, tf = (hi[a] - o[a]) * inv;
+    if (tn > tf) std::swap(tn, tf);
+    t0 = std::max(t0, tn);
+    t1 = std::min(t1, tf);
+  }
+  return t0 <= t1 ? t0 : -1.0f;
+}
+
+app::SessionOptions hybridOptions(const scene::Scene& sc, render::RenderMode mode, uint32_t size) {
+  app::SessionOptions o;
+  o.sceneData = sc;
+  o.settings.width = size;
+  o.settings.height = size;
+  o.mode = mode;
+  o.hybrid.aoRays = 0;
+  o.hybrid.sunAngleDeg = 0.0f;  // hard shadows, like the path tracer's delta sun
+  return o;
+}
+
+}  // namespace
+
+TEST(Hybrid, ShadowMaskMatchesThePathTracersLitAndShadowedPixels) {
+  ShadowScene s = makeShadowScene();
+  auto o = hybridOptions(s.scene, render::RenderMode::Hybrid, 64);
+  o.settings.envColor = glm::vec3(0.0f);
+  o.settings.aov = true;
+  auto session = makeSession(o);
+  session->render(1);
+  const auto mask = session->hybrid()->readShadowMask();
+  const auto hybridImage = session->image();
+
+  // Path tracer: lit/shadowed classification of the plane (the box's albedo AOV is 0: excluded).
+  auto& pt = session->pathTracer();
+  pt.render(4);
+  const auto radiance = pt.readAccumulation();
+  const auto albedo = pt.readAov(render::Aov::Albedo);
+  const float expectedLit = s.albedo * s.sunRadiance * -s.sunDirection.y / 3.14159265f;
+  const int w = 64, h = 64;
+  std::vector<int> cls(w * h, 2);  // 0 lit plane, 1 shadowed plane, 2 other or mixed
+  for (int i = 0; i < w * h; ++i) {
+    const float a = albedo[4 * i];
+    if (a < s.albedo - 0.01f) continue;  // box or a pixel the box covers partly
+    const float v = radiance[4 * i];
+    cls[i] = v > 0.9f * expectedLit ? 0 : v < 0.1f * expectedLit ? 1 : 2;
+  }
+  int lit = 0, shadowed = 0, edgeMismatch = 0, interiorMismatch = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const int c = cls[y * w + x];
+      if (c == 2) continue;
+      bool interior = true;  // every neighbour in the same class: not an edge pixel
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+          interior = interior && cls[yy * w + xx] == c;
+        }
+      }
+      const bool maskLit = mask[y * w + x] > 127;
+      if (maskLit != (c == 0)) {
+        (interior ? interiorMismatch : edgeMismatch)++;
+        if (interior)
+          ADD_FAILURE() << "pixel " << x << "," << y << ": path tracer " << (c ? "shadowed" : "lit")
+                        << ", mask " << int(mask[y * w + x]);
+      }
+      if (interior) (c == 0 ? lit : shadowed)++;
+      // The composite agrees with the analytic Lambert value in the sun and is black in the shadow.
+      if (interior && c == 0) {
+        EXPECT_NEAR(hybridImage.at(x, y, 0), expectedLit, 0.02f * expectedLit);
+      }
+      if (interior && c == 1) {
+        EXPECT_LT(hybridImage.at(x, y, 0), 1e-4f);
+      }
+    }
+  }
+  std::printf(
+      "shadow mask vs path tracer: %d lit, %d shadowed interior pixels; %d edge, %d interior mismatches\n",
+      lit, shadowed, edgeMismatch, interiorMismatch);
+  EXPECT_TRUE(session->context().validationEnabled());
+  EXPECT_GT(lit, 500);
+  EXPECT_GT(shadowed, 50);
+  EXPECT_EQ(interiorMismatch, 0);
+  EXPECT_LT(edgeMismatch, 40);
+  expectNoValidationErrors(*session);
+}
+
+TEST(Hybrid, SoftSunShadowsAreGreyOnlyNearTheEdges) {
+  ShadowScene s = makeShadowScene();
+  auto o = hybridOptions(s.scene, render::RenderMode::Hybrid, 64);
+  o.settings.envColor = glm::vec3(0.0f);
+  o.hybrid.sunAngleDeg = 10.0f;
+  auto session = makeSession(o);
+  session->render(16);  // temporal accumulation: averaged visibility
+  const auto mask = session->hybrid()->readShadowMask();
+  int grey = 0, black = 0;
+  for (uint8_t v : mask) {
+    if (v > 20 && v < 235) grey++;
+    if (v <= 20) black++;
+  }
+  std::printf("soft sun: %d penumbra, %d umbra pixels\n", grey, black);
+  EXPECT_GT(grey, 20) << "a 10 degree sun should give penumbrae";
+  EXPECT_GT(black, 20) << "and still an umbra";
+  expectNoValidationErrors(*session);
+}
+
+TEST(Hybrid, MirrorPlaneReflectsTheColouredBox) {
+  scene::Scene sc;
+  sc.sourcePath = "mirror-test";
+  gpu::Material mirror = lambert(glm::vec3(0.95f));
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.0f;
+  mirror.specularFactor = 1.0f;
+  gpu::Material red = lambert(glm::vec3(0.0f));
+  red.emissive = glm::vec3(2.0f, 0.1f, 0.1f);
+  sc.materials = {mirror, red};
+  sc.materialNames = {"mirror", "red-emitter"};
+  const glm::vec3 boxMin(-0.5f, 0.3f, -1.5f), boxMax(0.5f, 1.3f, -0.5f);
+  sc.meshes = {quadMesh(3.0f, 0), boxMesh((boxMax - boxMin) * 0.5f, 1)};
+  sc.instances.push_back({0, glm::mat4(1.0f), "mirror"});
+  glm::mat4 t(1.0f);
+  t[3] = glm::vec4((boxMin + boxMax) * 0.5f, 1.0f);
+  sc.instances.push_back({1, t, "box"});
+  sc.camera.eye = glm::vec3(0.0f, 1.2f, 2.5f);
+  sc.camera.target = glm::vec3(0.0f, 0.0f, -0.5f);
+  sc.camera.yfov = 0.9f;
+  sc.bounds = {glm::vec3(-3, 0, -3), glm::vec3(3, 1.3f, 3)};
+
+  auto o = hybridOptions(sc, render::RenderMode::Reflections, 64);
+  o.settings.envColor = glm::vec3(0.3f);
+  auto session = makeSession(o);
+  session->render(1);
+  const auto img = session->image();
+  const auto refl = session->hybrid()->readReflection();
+  const auto& cam = session->sceneCamera();
+  // 0: mirror reflecting the box, 1: mirror reflecting the sky, 2: other / mixed.
+  auto classify = [&](float px, float py) {
+    glm::vec3 o3, d;
+    cameraRay(cam, 64, 64, px, py, o3, d);
+    if (hitBox(o3, d, boxMin, boxMax) >= 0.0f || d.y >= 0.0f) return 2;
+    const glm::vec3 p = o3 + d * (-o3.y / d.y);
+    if (std::abs(p.x) > 2.9f || std::abs(p.z) > 2.9f) return 2;
+    return hitBox(p + glm::vec3(0, 1e-4f, 0), glm::vec3(d.x, -d.y, d.z), boxMin, boxMax) >= 0.0f ? 0 : 1;
+  };
+  int boxPixels = 0, skyPixels = 0;
+  for (uint32_t y = 0; y < 64; ++y) {
+    for (uint32_t x = 0; x < 64; ++x) {
+      const int c = classify(x + 0.5f, y + 0.5f);
+      bool uniform = c != 2;
+      for (float dy : {0.0f, 1.0f}) {
+        for (float dx : {0.0f, 1.0f}) uniform = uniform && classify(x + dx, y + dy) == c;
+      }
+      if (!uniform) continue;
+      const float r = img.at(x, y, 0), g = img.at(x, y, 1), b = img.at(x, y, 2);
+      EXPECT_GT(refl[(y * 64 + x) * 4 + 3], 0.5f) << "mirror pixel " << x << "," << y << " was not traced";
+      if (c == 0) {
+        boxPixels++;
+        EXPECT_GT(r, 1.5f) << x << "," << y;  // ~0.95 * 2 (metal Fresnel at most 1)
+        EXPECT_GT(r, 5.0f * g) << x << "," << y;
+      } else {
+        skyPixels++;
+        EXPECT_NEAR(r, g, 0.02f) << x << "," << y;
+        EXPECT_NEAR(g, 0.3f * 0.95f, 0.05f) << x << "," << y;
+      }
+      (void)b;
+    }
+  }
+  std::printf("mirror: %d pixels reflect the box, %d the sky\n", boxPixels, skyPixels);
+  EXPECT_GT(boxPixels, 30);
+  EXPECT_GT(skyPixels, 100);
+  expectNoValidationErrors(*session);
+}
+
+namespace {
+
+// A temporary copy of shaders/ that the test may edit.
+struct TempShaders {
+  std::filesystem::path root;
+  TempShaders() {
+    root = std::filesystem::temp_directory_path() /
+           ("wb_hybrid_shaders_" + std::to_string(::getpid()) + "_" +
+            std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    std::filesystem::copy(shaderDir(), root, std::filesystem::copy_options::recursive);
+  }
+  ~TempShaders() {
+    std::error_code ec;
+    std::filesystem::remove_all(root, ec);
+  }
+  void append(const std::string& rel, const std::string& text) const {
+    std::ofstream f(root / rel, std::ios::app);
+    f << text;
+  }
+};
+
+}  // namespace
+
+TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
+  TempShaders shaders;
+  ShadowScene s = makeShadowScene();
+  vk::ContextOptions co;
+  co.validation = true;
+  vk::Context ctx(co);
+  shader::ShaderLibrary::Options lo;
+  lo.includeRoots = {shaders.root};
+  shader::ShaderLibrary library(lo);  // memory only
+  render::RenderSettings settings;
+  settings.width = settings.height = 32;
+  render::GpuScene gpuScene(ctx, s.scene);
+  render::GpuEnvironment env(ctx, app::loadEnvironmentData(settings));
+  render::HybridSettings hs;
+  render::HybridRenderer hybrid(ctx, library, gpuScene, s.scene, env, settings,
+                                render::RenderMode::Reflections, hs, shaders.root);
+  hybrid.render(1);
+
+  // The include graph: common.glsl reaches every hybrid program, raster.glsl only the raster one.
+  auto ids = [&](const std::string& rel) {
+    auto v = library.programsDependingOn(std::filesystem::canonical(shaders.root / rel));
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  std::vector<shader::ShaderLibrary::ProgramId> all = {
+      hybrid.program(Pass::GBuffer), hybrid.program(Pass::ShadowAo), hybrid.program(Pass::Reflection),
+      hybrid.program(Pass::Composite)};
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(ids("hybrid/common.glsl"), all);
+  EXPECT_EQ(ids("shared/gpu_types.h"), all);
+  EXPECT_EQ(ids("hybrid/raster.glsl"),
+            std::vector<shader::ShaderLibrary::ProgramId>{hybrid.program(Pass::GBuffer)});
+  EXPECT_EQ(ids("hybrid/occlusion.glsl"),
+            (std::vector<shader::ShaderLibrary::ProgramId>{
+                std::min(hybrid.program(Pass::ShadowAo), hybrid.program(Pass::Reflection)),
+                std::max(hybrid.program(Pass::ShadowAo), hybrid.program(Pass::Reflection))}));
+
+  render::HotReload hot(library, {shaders.root});
+  hybrid.addHotReloadTargets(hot);
+  hot.start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the watcher is up
+  auto waitForReload = [&]() -> std::optional<render::ReloadEvent> {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (auto e = hot.poll()) {
+        hybrid.render(1);
+        hot.frameFinished();
+        return e;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return std::nullopt;
+  };
+
+  const VkPipeline shadowBefore = hybrid.pipelineHandle(Pass::ShadowAo);
+  const VkPipeline reflectBefore = hybrid.pipelineHandle(Pass::Reflection);
+  shaders.append("hybrid/raster.glsl", "\n#define WB_TEST_RASTER_EDIT 1\n");
+  auto e1 = waitForReload();
+  ASSERT_TRUE(e1.has_value()) << "no reload after the raster-only edit";
+  EXPECT_TRUE(e1->ok) << e1->error;
+  EXPECT_EQ(e1->pipelinesRebuilt, std::vector<std::string>{render::HybridRenderer::passName(Pass::GBuffer)});
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::GBuffer), 2u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::ShadowAo), 1u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::Reflection), 1u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::Composite), 1u);
+  EXPECT_EQ(hybrid.pipelineHandle(Pass::ShadowAo), shadowBefore);
+  EXPECT_EQ(hybrid.pipelineHandle(Pass::Reflection), reflectBefore);
+
+  shaders.append("hybrid/common.glsl", "\n#define WB_TEST_SHARED_EDIT 1\n");
+  auto e2 = waitForReload();
+  ASSERT_TRUE(e2.has_value()) << "no reload after the shared edit";
+  EXPECT_TRUE(e2->ok) << e2->error;
+  auto rebuilt = e2->pipelinesRebuilt;
+  std::sort(rebuilt.begin(), rebuilt.end());
+  std::vector<std::string> expected;
+  for (auto p : {Pass::GBuffer, Pass::ShadowAo, Pass::Reflection, Pass::Composite})
+    expected.push_back(render::HybridRenderer::passName(p));
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(rebuilt, expected);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::GBuffer), 3u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::ShadowAo), 2u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::Reflection), 2u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::Composite), 2u);
+
+  // A broken raster edit keeps the last good pipeline and reports file:line; the ray tracing side is
+  // untouched.
+  shaders.append("hybrid/raster.glsl", "\nthis is not glsl\n");
+  auto e3 = waitForReload();
+  ASSERT_TRUE(e3.has_value());
+  EXPECT_FALSE(e3->ok);
+  EXPECT_NE(e3->error.find("raster.glsl"), std::string::npos) << e3->error;
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::GBuffer), 3u);
+  EXPECT_EQ(hybrid.pipelineBuilds(Pass::ShadowAo), 2u);
+  hot.stop();
+  hybrid.render(1);
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+  for (const auto& m : ctx.validationMessages()) ADD_FAILURE() << "validation: " << m;
+}
