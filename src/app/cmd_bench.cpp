@@ -137,11 +137,12 @@ json benchStartup(int repeats, const fs::path& work) {
       const fs::path stats = work / "startup.json";
       auto start = std::chrono::steady_clock::now();
       auto child = ChildProcess::spawn(selfExecutable(),
-                                       {"render", "--size", "64x64", "--spp", "1", "--out", (work / "s.png").string(),
-                                        "--stats", stats.string()},
+                                       {"render", "--size", "64x64", "--spp", "1", "--out",
+                                        (work / "s.png").string(), "--stats", stats.string()},
                                        env, (work / "startup.log").string());
       const int rc = child.wait();
-      const double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      const double total =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       if (rc != 0) throw std::runtime_error("start-up run failed: " + readText(work / "startup.log"));
       const auto j = json::parse(readText(stats));
       (pass == 0 ? coldMs : warmMs).push_back(total);
@@ -152,8 +153,9 @@ json benchStartup(int repeats, const fs::path& work) {
           {"warm_to_first_frame_ms", median(warmMs)},
           {"cold_glslang_compiles", median(coldCompiles)},
           {"warm_glslang_compiles", median(warmCompiles)},
-          {"what", "new process, render of the default scene at 64x64, 1 spp, to the written image; cold = empty "
-                   "SPIR-V and Mesa caches"}};
+          {"what",
+           "new process, render of the default scene at 64x64, 1 spp, to the written image; cold = empty "
+           "SPIR-V and Mesa caches"}};
 }
 
 // Edits of the closest-hit shader while `watch` renders: edit-to-new-pipeline and edit-to-first-frame.
@@ -171,7 +173,8 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
   auto waitFor = [&](auto pred, double seconds) {
     auto start = std::chrono::steady_clock::now();
     while (!pred()) {
-      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) return false;
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
+        return false;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     return true;
@@ -257,7 +260,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
     return 2;
   }
   const uint32_t spp = quick ? 1 : 4;
-  const auto has = [&](const char* s) { return std::find(sections.begin(), sections.end(), s) != sections.end(); };
+  const auto has = [&](const char* s) {
+    return std::find(sections.begin(), sections.end(), s) != sections.end();
+  };
   std::string cmdline = "workbench bench";
   for (const auto& a : args) cmdline += " " + a;
 
@@ -274,7 +279,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
       if (fs::exists(helmet)) {
         scenes.push_back({"DamagedHelmet", helmet.string(), std::nullopt});
       } else {
-        std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n", helmet.string().c_str());
+        std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n",
+                     helmet.string().c_str());
       }
       scenes.push_back({"heavy-1M", "", scene::makeHeavyScene(quick ? 100000 : 1000000)});
       json rows = json::array();

@@ -10,7 +10,9 @@
 
 namespace wb::app {
 
-std::string selfExecutable() { return std::filesystem::read_symlink("/proc/self/exe").string(); }
+std::string selfExecutable() {
+  return std::filesystem::read_symlink("/proc/self/exe").string();
+}
 
 ChildProcess ChildProcess::spawn(const std::string& exe, const std::vector<std::string>& args,
                                  const std::map<std::string, std::string>& env, const std::string& logFile) {

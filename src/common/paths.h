@@ -10,7 +10,7 @@ std::filesystem::path projectRoot();
 std::filesystem::path shaderDir();       // projectRoot()/shaders
 std::filesystem::path assetDir();        // projectRoot()/assets
 std::filesystem::path shaderCacheDir();  // WB_SHADER_CACHE_DIR, else projectRoot()/shader_cache
-std::filesystem::path sharedDir();  // WB_SHARED_DIR, else projectRoot()/../shared (third-party assets)
+std::filesystem::path sharedDir();       // WB_SHARED_DIR, else projectRoot()/../shared (third-party assets)
 std::filesystem::path defaultScenePath();
 
 }  // namespace wb

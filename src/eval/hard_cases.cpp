@@ -15,7 +15,6 @@
 namespace wb::eval {
 namespace {
 
-
 gpu::Vertex vertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv, glm::vec4 t) {
   return scene::makeVertex(p, n, uv, t);
 }

@@ -1,0 +1,57 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Shows the path tracer's accumulation (exposure + tonemap + sRGB) or one of its AOV debug views. Rows the
+// current sample has not reached yet show the low-resolution preview.
+#include "tonemap.glsl"
+
+layout(set = 0, binding = WB_DISPLAY_BIND_ACCUM, rgba32f) uniform readonly image2D accumImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_ALBEDO, rgba16f) uniform readonly image2D albedoImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_NORMAL, rgba16f) uniform readonly image2D normalImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_INFO, rgba16f) uniform readonly image2D infoImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_PREVIEW, rgba32f) uniform readonly image2D previewImage;
+
+layout(push_constant) uniform Push { DisplayPush pc; };
+
+layout(location = 0) in vec2 inUv;
+layout(location = 0) out vec4 outColor;
+
+vec3 normalColor(vec3 n) { return dot(n, n) > 0.0 ? n * 0.5 + 0.5 : vec3(0.0); }
+
+void main() {
+  const vec2 uv = clamp((gl_FragCoord.xy - pc.viewRect.xy) / pc.viewRect.zw, vec2(0.0), vec2(0.9999));
+  const ivec2 p = ivec2(uv * vec2(pc.imageSize));
+  vec3 color;
+  bool display = true;  // false: the view is data, shown without tonemapping
+  if (pc.view == WB_VIEW_BEAUTY || pc.view == WB_VIEW_DROPPED) {
+    if (uint(p.y) >= pc.tracedRows && pc.previewSize.x > 0u) {
+      color = imageLoad(previewImage, ivec2(uv * vec2(pc.previewSize))).rgb;
+    } else {
+      color = imageLoad(accumImage, p).rgb;
+    }
+    color = tonemap(color, pc.exposureScale, pc.tonemap);
+    if (pc.view == WB_VIEW_DROPPED) {
+      const float dropped = imageLoad(albedoImage, p).a;
+      color = dropped > 0.0 ? vec3(1.0, 0.0, 1.0) : color * 0.25;
+    }
+  } else if (pc.view == WB_VIEW_ALBEDO) {
+    color = imageLoad(albedoImage, p).rgb;
+  } else if (pc.view == WB_VIEW_SHADING_NORMAL) {
+    color = normalColor(imageLoad(normalImage, p).rgb);
+    display = false;
+  } else if (pc.view == WB_VIEW_GEOMETRIC_NORMAL) {
+    color = normalColor(imageLoad(infoImage, p).rgb);
+    display = false;
+  } else if (pc.view == WB_VIEW_DEPTH) {
+    const float d = imageLoad(normalImage, p).a;
+    color = d < 0.0 ? vec3(0.1, 0.0, 0.15) : vec3(1.0 - d / (d + pc.sceneScale));
+    display = false;
+  } else {
+    const float vertices = imageLoad(infoImage, p).a;
+    color = heatRamp(vertices / max(pc.maxVertices, 1.0));
+    display = false;
+  }
+  // Data views are shown as stored values (no transfer curve): a normal of 0.5 shows as 50% grey.
+  if (pc.encodeSrgb != 0u && display) color = linearToSrgb(color);
+  if (pc.encodeSrgb == 0u && !display) color = pow(color, vec3(2.2));
+  outColor = vec4(color, 1.0);
+}

@@ -1,0 +1,40 @@
+// Exposure + tonemap curves + sRGB encoding: the same curves as src/eval/image.cpp (the PNG writer), so the
+// window shows what `workbench render` writes.
+#ifndef WB_TONEMAP_GLSL
+#define WB_TONEMAP_GLSL
+#include "display_types.h"
+
+float tonemapChannel(float v, uint op) {
+  if (isnan(v) || isinf(v)) return 0.0;
+  v = max(v, 0.0);
+  if (op == WB_TONEMAP_CLAMP) return min(v, 1.0);
+  if (op == WB_TONEMAP_REINHARD) return v / (1.0 + v);
+  // Narkowicz 2015 fit of the ACES filmic curve.
+  const float a = 2.51, b = 0.03, c = 2.43, d = 0.59, e = 0.14;
+  return clamp((v * (a * v + b)) / (v * (c * v + d) + e), 0.0, 1.0);
+}
+
+vec3 tonemap(vec3 linear, float exposureScale, uint op) {
+  const vec3 v = linear * exposureScale;
+  return vec3(tonemapChannel(v.r, op), tonemapChannel(v.g, op), tonemapChannel(v.b, op));
+}
+
+float linearToSrgb(float v) {
+  v = clamp(v, 0.0, 1.0);
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+vec3 linearToSrgb(vec3 v) { return vec3(linearToSrgb(v.r), linearToSrgb(v.g), linearToSrgb(v.b)); }
+
+// A perceptual blue -> green -> yellow -> red ramp for heat maps (t in [0, 1]).
+vec3 heatRamp(float t) {
+  t = clamp(t, 0.0, 1.0);
+  const vec3 c0 = vec3(0.05, 0.05, 0.35), c1 = vec3(0.0, 0.6, 0.9), c2 = vec3(0.2, 0.85, 0.3);
+  const vec3 c3 = vec3(1.0, 0.85, 0.1), c4 = vec3(0.95, 0.1, 0.05);
+  if (t < 0.25) return mix(c0, c1, t * 4.0);
+  if (t < 0.5) return mix(c1, c2, (t - 0.25) * 4.0);
+  if (t < 0.75) return mix(c2, c3, (t - 0.5) * 4.0);
+  return mix(c3, c4, (t - 0.75) * 4.0);
+}
+
+#endif

@@ -1,0 +1,332 @@
+#include "app/window/panels.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "common/paths.h"
+
+namespace wb::app {
+namespace {
+
+const char* const kTonemapNames[] = {"clamp", "reinhard", "aces"};
+const char* const kViewLabels[WB_VIEW_COUNT] = {"Beauty",           "Albedo", "Shading normal",
+                                                "Geometric normal", "Depth",  "Bounce count (heat map)",
+                                                "NaN/Inf dropped"};
+
+std::string relativeToRoot(const std::filesystem::path& p) {
+  std::error_code ec;
+  auto rel = std::filesystem::relative(p, shaderDir(), ec);
+  return ec || rel.empty() ? p.string() : rel.string();
+}
+
+void renderPanel(PanelContext& c) {
+  auto& st = c.state;
+  auto& s = st.settings;
+  int bounces = int(s.maxBounces);
+  if (ImGui::SliderInt("max bounces", &bounces, 0, 32)) s.maxBounces = uint32_t(bounces);
+  int rrStart = int(s.rrStart);
+  if (ImGui::SliderInt("RR start bounce", &rrStart, 0, 16)) s.rrStart = uint32_t(rrStart);
+  ImGui::Checkbox("Russian roulette", &s.russianRoulette);
+  float rr[2] = {s.rrMin, s.rrMax};
+  if (ImGui::SliderFloat2("RR clamp", rr, 0.01f, 1.0f, "%.2f")) {
+    s.rrMin = std::min(rr[0], rr[1]);
+    s.rrMax = std::max(rr[0], rr[1]);
+  }
+  ImGui::Checkbox("NEE", &s.nee);
+  ImGui::SameLine();
+  ImGui::Checkbox("MIS", &s.mis);
+  int sampler = s.sampler == render::SamplerKind::Pcg ? 1 : 0;
+  if (ImGui::Combo("sampler", &sampler, "Sobol + blue noise\0PCG\0")) {
+    s.sampler = sampler ? render::SamplerKind::Pcg : render::SamplerKind::Sobol;
+  }
+  int seed = int(s.seed);
+  if (ImGui::InputInt("seed", &seed)) s.seed = uint32_t(std::max(seed, 0));
+  ImGui::Separator();
+  int spp = int(st.targetSpp);
+  if (ImGui::InputInt("target spp (0 = endless)", &spp, 1, 16)) st.targetSpp = uint32_t(std::max(spp, 0));
+  if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset accumulation")) st.resetAccumulation = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Reset camera")) st.resetCamera = true;
+  if (st.fixedSize) {
+    ImGui::Text("trace size %ux%u (--size)", c.traceWidth, c.traceHeight);
+  }
+  ImGui::SliderFloat("resolution scale", &st.resolutionScale, 0.1f, 1.0f, "%.2f");
+  ImGui::Checkbox("preview after changes", &st.preview);
+  ImGui::SliderFloat("trace budget ms", &st.budgetMs, 5.0f, 200.0f, "%.0f");
+  ImGui::Checkbox("vsync", &st.vsync);
+  ImGui::SameLine();
+  ImGui::TextDisabled("%s", c.presentMode.c_str());
+  ImGui::Separator();
+  ImGui::SliderFloat("exposure (stops)", &st.display.exposure, -8.0f, 8.0f, "%.2f");
+  int tm = int(st.display.tonemap);
+  if (ImGui::Combo("tonemapper", &tm, kTonemapNames, 3)) st.display.tonemap = eval::Tonemap(tm);
+  int mode = c.camera.mode() == CameraMode::Fly ? 1 : 0;
+  if (ImGui::Combo("camera", &mode,
+                   "orbit (drag, wheel, shift/middle pan)\0fly (right-drag look, WASD QE)\0")) {
+    c.camera.setMode(mode ? CameraMode::Fly : CameraMode::Orbit);
+  }
+  if (c.camera.mode() == CameraMode::Fly) ImGui::SliderFloat("fly speed", &c.camera.speed, 0.05f, 5.0f);
+  if (ImGui::Button("Save image (F12)")) st.saveRequest = "";
+  if (!c.lastSaved.empty()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("%s", c.lastSaved.c_str());
+  }
+}
+
+void inspectPanel(PanelContext& c) {
+  auto& st = c.state;
+  int view = int(st.display.view);
+  ImGui::Combo("debug view", &view, kViewLabels, WB_VIEW_COUNT);
+  st.display.view = uint32_t(view);
+  ImGui::TextDisabled("hover the image to pick; click to pin");
+  if (!c.pick) {
+    ImGui::TextUnformatted("no hit under the cursor");
+    return;
+  }
+  const PickResult& p = *c.pick;
+  ImGui::Text("instance %d (%s)", p.instance, p.nodeName.c_str());
+  ImGui::Text("mesh %d (%s) primitive %d triangle %d", p.mesh, p.meshName.c_str(), p.primitive, p.triangle);
+  ImGui::Text("position %.3f %.3f %.3f", p.position.x, p.position.y, p.position.z);
+  ImGui::Text("distance %.4f", p.distance);
+  ImGui::Text("shading n %.3f %.3f %.3f", p.shadingNormal.x, p.shadingNormal.y, p.shadingNormal.z);
+  ImGui::Text("geometric n %.3f %.3f %.3f", p.geometricNormal.x, p.geometricNormal.y, p.geometricNormal.z);
+  ImGui::Text("uv %.4f %.4f", p.uv.x, p.uv.y);
+  if (p.material < 0 || size_t(p.material) >= st.materials.size()) return;
+  ImGui::Separator();
+  ImGui::Text("material %d: %s", p.material, p.materialName.c_str());
+  gpu::Material& m = st.materials[size_t(p.material)];
+  bool changed = false;
+  changed |= ImGui::ColorEdit4("base colour", &m.baseColorFactor.x, ImGuiColorEditFlags_Float);
+  changed |= ImGui::SliderFloat("metallic", &m.metallic, 0.0f, 1.0f);
+  changed |= ImGui::SliderFloat("roughness", &m.roughness, 0.0f, 1.0f);
+  changed |=
+      ImGui::ColorEdit3("emissive", &m.emissive.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  changed |= ImGui::SliderFloat("specular", &m.specularFactor, 0.0f, 1.0f);
+  changed |= ImGui::ColorEdit3("specular colour", &m.specularColorFactor.x, ImGuiColorEditFlags_Float);
+  ImGui::TextDisabled("alpha mode %u cutoff %.2f  textures: base %d normal %d mr %d emissive %d", m.alphaMode,
+                      m.alphaCutoff, m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture,
+                      m.emissiveTexture);
+  if (changed) st.materialsDirty = true;
+  if (ImGui::Button("Revert material") && size_t(p.material) < c.scene.materials.size()) {
+    m = c.scene.materials[size_t(p.material)];
+    st.materialsDirty = true;
+  }
+}
+
+void lightsPanel(PanelContext& c) {
+  auto& st = c.state;
+  auto& s = st.settings;
+  if (st.lights.empty()) ImGui::TextDisabled("the scene has no directional light");
+  for (size_t i = 0; i < st.lights.size(); ++i) {
+    ImGui::PushID(int(i));
+    auto& l = st.lights[i];
+    ImGui::Text("directional light %zu", i);
+    // Direction as azimuth / elevation of where the light comes from.
+    const glm::vec3 from = -glm::normalize(l.direction);
+    float elevation = glm::degrees(std::asin(std::clamp(from.y, -1.0f, 1.0f)));
+    float azimuth = glm::degrees(std::atan2(from.x, from.z));
+    bool changed = ImGui::SliderFloat("azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
+    changed |= ImGui::SliderFloat("elevation", &elevation, -89.0f, 89.0f, "%.1f deg");
+    const float peak = std::max({l.radiance.x, l.radiance.y, l.radiance.z, 1e-6f});
+    glm::vec3 colour = l.radiance / peak;
+    float intensity = peak;
+    changed |= ImGui::ColorEdit3("colour", &colour.x);
+    changed |= ImGui::DragFloat("intensity", &intensity, 0.05f, 0.0f, 1000.0f);
+    if (changed) {
+      const float az = glm::radians(azimuth), el = glm::radians(elevation);
+      const glm::vec3 dirFrom(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+      l.direction = -dirFrom;
+      l.radiance = colour * intensity;
+      st.lightsDirty = true;
+    }
+    if (ImGui::Button("Revert light") && i < c.scene.lights.size()) {
+      l = c.scene.lights[i];
+      st.lightsDirty = true;
+    }
+    ImGui::PopID();
+  }
+  ImGui::Separator();
+  ImGui::TextUnformatted("environment (.hdr path; empty = constant colour)");
+  static std::string pathEdit;
+  static bool pathInit = false;
+  if (!pathInit) {
+    pathEdit = s.envPath;
+    pathInit = true;
+  }
+  ImGui::InputText("##envpath", &pathEdit);
+  ImGui::SameLine();
+  if (ImGui::Button("Load")) s.envPath = pathEdit;
+  if (!st.envError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", st.envError.c_str());
+  if (s.envPath.empty()) ImGui::ColorEdit3("constant colour", &s.envColor.x, ImGuiColorEditFlags_Float);
+  ImGui::SliderFloat("rotation", &s.envRotationDeg, -180.0f, 180.0f, "%.1f deg");
+  ImGui::DragFloat("intensity##env", &s.envIntensity, 0.01f, 0.0f, 100.0f);
+}
+
+void shadersPanel(PanelContext& c) {
+  bool autoReload = c.hot.autoReload();
+  if (ImGui::Checkbox("auto reload on save", &autoReload)) c.hot.setAutoReload(autoReload);
+  ImGui::SameLine();
+  if (ImGui::Button("Reload all (F5)")) c.state.reloadShaders = true;
+  const std::string err = c.hot.currentError();
+  if (!err.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextWrapped("%s", err.c_str());
+    ImGui::PopStyleColor();
+  }
+  const auto files = c.library.fileStatuses();
+  if (ImGui::BeginTable("files", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+    ImGui::TableSetupColumn("file", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("status");
+    ImGui::TableSetupColumn("ms");
+    ImGui::TableSetupColumn("cache");
+    ImGui::TableHeadersRow();
+    for (const auto& [path, f] : files) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(relativeToRoot(path).c_str());
+      if (ImGui::IsItemHovered() && !f.programs.empty()) {
+        std::string tip = "used by:";
+        for (const auto& p : f.programs) tip.append("\n  ").append(p);
+        for (const auto& d : f.diagnostics) tip.append("\n").append(d.toString());
+        ImGui::SetTooltip("%s", tip.c_str());
+      }
+      ImGui::TableNextColumn();
+      if (f.ok) {
+        ImGui::TextColored(ImVec4(0.4f, 0.9f, 0.4f, 1), "ok");
+      } else {
+        ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1), "error");
+      }
+      ImGui::TableNextColumn();
+      ImGui::Text("%.1f", f.lastCompileMs);
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(f.lastCacheHit ? "hit" : "miss");
+    }
+    ImGui::EndTable();
+  }
+  if (ImGui::TreeNode("pipelines per file")) {
+    for (const auto& [path, f] : files) {
+      std::string progs;
+      for (const auto& p : f.programs) {
+        if (!progs.empty()) progs.append(", ");
+        progs.append(p);
+      }
+      ImGui::BulletText("%s: %s", relativeToRoot(path).c_str(), progs.c_str());
+    }
+    ImGui::TreePop();
+  }
+  const auto history = c.hot.history();
+  if (ImGui::TreeNodeEx("reload history", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (auto it = history.rbegin(); it != history.rend() && it - history.rbegin() < 12; ++it) {
+      const auto& e = *it;
+      const std::time_t t = std::chrono::system_clock::to_time_t(e.when);
+      char when[16];
+      std::strftime(when, sizeof when, "%H:%M:%S", std::localtime(&t));
+      std::string files;
+      for (const auto& f : e.filesChanged) {
+        if (!files.empty()) files.append(", ");
+        files.append(relativeToRoot(f));
+      }
+      if (files.empty()) files = "(reload all)";
+      ImGui::TextColored(e.ok ? ImVec4(0.6f, 0.9f, 0.6f, 1) : ImVec4(1, 0.45f, 0.4f, 1), "%s %s %s", when,
+                         e.ok ? "ok" : "FAILED", files.c_str());
+      ImGui::TextDisabled("   compile %.1f ms, pipeline %.1f ms, edit->pipeline %.0f ms, edit->frame %.0f ms",
+                          e.compileMs, e.pipelineMs, e.editToNewPipelineMs, e.editToFirstFrameMs);
+    }
+    ImGui::TreePop();
+  }
+}
+
+void statsPanel(PanelContext& c) {
+  const auto& pt = c.progressive;
+  std::string target;
+  if (c.state.targetSpp) target.append(" / ").append(std::to_string(c.state.targetSpp));
+  ImGui::Text("samples %u%s%s", pt.samples(), target.c_str(), pt.inPreview() ? "  (preview)" : "");
+  ImGui::Text("trace %ux%u  elapsed %.1f s", c.traceWidth, c.traceHeight, pt.secondsSinceReset());
+  const double secs = std::max(c.traceSeconds, 1e-6);
+  ImGui::Text("paths/s %s  rays/s %s", humanCount(c.counters.pathCount / secs).c_str(),
+              humanCount(c.counters.rayCount / secs).c_str());
+  ImGui::Text("tracer rate %.0f px/ms  NaN/Inf dropped %u", pt.pixelsPerMs(), c.counters.droppedSamples);
+  const auto values = c.frames.values();
+  char overlay[96];
+  std::snprintf(overlay, sizeof overlay, "frame %.1f ms (mean %.1f, max %.1f)", c.frames.last(),
+                c.frames.mean(), c.frames.max());
+  ImGui::PlotLines("##frametimes", values.data(), int(values.size()), 0, overlay, 0.0f,
+                   std::max(50.0f, c.frames.max() * 1.1f), ImVec2(ImGui::GetContentRegionAvail().x, 60));
+  ImGui::TextDisabled("%s", c.deviceName.c_str());
+}
+
+}  // namespace
+
+std::string humanCount(double v) {
+  char buf[32];
+  if (v >= 1e9) {
+    std::snprintf(buf, sizeof buf, "%.2f G", v / 1e9);
+  } else if (v >= 1e6) {
+    std::snprintf(buf, sizeof buf, "%.2f M", v / 1e6);
+  } else if (v >= 1e3) {
+    std::snprintf(buf, sizeof buf, "%.1f k", v / 1e3);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.0f", v);
+  }
+  return buf;
+}
+
+float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
+  if (!c.state.showPanel) return 0.0f;
+  const float width = std::min(400.0f, std::floor(windowWidth * 0.45f));
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(ImVec2(width, windowHeight));
+  ImGui::Begin("workbench", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::PushItemWidth(std::floor(ImGui::GetContentRegionAvail().x * 0.55f));
+  if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) renderPanel(c);
+  if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) statsPanel(c);
+  if (ImGui::CollapsingHeader("Inspect")) inspectPanel(c);
+  if (ImGui::CollapsingHeader("Lights and environment")) lightsPanel(c);
+  if (ImGui::CollapsingHeader("Shaders", c.hot.currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+    shadersPanel(c);
+  ImGui::PopItemWidth();
+  ImGui::End();
+  return width;
+}
+
+void drawOverlays(PanelContext& c, const Rect& view) {
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const auto& pt = c.progressive;
+  char status[192];
+  std::snprintf(status, sizeof status, "%u spp%s  %ux%u  %.1f s  frame %.1f ms%s", pt.samples(),
+                pt.inPreview() ? " (preview)" : "", c.traceWidth, c.traceHeight, pt.secondsSinceReset(),
+                c.frames.last(), c.state.paused ? "  PAUSED" : (pt.done() ? "  done" : ""));
+  const ImVec2 pos(view.x + 6, view.y + view.h - ImGui::GetTextLineHeight() - 6);
+  const ImVec2 size = ImGui::CalcTextSize(status);
+  dl->AddRectFilled(ImVec2(pos.x - 3, pos.y - 2), ImVec2(pos.x + size.x + 3, pos.y + size.y + 2),
+                    IM_COL32(0, 0, 0, 160), 3.0f);
+  dl->AddText(pos, IM_COL32(230, 230, 230, 255), status);
+
+  const std::string err = c.hot.currentError();
+  if (err.empty()) return;
+  std::string text = "shader error (still rendering with the last good pipeline):\n";
+  // Paths relative to the shader folder keep the banner readable.
+  const std::string prefix = shaderDir().string() + "/";
+  size_t at = 0;
+  for (size_t hit; (hit = err.find(prefix, at)) != std::string::npos; at = hit + prefix.size()) {
+    text.append(err, at, hit - at);
+  }
+  text.append(err, at, std::string::npos);
+  if (text.size() > 900) text.resize(900), text.append("...");
+  const float wrap = std::max(view.w - 24.0f, 50.0f);
+  const ImVec2 ts = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
+  const ImVec2 a(view.x + 6, view.y + 6), b(view.x + 18 + ts.x, view.y + 18 + ts.y);
+  dl->AddRectFilled(a, b, IM_COL32(150, 20, 20, 225), 4.0f);
+  dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(a.x + 6, a.y + 6), IM_COL32(255, 240, 240, 255),
+              text.c_str(), nullptr, wrap);
+}
+
+}  // namespace wb::app

@@ -1,0 +1,48 @@
+// The workbench's ImGui panels (Render, Inspect, Lights and environment, Shaders, Stats) and the overlays on
+// the image (status line, shader error banner). They only edit WorkbenchState; the frame loop applies it.
+#pragma once
+#include <optional>
+#include <string>
+
+#include "app/window/camera_controller.h"
+#include "app/window/frame_stats.h"
+#include "app/window/pixel_picker.h"
+#include "app/window/progressive.h"
+#include "app/window/workbench_state.h"
+#include "render/hot_reload.h"
+#include "scene/scene.h"
+#include "shader/library.h"
+
+namespace wb::app {
+
+struct Rect {
+  float x = 0, y = 0, w = 0, h = 0;
+  bool contains(float px, float py) const { return px >= x && py >= y && px < x + w && py < y + h; }
+};
+
+struct PanelContext {
+  WorkbenchState& state;
+  const scene::Scene& scene;
+  const ProgressiveTracer& progressive;
+  render::HotReload& hot;
+  shader::ShaderLibrary& library;
+  CameraController& camera;
+  const std::optional<PickResult>& pick;
+  const FrameStats& frames;
+  const gpu::Counters& counters;
+  double traceSeconds;  // GPU time spent tracing since the last restart
+  std::string deviceName;
+  std::string presentMode;
+  uint32_t traceWidth = 0, traceHeight = 0;
+  std::string lastSaved;
+};
+
+// The side panel; returns its width in pixels (0 when hidden).
+float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight);
+// Status line and the shader error banner over the image area.
+void drawOverlays(PanelContext& c, const Rect& view);
+
+// "12.3 M" style numbers.
+std::string humanCount(double v);
+
+}  // namespace wb::app

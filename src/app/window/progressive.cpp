@@ -1,0 +1,155 @@
+#include "app/window/progressive.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace wb::app {
+namespace {
+
+double nowSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+vk::Image makePreviewImage(vk::Context& ctx, uint32_t w, uint32_t h) {
+  vk::Image img(
+      ctx, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
+      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::transition(cmd, img.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    VkClearColorValue zero{};
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, img.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+  });
+  return img;
+}
+
+}  // namespace
+
+ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, render::PathTracer& tracer)
+    : ctx_(ctx), tracer_(tracer) {
+  targetWidth_ = tracer.settings().width;
+  targetHeight_ = tracer.settings().height;
+  preview_ = makePreviewImage(ctx, 1, 1);
+  resetTime_ = nowSeconds();
+}
+
+void ProgressiveTracer::setTargetSize(uint32_t width, uint32_t height) {
+  width = std::max(width, 1u);
+  height = std::max(height, 1u);
+  if (width == targetWidth_ && height == targetHeight_) return;
+  targetWidth_ = width;
+  targetHeight_ = height;
+  previewValid_ = false;
+  if (!inPreview_) resize(width, height);
+  invalidate();
+}
+
+void ProgressiveTracer::setSettings(render::RenderSettings settings) {
+  settings.width = tracer_.settings().width;
+  settings.height = tracer_.settings().height;
+  tracer_.setSettings(settings);
+  invalidate();
+}
+
+void ProgressiveTracer::invalidate() {
+  pendingInvalidate_ = true;
+}
+
+void ProgressiveTracer::resize(uint32_t width, uint32_t height) {
+  if (tracer_.settings().width == width && tracer_.settings().height == height) return;
+  render::RenderSettings s = tracer_.settings();
+  s.width = width;
+  s.height = height;
+  tracer_.setSettings(s);
+}
+
+void ProgressiveTracer::restart() {
+  tracer_.resetAccumulation();
+  tracer_.resetCounters();
+  cursor_ = 0;
+  expectedSamples_ = 0;
+  ++resets_;
+  ++generation_;
+  resetTime_ = nowSeconds();
+}
+
+double ProgressiveTracer::secondsSinceReset() const {
+  return nowSeconds() - resetTime_;
+}
+
+void ProgressiveTracer::beginFrame() {
+  if (tracer_.samplesAccumulated() != expectedSamples_) pendingInvalidate_ = true;  // reset from outside
+  const uint32_t pw = std::max(1u, targetWidth_ / std::max(options_.previewDivisor, 1u));
+  const uint32_t ph = std::max(1u, targetHeight_ / std::max(options_.previewDivisor, 1u));
+  const bool previewWorthIt =
+      options_.preview && options_.previewDivisor > 1 && targetWidth_ * targetHeight_ >= 4096;
+  if (pendingInvalidate_) {
+    pendingInvalidate_ = false;
+    if (previewWorthIt) {
+      inPreview_ = true;
+      resize(pw, ph);
+    } else {
+      inPreview_ = false;
+      resize(targetWidth_, targetHeight_);
+    }
+    restart();
+    return;
+  }
+  if (inPreview_ && tracer_.samplesAccumulated() >= std::max(options_.previewSamples, 1u)) {
+    // Keep the finished preview to show under the rows the full-resolution sample has not reached yet.
+    const auto& accum = tracer_.accumulationImage();
+    if (preview_.width() != accum.width() || preview_.height() != accum.height()) {
+      preview_ = makePreviewImage(ctx_, accum.width(), accum.height());
+    }
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+      VkImageCopy region{};
+      region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.dstSubresource = region.srcSubresource;
+      region.extent = {accum.width(), accum.height(), 1};
+      vkCmdCopyImage(cmd, accum.handle(), VK_IMAGE_LAYOUT_GENERAL, preview_.handle(), VK_IMAGE_LAYOUT_GENERAL,
+                     1, &region);
+    });
+    previewValid_ = true;
+    inPreview_ = false;
+    resize(targetWidth_, targetHeight_);
+    const double keep = resetTime_;
+    restart();
+    --resets_;  // the same restart, continued at full resolution
+    resetTime_ = keep;
+  }
+}
+
+bool ProgressiveTracer::done() const {
+  return !inPreview_ && options_.targetSpp > 0 && tracer_.samplesAccumulated() >= options_.targetSpp;
+}
+
+uint64_t ProgressiveTracer::record(VkCommandBuffer cmd) {
+  if (options_.paused || done()) return 0;
+  const uint32_t w = tracer_.settings().width, h = tracer_.settings().height;
+  uint64_t pixelBudget = uint64_t(std::max(options_.budgetMs, 1.0) * pixelsPerMs_);
+  pixelBudget = std::max<uint64_t>(pixelBudget, w);  // at least one row
+  uint64_t traced = 0;
+  while (traced + w <= pixelBudget || traced == 0) {
+    const uint32_t rows =
+        std::min<uint32_t>(h - cursor_, std::max<uint32_t>(1u, uint32_t((pixelBudget - traced) / w)));
+    tracer_.record(cmd, render::PixelRegion{0, cursor_, w, rows});
+    traced += uint64_t(rows) * w;
+    cursor_ += rows;
+    if (cursor_ >= h) {
+      cursor_ = 0;
+      tracer_.advanceSample();
+      ++expectedSamples_;
+      if (done() || (inPreview_ && tracer_.samplesAccumulated() >= options_.previewSamples)) break;
+    }
+  }
+  return traced;
+}
+
+void ProgressiveTracer::reportTraceTime(uint64_t pixels, double ms) {
+  if (pixels == 0 || ms <= 0.0) return;
+  // Clamped so that one slow frame (the first trace compiles the pipeline) cannot stall the estimate.
+  const double measured = std::clamp(double(pixels) / ms, pixelsPerMs_ * 0.25, pixelsPerMs_ * 4.0);
+  pixelsPerMs_ = std::clamp(0.7 * pixelsPerMs_ + 0.3 * measured, 1.0, 1.0e9);
+}
+
+}  // namespace wb::app

@@ -1,0 +1,76 @@
+// Progressive tracing that keeps the window responsive when one sample of the full image takes a second (as
+// on lavapipe): each frame traces horizontal strips of the image within a time budget, and right after a
+// change the image is first traced at a lower preview resolution, which is then shown under the rows the
+// full-resolution sample has not reached yet.
+#pragma once
+#include <cstdint>
+
+#include "render/path_tracer.h"
+#include "vk/resources.h"
+
+namespace wb::app {
+
+struct ProgressiveOptions {
+  double budgetMs = 30.0;  // tracing time per frame
+  bool preview = true;     // trace at 1/previewDivisor resolution right after a change
+  uint32_t previewDivisor = 4;
+  uint32_t previewSamples = 1;  // preview samples before switching to full resolution
+  uint32_t targetSpp = 0;       // stop at this many samples (0 = never)
+  bool paused = false;
+};
+
+class ProgressiveTracer {
+ public:
+  ProgressiveTracer(vk::Context& ctx, render::PathTracer& tracer);
+
+  ProgressiveOptions& options() { return options_; }
+  // The full trace resolution (view size x resolution scale, or --size). A change restarts accumulation.
+  void setTargetSize(uint32_t width, uint32_t height);
+  uint32_t targetWidth() const { return targetWidth_; }
+  uint32_t targetHeight() const { return targetHeight_; }
+  // Settings that alter the image (the size in them is ignored: this class owns it). Restarts.
+  void setSettings(render::RenderSettings settings);
+  // Something that alters the image changed (camera, materials, lights): restart, with a preview first.
+  void invalidate();
+
+  // At a frame boundary (the previous frame finished): switches between preview and full resolution, notices
+  // resets from outside (a hot-reloaded pipeline). May wait for the device.
+  void beginFrame();
+  // Records this frame's strips into cmd; returns the pixels it traced.
+  uint64_t record(VkCommandBuffer cmd);
+  // The measured GPU time of the last frame's strips (refines the pixels-per-ms estimate).
+  void reportTraceTime(uint64_t pixels, double ms);
+
+  bool inPreview() const { return inPreview_; }
+  bool done() const;  // target spp reached
+  uint32_t samples() const { return tracer_.samplesAccumulated(); }
+  uint32_t cursorRow() const { return cursor_; }
+  uint64_t resets() const { return resets_; }          // restarts caused by changes
+  uint64_t generation() const { return generation_; }  // every restart, preview -> full resolution too
+  double pixelsPerMs() const { return pixelsPerMs_; }
+  const vk::Image& previewImage() const { return preview_; }
+  bool previewValid() const { return previewValid_; }
+  // Seconds of wall time since the last restart (for the Stats panel).
+  double secondsSinceReset() const;
+
+ private:
+  void resize(uint32_t width, uint32_t height);
+  void restart();
+
+  vk::Context& ctx_;
+  render::PathTracer& tracer_;
+  ProgressiveOptions options_;
+  uint32_t targetWidth_ = 0, targetHeight_ = 0;
+  bool inPreview_ = false;
+  bool pendingInvalidate_ = false;
+  bool previewValid_ = false;
+  uint32_t cursor_ = 0;
+  uint32_t expectedSamples_ = 0;
+  uint64_t resets_ = 0;
+  uint64_t generation_ = 0;
+  double pixelsPerMs_ = 250.0;  // lavapipe: a 512x512 sample in about a second
+  vk::Image preview_;
+  double resetTime_ = 0;
+};
+
+}  // namespace wb::app

@@ -1,0 +1,113 @@
+#include "app/window/script.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace wb::app {
+namespace {
+
+const std::set<std::string> kCommands = {"frames", "set",    "screenshot",  "save",         "stats",
+                                         "copy",   "orbit",  "wait_reload", "wait_samples", "reset_camera",
+                                         "reset",  "reload", "quit"};
+
+double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
+  if (i >= w.size()) return fallback;
+  try {
+    return std::stod(w[i]);
+  } catch (const std::exception&) {
+    throw std::runtime_error(where + ": '" + w[i] + "' is not a number");
+  }
+}
+
+}  // namespace
+
+Script Script::fromFile(const std::filesystem::path& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot read script '" + path.string() + "'");
+  Script s;
+  std::string line;
+  int n = 0;
+  while (std::getline(f, line)) s.addLine(line, path.string() + ":" + std::to_string(++n));
+  return s;
+}
+
+void Script::addLine(const std::string& line, const std::string& where) {
+  std::istringstream ss(line);
+  Command c;
+  c.where = where;
+  for (std::string w; ss >> w;) c.words.push_back(w);
+  if (c.words.empty() || c.words[0][0] == '#') return;
+  if (!kCommands.count(c.words[0]))
+    throw std::runtime_error(where + ": unknown command '" + c.words[0] + "'");
+  const std::string& cmd = c.words[0];
+  const size_t need =
+      cmd == "set" || cmd == "copy" || cmd == "orbit" ? 3
+      : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" || cmd == "wait_samples"
+          ? 2
+          : 1;
+  if (c.words.size() < need) throw std::runtime_error(where + ": '" + cmd + "' needs more arguments");
+  if (cmd == "set" && c.words.size() > 3) {  // values with spaces (paths)
+    for (size_t i = 3; i < c.words.size(); ++i) c.words[2] += " " + c.words[i];
+    c.words.resize(3);
+  }
+  commands_.push_back(std::move(c));
+}
+
+bool Script::step(ScriptHost& host) {
+  using clock = std::chrono::steady_clock;
+  while (next_ < commands_.size()) {
+    const Command& c = commands_[next_];
+    const auto& w = c.words;
+    const std::string& cmd = w[0];
+    if (cmd == "frames") {
+      if (!waiting_) {
+        waiting_ = true;
+        framesLeft_ = uint64_t(numberArg(w, 1, 1, c.where));
+      }
+      if (framesLeft_ > 0) {
+        --framesLeft_;
+        return true;
+      }
+    } else if (cmd == "wait_reload") {
+      if (!waiting_) {
+        waiting_ = true;
+        reloadsAtStart_ = host.reloadCount();
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 1, 20, c.where)));
+      }
+      if (host.reloadCount() == reloadsAtStart_ && clock::now() < deadline_) return true;
+    } else if (cmd == "wait_samples") {
+      if (!waiting_) {
+        waiting_ = true;
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 2, 60, c.where)));
+      }
+      if (host.samples() < uint32_t(numberArg(w, 1, 1, c.where)) && clock::now() < deadline_) return true;
+    } else {
+      try {
+        if (cmd == "set") {
+          host.scriptSet(w[1], w[2]);
+        } else if (cmd == "screenshot") {
+          host.scriptScreenshot(w[1]);
+        } else if (cmd == "save") {
+          host.scriptSave(w[1]);
+        } else if (cmd == "stats") {
+          host.scriptStats(w[1]);
+        } else if (cmd == "copy") {
+          std::filesystem::copy_file(w[1], w[2], std::filesystem::copy_options::overwrite_existing);
+        } else if (cmd == "orbit") {
+          host.scriptOrbit(float(numberArg(w, 1, 0, c.where)), float(numberArg(w, 2, 0, c.where)));
+        } else {
+          host.scriptCommand(cmd);
+        }
+      } catch (const std::exception& e) {
+        throw std::runtime_error(c.where + ": " + e.what());
+      }
+    }
+    waiting_ = false;
+    ++next_;
+  }
+  return false;
+}
+
+}  // namespace wb::app

@@ -1,0 +1,61 @@
+// Scripted sessions for tests and demos: one command per line, run at frame boundaries of the live window.
+//   frames N                 render N frames
+//   set NAME VALUE           a setting, as --set NAME=VALUE (see settingNamesHelp())
+//   screenshot FILE.png      the presented window image (panel included)
+//   save BASE                the render: BASE.png (tonemapped), BASE.exr (linear), BASE.json (parameters)
+//   stats FILE.json          the session's statistics now (samples, resets, shader errors, frame times)
+//   copy SRC DST             copy a file (e.g. a broken shader over a watched one)
+//   wait_reload [SECONDS]    render until the next shader reload is applied (default timeout 20 s)
+//   wait_samples N [SECONDS] render until N samples are accumulated (default timeout 60 s)
+//   orbit DX DY              drag the orbit camera by DX, DY pixels
+//   reset_camera | reset | reload | quit
+// Blank lines and lines starting with # are ignored.
+#pragma once
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace wb::app {
+
+class ScriptHost {
+ public:
+  virtual ~ScriptHost() = default;
+  virtual void scriptSet(const std::string& name, const std::string& value) = 0;
+  virtual void scriptScreenshot(const std::string& path) = 0;
+  virtual void scriptSave(const std::string& base) = 0;
+  virtual void scriptStats(const std::string& path) = 0;
+  virtual void scriptOrbit(float dx, float dy) = 0;
+  virtual void scriptCommand(const std::string& name) = 0;  // reset_camera, reset, reload, quit
+  virtual size_t reloadCount() const = 0;
+  virtual uint32_t samples() const = 0;
+};
+
+class Script {
+ public:
+  Script() = default;
+  // Throws std::runtime_error naming the file and line for unreadable files and unknown commands.
+  static Script fromFile(const std::filesystem::path& path);
+  void addLine(const std::string& line, const std::string& where);
+
+  // Runs commands until one has to wait for frames. Call once per frame boundary. Returns false once every
+  // command has run. Command failures throw std::runtime_error naming the script line.
+  bool step(ScriptHost& host);
+  bool finished() const { return next_ >= commands_.size(); }
+
+ private:
+  struct Command {
+    std::vector<std::string> words;
+    std::string where;  // file:line
+  };
+  std::vector<Command> commands_;
+  size_t next_ = 0;
+  // State of the waiting command.
+  bool waiting_ = false;
+  uint64_t framesLeft_ = 0;
+  size_t reloadsAtStart_ = 0;
+  std::chrono::steady_clock::time_point deadline_;
+};
+
+}  // namespace wb::app

@@ -1,0 +1,217 @@
+// The live workbench window as a user runs it: the real binary under xvfb-run on lavapipe, driven by
+// --frames,
+// --script and --stats. Checks what is presented (panel + image), accumulation resets, and shader hot reload
+// with a broken edit.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <stb_image.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CommandResult {
+  int code = -1;
+  std::string output;
+};
+
+CommandResult runShell(const std::string& cmd) {
+  CommandResult r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+bool haveXvfb() {
+  return std::string(WB_XVFB_RUN).size() > 0 && fs::exists(WB_XVFB_RUN);
+}
+
+// The workbench in a 320x240 window on a virtual display. Validation stays off: it triples lavapipe's time.
+CommandResult runWindow(const std::string& args, const std::string& env = "") {
+  return runShell("env -u WB_VALIDATION " + env + " " + std::string(WB_XVFB_RUN) +
+                  " -a -s '-screen 0 1024x768x24' " + WB_WORKBENCH_BIN + " --window 320x240 " + args);
+}
+
+fs::path tempDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("wb_window_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+nlohmann::json readJson(const fs::path& p) {
+  std::ifstream f(p);
+  EXPECT_TRUE(f.good()) << p;
+  return nlohmann::json::parse(f);
+}
+
+void writeFile(const fs::path& p, const std::string& text) {
+  std::ofstream f(p);
+  f << text;
+}
+
+std::string readFile(const fs::path& p) {
+  std::ifstream f(p);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+}  // namespace
+
+#define REQUIRE_XVFB() \
+  if (!haveXvfb()) GTEST_SKIP() << "xvfb-run not found"
+
+TEST(Window, ScreenshotShowsPanelAndImage) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("shot");
+  const auto png = dir / "window.png", stats = dir / "stats.json";
+  auto r = runWindow("--frames 12 --screenshot " + png.string() + " --stats " + stats.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(png)) << r.output;
+  int w = 0, h = 0, n = 0;
+  unsigned char* px = stbi_load(png.c_str(), &w, &h, &n, 4);
+  ASSERT_NE(px, nullptr);
+  EXPECT_EQ(w, 320);
+  EXPECT_EQ(h, 240);
+  const auto j = readJson(stats);
+  const int panelWidth = 144;  // 45% of 320 (panels.cpp)
+  // The panel: many pixels of ImGui's window background (0.11, 0.12, 0.14) -> (28, 31, 36).
+  size_t panelBg = 0, panelPixels = 0;
+  double imageSum = 0;
+  size_t imagePixels = 0, imageBright = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const unsigned char* p = px + 4 * (size_t(y) * w + x);
+      if (x < panelWidth - 4) {
+        ++panelPixels;
+        panelBg += std::abs(p[0] - 28) <= 2 && std::abs(p[1] - 31) <= 2 && std::abs(p[2] - 36) <= 2;
+      } else if (x > panelWidth + 4 && y < h - 24) {  // the image, above the status line
+        ++imagePixels;
+        imageSum += (p[0] + p[1] + p[2]) / 3.0;
+        imageBright += (p[0] + p[1] + p[2]) > 60;
+      }
+    }
+  }
+  stbi_image_free(px);
+  EXPECT_GT(double(panelBg) / double(panelPixels), 0.2) << "no ImGui panel background in the panel area";
+  EXPECT_GT(imageSum / double(imagePixels), 20.0) << "the traced image is (nearly) black";
+  EXPECT_GT(double(imageBright) / double(imagePixels), 0.3);
+  EXPECT_EQ(j["frames"], 12);
+  EXPECT_GT(j["samples"].get<int>() + (j["preview"].get<bool>() ? 1 : 0), 0);
+  EXPECT_EQ(j["shader_error"], "");
+  EXPECT_EQ(j["window_width"], 320);
+  EXPECT_FALSE(fs::exists("imgui.ini"));
+}
+
+TEST(Window, ParameterChangeResetsAccumulationDisplayChangeDoesNot) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("reset");
+  const auto script = dir / "script.txt";
+  writeFile(script,
+            "wait_samples 3 40\n"
+            "stats " +
+                (dir / "a.json").string() +
+                "\n"
+                "set exposure 1.5\nset tonemap reinhard\nset view albedo\n"
+                "frames 4\n"
+                "stats " +
+                (dir / "b.json").string() +
+                "\n"
+                "set max_bounces 2\n"
+                "frames 1\n"
+                "stats " +
+                (dir / "c.json").string() + "\n");
+  auto r = runWindow("--script " + script.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto a = readJson(dir / "a.json"), b = readJson(dir / "b.json"), c = readJson(dir / "c.json");
+  ASSERT_GE(a["samples"].get<int>(), 3) << r.output;
+  // Display-only changes: same accumulation, still growing.
+  EXPECT_EQ(b["resets"], a["resets"]);
+  EXPECT_GE(b["samples"].get<int>(), a["samples"].get<int>());
+  EXPECT_EQ(b["parameters"]["tonemap"], "reinhard");
+  EXPECT_EQ(b["parameters"]["view"], "albedo");
+  // An image-altering change restarts it.
+  EXPECT_EQ(c["resets"].get<int>(), b["resets"].get<int>() + 1);
+  EXPECT_LT(c["samples"].get<int>(), b["samples"].get<int>());
+  EXPECT_EQ(c["parameters"]["max_bounces"], 2);
+}
+
+TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("reload");
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  const std::string good = readFile(watched);
+  // A syntax error on line 2 (after #version).
+  const auto firstNewline = good.find('\n');
+  writeFile(dir / "broken.rchit",
+            good.substr(0, firstNewline + 1) + "this is not glsl;\n" + good.substr(firstNewline + 1));
+  writeFile(dir / "good.rchit", good);
+  const auto script = dir / "script.txt";
+  writeFile(script,
+            "wait_samples 2 40\n"
+            "copy " +
+                (dir / "broken.rchit").string() + " " + watched.string() +
+                "\n"
+                "wait_reload 20\n"
+                "stats " +
+                (dir / "broken1.json").string() +
+                "\n"
+                "screenshot " +
+                (dir / "broken.png").string() +
+                "\n"
+                "frames 12\n"
+                "stats " +
+                (dir / "broken2.json").string() +
+                "\n"
+                "copy " +
+                (dir / "good.rchit").string() + " " + watched.string() +
+                "\n"
+                "wait_reload 20\n"
+                "wait_samples 1 40\n"
+                "stats " +
+                (dir / "fixed.json").string() + "\n");
+  auto r = runWindow("--script " + script.string(), "WB_ROOT=" + root.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto b1 = readJson(dir / "broken1.json"), b2 = readJson(dir / "broken2.json");
+  const auto fixed = readJson(dir / "fixed.json");
+  const std::string err = b1["shader_error"];
+  EXPECT_TRUE(std::regex_search(err, std::regex("closesthit\\.rchit:2:"))) << err;
+  EXPECT_NE(b1["banner"].get<std::string>().find("closesthit.rchit:2"), std::string::npos);
+  EXPECT_FALSE(b1["reloads"].back()["ok"].get<bool>());
+  // The last good pipeline keeps rendering: samples keep increasing.
+  EXPECT_GT(b2["samples"].get<int>(), b1["samples"].get<int>());
+  EXPECT_EQ(b2["shader_error"], b1["shader_error"]);
+  EXPECT_TRUE(fs::exists(dir / "broken.png"));
+  // The fix recovers.
+  EXPECT_EQ(fixed["shader_error"], "");
+  EXPECT_EQ(fixed["banner"], "");
+  EXPECT_TRUE(fixed["reloads"].back()["ok"].get<bool>());
+  EXPECT_GE(fixed["samples"].get<int>(), 1);
+}
+
+TEST(Window, NoDisplayFallsBackToHeadlessRender) {
+  const auto dir = tempDir("headless");
+  const auto out = dir / "fallback.png";
+  auto r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY -u WB_VALIDATION " + std::string(WB_WORKBENCH_BIN) +
+                    " --size 32x24 --spp 1 --frames 3 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out)) << r.output;
+}
