@@ -12,6 +12,7 @@
 #include "app/cmd_watch.h"
 #include "app/window/window_command.h"
 #include "common/paths.h"
+#include "vk/context.h"
 
 namespace {
 
@@ -62,10 +63,26 @@ int main(int argc, char** argv) {
   const std::string cmd = args.empty() ? "" : args[0];
   std::vector<std::string> rest =
       args.empty() ? args : std::vector<std::string>(args.begin() + 1, args.end());
-  if (cmd == "render") return wb::app::runRenderCommand(rest);
-  if (cmd == "shaders") return wb::runShadersCommand(rest);
-  if (cmd == "watch") return wb::app::runWatchCommand(rest);
-  if (cmd == "converge") return wb::app::runConvergeCommand(rest);
-  if (cmd == "bench") return wb::app::runBenchCommand(rest);
-  return runDefault(args);
+  int code = 0;
+  if (cmd == "render") {
+    code = wb::app::runRenderCommand(rest);
+  } else if (cmd == "shaders") {
+    code = wb::runShadersCommand(rest);
+  } else if (cmd == "watch") {
+    code = wb::app::runWatchCommand(rest);
+  } else if (cmd == "converge") {
+    code = wb::app::runConvergeCommand(rest);
+  } else if (cmd == "bench") {
+    code = wb::app::runBenchCommand(rest);
+  } else {
+    code = runDefault(args);
+  }
+  // With the validation layer on (WB_VALIDATION=1, as in the tests), a validation error is a bug: the exit
+  // status says so even when the command itself succeeded.
+  const uint32_t validationErrors = wb::vk::Context::processValidationErrors();
+  if (code == 0 && validationErrors > 0) {
+    std::fprintf(stderr, "workbench: %u Vulkan validation error(s), printed above\n", validationErrors);
+    code = 3;
+  }
+  return code;
 }

@@ -40,6 +40,7 @@ class RenderSession {
   const scene::Scene& scene() const { return scene_; }
   render::PathTracer& pathTracer() { return *tracer_; }
   render::GpuScene& gpuScene() { return *gpuScene_; }
+  const render::GpuEnvironment& environment() const { return *env_; }
   const render::CameraState& sceneCamera() const { return sceneCamera_; }
   double setupSeconds() const { return setupSeconds_; }
 

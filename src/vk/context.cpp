@@ -8,6 +8,14 @@
 
 namespace wb::vk {
 namespace {
+std::atomic<uint32_t> gProcessValidationErrors{0};
+}  // namespace
+
+uint32_t Context::processValidationErrors() {
+  return gProcessValidationErrors.load();
+}
+
+namespace {
 
 VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                              VkDebugUtilsMessageTypeFlagsEXT /*types*/,
@@ -79,7 +87,10 @@ void Context::destroy() {
 void Context::onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, const char* message) {
   if (severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) return;
   bool error = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  if (error) validationErrors_++;
+  if (error) {
+    validationErrors_++;
+    gProcessValidationErrors++;
+  }
   std::fprintf(stderr, "[vulkan %s] %s\n", error ? "error" : "warning", message);
   std::lock_guard lock(messagesMutex_);
   if (error) messages_.emplace_back(message);

@@ -54,6 +54,8 @@ class Context {
 
   // Validation messages of severity error seen so far (tests assert zero).
   uint32_t validationErrors() const { return validationErrors_.load(); }
+  // Validation errors of every Context of this process so far (the workbench's exit status reports them).
+  static uint32_t processValidationErrors();
   std::vector<std::string> validationMessages() const;
 
   uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags wanted) const;

@@ -40,10 +40,29 @@ bool haveXvfb() {
   return std::string(WB_XVFB_RUN).size() > 0 && fs::exists(WB_XVFB_RUN);
 }
 
-// The workbench in a 320x240 window on a virtual display. Validation stays off: it triples lavapipe's time.
+// The workbench in a 320x240 window on a virtual display, under the validation layer (ctest sets
+// WB_VALIDATION=1): a validation error makes the workbench exit with status 3.
 CommandResult runWindow(const std::string& args, const std::string& env = "") {
-  return runShell("env -u WB_VALIDATION " + env + " " + std::string(WB_XVFB_RUN) +
+  return runShell("env WB_VALIDATION=1 " + env + " " + std::string(WB_XVFB_RUN) +
                   " -a -s '-screen 0 1024x768x24' " + WB_WORKBENCH_BIN + " --window 320x240 " + args);
+}
+
+// Mean brightness of the image area (right of the panel, above the status line) of a window screenshot.
+double imageAreaMean(const fs::path& png, int panelWidth) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* px = stbi_load(png.c_str(), &w, &h, &n, 4);
+  if (!px) return -1;
+  double sum = 0;
+  size_t count = 0;
+  for (int y = 0; y < h - 24; ++y) {
+    for (int x = panelWidth + 4; x < w; ++x) {
+      const unsigned char* p = px + 4 * (size_t(y) * w + x);
+      sum += (p[0] + p[1] + p[2]) / 3.0;
+      ++count;
+    }
+  }
+  stbi_image_free(px);
+  return count ? sum / double(count) : -1;
 }
 
 fs::path tempDir(const std::string& name) {
@@ -209,9 +228,89 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
 TEST(Window, NoDisplayFallsBackToHeadlessRender) {
   const auto dir = tempDir("headless");
   const auto out = dir / "fallback.png";
-  auto r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY -u WB_VALIDATION " + std::string(WB_WORKBENCH_BIN) +
+  auto r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY WB_VALIDATION=1 " + std::string(WB_WORKBENCH_BIN) +
                     " --size 32x24 --spp 1 --frames 3 --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out)) << r.output;
+}
+
+TEST(Window, HybridAndReflectionModesRenderAndSwitchBack) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("modes");
+  const auto script = dir / "script.txt";
+  writeFile(script, "set mode hybrid\nframes 6\nstats " + (dir / "hybrid.json").string() + "\nscreenshot " +
+                        (dir / "hybrid.png").string() +
+                        "\nframes 1\n"
+                        "set mode reflections\nframes 4\nstats " +
+                        (dir / "reflections.json").string() + "\nscreenshot " +
+                        (dir / "reflections.png").string() +
+                        "\nframes 1\n"
+                        "set mode pathtrace\nwait_samples 1 60\nstats " +
+                        (dir / "pathtrace.json").string() + "\n");
+  auto r = runWindow("--script " + script.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto hy = readJson(dir / "hybrid.json"), rf = readJson(dir / "reflections.json");
+  const auto pt = readJson(dir / "pathtrace.json");
+  EXPECT_EQ(hy["mode"], "hybrid");
+  EXPECT_GE(hy["samples"].get<int>(), 5) << "hybrid frames accumulate shadows and AO";
+  EXPECT_TRUE(hy["parameters"].contains("hybrid"));
+  EXPECT_EQ(rf["mode"], "reflections");
+  EXPECT_GT(rf["resets"].get<int>(), hy["resets"].get<int>()) << "a mode switch restarts accumulation";
+  EXPECT_LE(rf["samples"].get<int>(), 5);
+  EXPECT_EQ(pt["mode"], "pathtrace");
+  EXPECT_GE(pt["samples"].get<int>(), 1);
+  EXPECT_EQ(pt["shader_error"], "");
+  // Both hybrid images are lit (the default scene's room under the sun), not black.
+  EXPECT_GT(imageAreaMean(dir / "hybrid.png", 144), 20.0);
+  EXPECT_GT(imageAreaMean(dir / "reflections.png", 144), 20.0);
+}
+
+TEST(Window, RunningErrorAgainstAReferenceAndTheNoiseEstimate) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("error");
+  // A converged-enough reference of the same view (another seed: independent of the window's samples) and
+  // one of another size.
+  auto ref =
+      runShell("env WB_VALIDATION=1 " + std::string(WB_WORKBENCH_BIN) +
+               " render --size 48x48 --spp 256 --seed 9 --sampler pcg --out " + (dir / "ref.exr").string());
+  ASSERT_EQ(ref.code, 0) << ref.output;
+  auto small = runShell(std::string(WB_WORKBENCH_BIN) + " render --size 32x32 --spp 1 --out " +
+                        (dir / "small.exr").string());
+  ASSERT_EQ(small.code, 0) << small.output;
+  writeFile(dir / "a.txt", "wait_samples 16 60\nstats " + (dir / "a.json").string() + "\nset reference " +
+                               (dir / "small.exr").string() + "\nframes 2\nstats " +
+                               (dir / "c.json").string() + "\n");
+  writeFile(dir / "b.txt", "wait_samples 16 60\nstats " + (dir / "b.json").string() + "\n");
+  const std::string common = "--size 48x48 --scale 1 --sampler pcg ";
+  auto ra = runWindow(common + "--reference " + (dir / "ref.exr").string() + " --script " +
+                      (dir / "a.txt").string());
+  ASSERT_EQ(ra.code, 0) << ra.output;
+  auto rb = runWindow(common + "--script " + (dir / "b.txt").string());
+  ASSERT_EQ(rb.code, 0) << rb.output;
+
+  // Against the reference: a point at 1, 2, 4, 8, 16 spp, falling as the samples accumulate (the error of a
+  // 1-spp image is about 4x that of a 16-spp one; the 256-spp reference adds a little noise of its own).
+  const auto a = readJson(dir / "a.json")["live_error"];
+  EXPECT_EQ(a["error"], "");
+  std::vector<int> samples;
+  for (const auto& p : a["history"]) {
+    samples.push_back(p["samples"].get<int>());
+    EXPECT_FALSE(p["estimated"].get<bool>());
+  }
+  ASSERT_GE(samples.size(), 5u) << a.dump();
+  EXPECT_EQ(std::vector<int>(samples.begin(), samples.begin() + 5), (std::vector<int>{1, 2, 4, 8, 16}));
+  const double first = a["history"][0]["rmse"], at16 = a["history"][4]["rmse"];
+  EXPECT_LT(at16, 0.5 * first) << a.dump();
+  EXPECT_GT(at16, 0.0);
+  // A reference of another size is refused with a reason naming both sizes.
+  const auto c = readJson(dir / "c.json")["live_error"];
+  EXPECT_NE(c["error"].get<std::string>().find("32x32"), std::string::npos) << c.dump();
+  EXPECT_NE(c["error"].get<std::string>().find("48x48"), std::string::npos) << c.dump();
+  // Without a reference: the n vs n/2 noise estimate from 2 spp on, falling too.
+  const auto b = readJson(dir / "b.json")["live_error"];
+  ASSERT_GE(b["history"].size(), 4u) << b.dump();
+  EXPECT_EQ(b["history"][0]["samples"], 2);
+  EXPECT_TRUE(b["history"][0]["estimated"].get<bool>());
+  EXPECT_LT(b["history"][3]["rmse"].get<double>(), b["history"][0]["rmse"].get<double>());
 }

@@ -1,5 +1,6 @@
 #include "app/window/panels.h"
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -23,9 +24,40 @@ std::string relativeToRoot(const std::filesystem::path& p) {
   return ec || rel.empty() ? p.string() : rel.string();
 }
 
+void hybridControls(PanelContext& c) {
+  auto& h = c.state.hybrid;
+  const bool sceneSun = h.sunAngleDeg < 0.0f;
+  float sunAngle = c.hybrid ? 2.0f * glm::degrees(std::acos(std::clamp(c.hybrid->sunCosAngle(), -1.0f, 1.0f)))
+                            : std::max(h.sunAngleDeg, 0.0f);
+  if (ImGui::SliderFloat(sceneSun ? "sun angle (deg, scene)" : "sun angle (deg)", &sunAngle, 0.0f, 10.0f,
+                         "%.2f")) {
+    h.sunAngleDeg = sunAngle;
+  }
+  int aoRays = int(h.aoRays);
+  if (ImGui::SliderInt("AO rays", &aoRays, 0, 16)) h.aoRays = uint32_t(aoRays);
+  float aoRadius = c.hybrid ? c.hybrid->aoRadius() : h.aoRadius;
+  if (ImGui::DragFloat("AO radius", &aoRadius, 0.01f, 0.001f, 1000.0f, "%.3f")) h.aoRadius = aoRadius;
+  ImGui::Checkbox("temporal accumulation", &h.temporal);
+  if (c.state.mode == render::RenderMode::Reflections) {
+    int depth = int(h.reflectionDepth);
+    if (ImGui::SliderInt("reflection depth", &depth, 0, 8)) h.reflectionDepth = uint32_t(depth);
+    ImGui::SliderFloat("reflect below roughness", &h.reflectionMaxRoughness, 0.0f, 1.0f, "%.2f");
+  }
+  ImGui::TextDisabled("frames %u; debug views need the path tracer", c.samples);
+}
+
 void renderPanel(PanelContext& c) {
   auto& st = c.state;
   auto& s = st.settings;
+  int mode = int(st.mode);
+  if (ImGui::Combo("mode", &mode,
+                   "path tracer (reference)\0hybrid (raster + RT shadows, AO)\0hybrid + RT reflections\0")) {
+    st.mode = render::RenderMode(mode);
+  }
+  if (st.mode != render::RenderMode::PathTrace) {
+    hybridControls(c);
+    ImGui::Separator();
+  }
   int bounces = int(s.maxBounces);
   if (ImGui::SliderInt("max bounces", &bounces, 0, 32)) s.maxBounces = uint32_t(bounces);
   int rrStart = int(s.rrStart);
@@ -66,10 +98,10 @@ void renderPanel(PanelContext& c) {
   ImGui::SliderFloat("exposure (stops)", &st.display.exposure, -8.0f, 8.0f, "%.2f");
   int tm = int(st.display.tonemap);
   if (ImGui::Combo("tonemapper", &tm, kTonemapNames, 3)) st.display.tonemap = eval::Tonemap(tm);
-  int mode = c.camera.mode() == CameraMode::Fly ? 1 : 0;
-  if (ImGui::Combo("camera", &mode,
+  int cameraMode = c.camera.mode() == CameraMode::Fly ? 1 : 0;
+  if (ImGui::Combo("camera", &cameraMode,
                    "orbit (drag, wheel, shift/middle pan)\0fly (right-drag look, WASD QE)\0")) {
-    c.camera.setMode(mode ? CameraMode::Fly : CameraMode::Orbit);
+    c.camera.setMode(cameraMode ? CameraMode::Fly : CameraMode::Orbit);
   }
   if (c.camera.mode() == CameraMode::Fly) ImGui::SliderFloat("fly speed", &c.camera.speed, 0.05f, 5.0f);
   if (ImGui::Button("Save image (F12)")) st.saveRequest = "";
@@ -242,12 +274,53 @@ void shadersPanel(PanelContext& c) {
   }
 }
 
+void errorSection(PanelContext& c) {
+  const auto& le = *c.liveError;
+  static std::string refEdit;
+  static bool refInit = false;
+  if (!refInit) {
+    refEdit = c.state.referencePath;
+    refInit = true;
+  }
+  ImGui::InputText("##reference", &refEdit);
+  ImGui::SameLine();
+  if (ImGui::Button("Load ref")) c.state.referencePath = refEdit;
+  ImGui::SameLine();
+  if (ImGui::Button("Clear")) c.state.referencePath = refEdit = "";
+  if (!le.error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", le.error().c_str());
+  const auto last = le.latest();
+  if (!last) {
+    ImGui::TextDisabled(le.hasReference() ? "error vs reference: waiting for a sample"
+                                          : "noise estimate: needs 2 samples (n vs n/2)");
+    return;
+  }
+  ImGui::Text("%s at %u spp: RMSE %.4g  relMSE %.4g", last->estimated ? "noise est." : "error vs ref",
+              last->samples, last->rmse, last->relMse);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(last->estimated
+                          ? "No reference loaded: mean((I_n - I_n/2)^2) estimates the noise part of the MSE "
+                            "(blind to bias; Sobol samples make it an indicator)."
+                          : "Against %s (box-downsampled when it is an integer multiple of the trace size).",
+                      le.referenceName().c_str());
+  }
+  std::vector<float> logRel;
+  for (const auto& p : le.history()) logRel.push_back(float(std::log10(std::max(p.relMse, 1e-12))));
+  if (logRel.size() >= 2) {
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "log10 relMSE, %zu checkpoints", logRel.size());
+    ImGui::PlotLines("##error", logRel.data(), int(logRel.size()), 0, overlay, FLT_MAX, FLT_MAX,
+                     ImVec2(ImGui::GetContentRegionAvail().x, 50));
+  }
+}
+
 void statsPanel(PanelContext& c) {
   const auto& pt = c.progressive;
   std::string target;
   if (c.state.targetSpp) target.append(" / ").append(std::to_string(c.state.targetSpp));
-  ImGui::Text("samples %u%s%s", pt.samples(), target.c_str(), pt.inPreview() ? "  (preview)" : "");
-  ImGui::Text("trace %ux%u  elapsed %.1f s", c.traceWidth, c.traceHeight, pt.secondsSinceReset());
+  const bool preview = !c.hybrid && pt.inPreview();
+  ImGui::Text("%s %u%s%s", c.hybrid ? "frames" : "samples", c.samples, target.c_str(),
+              preview ? "  (preview)" : "");
+  ImGui::Text("trace %ux%u  elapsed %.1f s", c.traceWidth, c.traceHeight, c.secondsSinceReset);
   const double secs = std::max(c.traceSeconds, 1e-6);
   ImGui::Text("paths/s %s  rays/s %s", humanCount(c.counters.pathCount / secs).c_str(),
               humanCount(c.counters.rayCount / secs).c_str());
@@ -258,6 +331,7 @@ void statsPanel(PanelContext& c) {
                 c.frames.mean(), c.frames.max());
   ImGui::PlotLines("##frametimes", values.data(), int(values.size()), 0, overlay, 0.0f,
                    std::max(50.0f, c.frames.max() * 1.1f), ImVec2(ImGui::GetContentRegionAvail().x, 60));
+  if (c.liveError) errorSection(c);
   ImGui::TextDisabled("%s", c.deviceName.c_str());
 }
 
@@ -301,9 +375,13 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const auto& pt = c.progressive;
   char status[192];
-  std::snprintf(status, sizeof status, "%u spp%s  %ux%u  %.1f s  frame %.1f ms%s", pt.samples(),
-                pt.inPreview() ? " (preview)" : "", c.traceWidth, c.traceHeight, pt.secondsSinceReset(),
-                c.frames.last(), c.state.paused ? "  PAUSED" : (pt.done() ? "  done" : ""));
+  const bool done = c.hybrid ? c.state.targetSpp > 0 && c.samples >= c.state.targetSpp : pt.done();
+  std::snprintf(
+      status, sizeof status, "%s%u %s%s  %ux%u  %.1f s  frame %.1f ms%s",
+      c.hybrid ? (c.state.mode == render::RenderMode::Reflections ? "reflections  " : "hybrid  ") : "",
+      c.samples, c.hybrid ? "frames" : "spp", !c.hybrid && pt.inPreview() ? " (preview)" : "", c.traceWidth,
+      c.traceHeight, c.secondsSinceReset, c.frames.last(),
+      c.state.paused ? "  PAUSED" : (done ? "  done" : ""));
   const ImVec2 pos(view.x + 6, view.y + view.h - ImGui::GetTextLineHeight() - 6);
   const ImVec2 size = ImGui::CalcTextSize(status);
   dl->AddRectFilled(ImVec2(pos.x - 3, pos.y - 2), ImVec2(pos.x + size.x + 3, pos.y + size.y + 2),

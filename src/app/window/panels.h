@@ -9,7 +9,9 @@
 #include "app/window/pixel_picker.h"
 #include "app/window/progressive.h"
 #include "app/window/workbench_state.h"
+#include "eval/live_error.h"
 #include "render/hot_reload.h"
+#include "render/hybrid/hybrid_renderer.h"
 #include "scene/scene.h"
 #include "shader/library.h"
 
@@ -35,6 +37,10 @@ struct PanelContext {
   std::string presentMode;
   uint32_t traceWidth = 0, traceHeight = 0;
   std::string lastSaved;
+  const render::HybridRenderer* hybrid = nullptr;  // the active hybrid renderer (hybrid modes only)
+  uint32_t samples = 0;                            // finished samples (path tracer) or frames (hybrid)
+  double secondsSinceReset = 0;
+  const eval::LiveError* liveError = nullptr;
 };
 
 // The side panel; returns its width in pixels (0 when hidden).

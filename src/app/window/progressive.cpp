@@ -140,6 +140,7 @@ uint64_t ProgressiveTracer::record(VkCommandBuffer cmd) {
       tracer_.advanceSample();
       ++expectedSamples_;
       if (done() || (inPreview_ && tracer_.samplesAccumulated() >= options_.previewSamples)) break;
+      if (options_.stopAtSamples && tracer_.samplesAccumulated() >= options_.stopAtSamples) break;
     }
   }
   return traced;

@@ -17,6 +17,7 @@ struct ProgressiveOptions {
   uint32_t previewSamples = 1;  // preview samples before switching to full resolution
   uint32_t targetSpp = 0;       // stop at this many samples (0 = never)
   bool paused = false;
+  uint32_t stopAtSamples = 0;  // end the frame's strips when this many samples are done (to read them back)
 };
 
 class ProgressiveTracer {
@@ -43,7 +44,8 @@ class ProgressiveTracer {
 
   bool inPreview() const { return inPreview_; }
   bool done() const;  // target spp reached
-  uint32_t samples() const { return tracer_.samplesAccumulated(); }
+  // Finished samples of the current accumulation (0 while a restart is pending).
+  uint32_t samples() const { return pendingInvalidate_ ? 0 : tracer_.samplesAccumulated(); }
   uint32_t cursorRow() const { return cursor_; }
   uint64_t resets() const { return resets_; }          // restarts caused by changes
   uint64_t generation() const { return generation_; }  // every restart, preview -> full resolution too

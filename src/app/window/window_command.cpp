@@ -1,5 +1,6 @@
 #include "app/window/window_command.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +27,7 @@
 #include "app/window/script.h"
 #include "app/window/workbench_state.h"
 #include "common/paths.h"
+#include "eval/live_error.h"
 #include "render/hot_reload.h"
 #include "vk/swapchain.h"
 
@@ -40,7 +42,7 @@ struct WindowOptions {
   std::string windowSize = "1280x720";
   uint32_t windowWidth = 1280, windowHeight = 720;
   uint64_t frames = 0;
-  std::string screenshot, statsPath, scriptPath;
+  std::string screenshot, statsPath, scriptPath, reference;
   std::vector<std::string> sets;
   float scale = 0.5f;
   bool noVsync = false;
@@ -70,6 +72,7 @@ class WorkbenchWindow : public ScriptHost {
   // ScriptHost
   void scriptSet(const std::string& name, const std::string& value) override {
     applySetting(state_, name, value);
+    applyState();  // at a frame boundary: what the next script line sees is the new state
   }
   void scriptScreenshot(const std::string& path) override { screenshotPath_ = path; }
   void scriptSave(const std::string& base) override { state_.saveRequest = base; }
@@ -81,7 +84,10 @@ class WorkbenchWindow : public ScriptHost {
   }
   void scriptCommand(const std::string& name) override;
   size_t reloadCount() const override { return hot_->history().size(); }
-  uint32_t samples() const override { return progressive_->inPreview() ? 0 : progressive_->samples(); }
+  uint32_t samples() const override {
+    if (activeHybrid()) return activeHybrid()->framesAccumulated();
+    return progressive_->inPreview() ? 0 : progressive_->samples();
+  }
 
  private:
   void registerHotReload();
@@ -94,6 +100,13 @@ class WorkbenchWindow : public ScriptHost {
   Rect imageRect(const Rect& view) const;
   void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const Rect& image);
   void readTimestamps();
+  // The hybrid renderer of the current mode (nullptr when path tracing); made on first use.
+  render::HybridRenderer* activeHybrid() const;
+  render::HybridRenderer* ensureHybrid();
+  const render::GpuEnvironment& currentEnvironment() const;
+  uint32_t currentSamples() const;  // finished samples (path tracer) or frames (hybrid modes)
+  eval::ImageRGBA currentImage();   // linear radiance of what is shown (waits for the device)
+  void updateLiveError();
 
   GLFWwindow* window_;
   WindowOptions options_;
@@ -107,6 +120,16 @@ class WorkbenchWindow : public ScriptHost {
   std::unique_ptr<ProgressiveTracer> progressive_;
   std::unique_ptr<render::GpuEnvironment> environment_;  // replaces the session's after an env change
   std::unique_ptr<SwapchainCapture> capture_;
+  // [0] hybrid, [1] reflections; kept once made (their hot reload targets point at them).
+  std::array<std::unique_ptr<render::HybridRenderer>, 2> hybrids_;
+  uint64_t hybridGeneration_ = 0;
+  uint64_t hybridResets_ = 0;  // accumulation restarts while a hybrid mode was shown
+  uint32_t hybridFramesSeen_ = 0;
+  Clock::time_point hybridReset_ = Clock::now();
+  bool lastFrameHybrid_ = false;
+  eval::LiveError liveError_;
+  std::string referenceTried_;
+  uint64_t errorGeneration_ = ~0ull;
   std::vector<shader::ShaderLibrary::ProgramId> hotTargets_;
   CameraController camera_;
   bool cameraChanged_ = true;
@@ -148,6 +171,9 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   state_.fixedHeight = o.render.settings.height;
   state_.vsync = !o.noVsync;
   state_.targetSpp = 0;
+  state_.mode = o.render.mode;
+  state_.hybrid = o.render.hybrid;
+  state_.referencePath = o.reference;
 
   uint32_t extCount = 0;
   const char** exts = glfwGetRequiredInstanceExtensions(&extCount);
@@ -228,6 +254,7 @@ WorkbenchWindow::~WorkbenchWindow() {
   swapchain_.reset();
   progressive_.reset();
   hot_.reset();
+  for (auto& h : hybrids_) h.reset();
   auto& tracer = session_->pathTracer();
   (void)tracer;
   session_.reset();  // the tracer goes before environment_
@@ -285,6 +312,79 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
   return {std::floor(view.x + (view.w - w) * 0.5f), std::floor(view.y + (view.h - h) * 0.5f), w, h};
 }
 
+render::HybridRenderer* WorkbenchWindow::activeHybrid() const {
+  switch (state_.mode) {
+    case render::RenderMode::Hybrid:
+      return hybrids_[0].get();
+    case render::RenderMode::Reflections:
+      return hybrids_[1].get();
+    default:
+      return nullptr;
+  }
+}
+
+const render::GpuEnvironment& WorkbenchWindow::currentEnvironment() const {
+  return environment_ ? *environment_ : session_->environment();
+}
+
+render::HybridRenderer* WorkbenchWindow::ensureHybrid() {
+  if (state_.mode == render::RenderMode::PathTrace) return nullptr;
+  auto& slot = hybrids_[state_.mode == render::RenderMode::Hybrid ? 0 : 1];
+  if (!slot) {
+    render::RenderSettings s = state_.settings;
+    s.width = progressive_->targetWidth();
+    s.height = progressive_->targetHeight();
+    slot = std::make_unique<render::HybridRenderer>(session_->context(), session_->library(),
+                                                    session_->gpuScene(), session_->scene(),
+                                                    currentEnvironment(), s, state_.mode, state_.hybrid);
+    slot->setCamera(camera_.state());
+    slot->setLights(state_.lights);
+    slot->addHotReloadTargets(*hot_);
+  }
+  return slot.get();
+}
+
+uint32_t WorkbenchWindow::currentSamples() const {
+  if (const auto* h = activeHybrid()) return h->framesAccumulated();
+  return progressive_->samples();
+}
+
+eval::ImageRGBA WorkbenchWindow::currentImage() {
+  if (auto* h = activeHybrid()) {
+    eval::ImageRGBA img;
+    img.width = h->settings().width;
+    img.height = h->settings().height;
+    img.pixels = h->readOutput();
+    for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+    return img;
+  }
+  eval::ImageRGBA img;
+  const auto& tracer = session_->pathTracer();
+  img.width = tracer.settings().width;
+  img.height = tracer.settings().height;
+  img.pixels = tracer.readAccumulation();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
+void WorkbenchWindow::updateLiveError() {
+  // Called when no frame is in flight. Only whole samples count: the path tracer's accumulation is read when
+  // a sample has just finished (the progressive tracer stops at sample ends when a checkpoint is due).
+  auto* h = activeHybrid();
+  if (!h && (progressive_->inPreview() || progressive_->cursorRow() != 0)) return;
+  if (h && h->framesAccumulated() < hybridFramesSeen_) ++hybridGeneration_;  // reset by a pipeline commit
+  if (h) hybridFramesSeen_ = h->framesAccumulated();
+  const uint64_t generation = h ? hybridGeneration_ * 2 + 1 : progressive_->generation() * 2;
+  if (generation != errorGeneration_) {
+    liveError_.restart();
+    errorGeneration_ = generation;
+  }
+  const uint32_t n = currentSamples();
+  const double seconds = h ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
+                           : progressive_->secondsSinceReset();
+  if (liveError_.wants(n, seconds)) liveError_.add(currentImage(), n, seconds);
+}
+
 void WorkbenchWindow::applyState() {
   auto& tracer = session_->pathTracer();
   auto& st = state_;
@@ -296,6 +396,8 @@ void WorkbenchWindow::applyState() {
   }
   if (cameraChanged_) {
     tracer.setCamera(camera_.state());
+    for (auto& h : hybrids_)
+      if (h) h->setCamera(camera_.state());
     cameraChanged_ = false;
     restart = true;
   }
@@ -312,6 +414,8 @@ void WorkbenchWindow::applyState() {
   }
   if (st.lightsDirty) {
     session_->gpuScene().updateLights(st.lights);
+    for (auto& h : hybrids_)
+      if (h) h->setLights(st.lights);
     st.lightsDirty = false;
     restart = true;
   }
@@ -322,6 +426,8 @@ void WorkbenchWindow::applyState() {
     try {
       auto env = std::make_unique<render::GpuEnvironment>(session_->context(), loadEnvironmentData(s));
       tracer.setEnvironment(*env);
+      for (auto& h : hybrids_)
+        if (h) h->setEnvironment(*env);
       environment_ = std::move(env);  // the previous one is no longer referenced (setEnvironment waited)
       st.envError.clear();
     } catch (const std::exception& e) {
@@ -339,7 +445,33 @@ void WorkbenchWindow::applyState() {
     const auto features = featuresFor(session_->scene(), s);
     if (tracer.setFeatures(features)) registerHotReload();
     progressive_->setSettings(s);
+    for (auto& h : hybrids_) {
+      if (!h) continue;
+      render::RenderSettings hs = s;
+      hs.width = h->settings().width;
+      hs.height = h->settings().height;
+      h->setSettings(hs);
+    }
     restart = true;
+  }
+  const auto& hy = st.hybrid;
+  const auto& ha = applied_.hybrid;
+  if (hy.sunAngleDeg != ha.sunAngleDeg || hy.aoRadius != ha.aoRadius || hy.aoRays != ha.aoRays ||
+      hy.temporal != ha.temporal || hy.reflectionDepth != ha.reflectionDepth ||
+      hy.reflectionMaxRoughness != ha.reflectionMaxRoughness) {
+    for (auto& h : hybrids_)
+      if (h) h->setHybridSettings(hy);
+    restart = true;
+  }
+  if (st.mode != applied_.mode) restart = true;
+  if (st.mode != render::RenderMode::PathTrace) ensureHybrid();
+  if (st.referencePath != referenceTried_) {
+    referenceTried_ = st.referencePath;
+    if (st.referencePath.empty()) {
+      liveError_.clearReference();
+    } else {
+      liveError_.loadReference(st.referencePath);  // a failure is shown in the panel (liveError_.error())
+    }
   }
   if (st.resetAccumulation) {
     st.resetAccumulation = false;
@@ -360,7 +492,15 @@ void WorkbenchWindow::applyState() {
   opts.paused = st.paused;
   opts.preview = st.preview;
   opts.budgetMs = st.budgetMs;
-  if (restart) progressive_->invalidate();
+  if (restart) {
+    progressive_->invalidate();
+    if (auto* h = activeHybrid()) {
+      h->resetAccumulation();
+      ++hybridResets_;
+    }
+    ++hybridGeneration_;
+    hybridReset_ = Clock::now();
+  }
   applied_ = st;
 }
 
@@ -437,8 +577,20 @@ nlohmann::json WorkbenchWindow::parametersJson() {
   j["scene"] = session_->scene().sourcePath.string();
   j["width"] = s.width;
   j["height"] = s.height;
-  j["samples"] = progressive_->samples();
-  j["preview"] = progressive_->inPreview();
+  j["samples"] = currentSamples();
+  j["preview"] = !activeHybrid() && progressive_->inPreview();
+  j["mode"] = render::renderModeName(state_.mode);
+  if (const auto* h = activeHybrid()) {
+    const auto& hs = h->hybridSettings();
+    j["width"] = h->settings().width;
+    j["height"] = h->settings().height;
+    j["hybrid"] = {{"sun_cos_angle", h->sunCosAngle()},
+                   {"ao_radius", h->aoRadius()},
+                   {"ao_rays", hs.aoRays},
+                   {"temporal", hs.temporal},
+                   {"reflection_depth", hs.reflectionDepth},
+                   {"reflection_roughness", hs.reflectionMaxRoughness}};
+  }
   j["max_bounces"] = s.maxBounces;
   j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};
   j["nee"] = s.nee;
@@ -461,9 +613,22 @@ nlohmann::json WorkbenchWindow::parametersJson() {
 nlohmann::json WorkbenchWindow::statsJson() {
   nlohmann::json j;
   j["frames"] = frameCount_;
-  j["samples"] = progressive_->samples();
-  j["preview"] = progressive_->inPreview();
-  j["resets"] = progressive_->resets();
+  j["samples"] = currentSamples();
+  j["preview"] = !activeHybrid() && progressive_->inPreview();
+  j["resets"] = progressive_->resets() + hybridResets_;
+  j["mode"] = render::renderModeName(state_.mode);
+  nlohmann::json le;
+  le["reference"] = liveError_.referenceName();
+  le["error"] = liveError_.error();
+  le["history"] = nlohmann::json::array();
+  for (const auto& p : liveError_.history()) {
+    le["history"].push_back({{"samples", p.samples},
+                             {"seconds", p.seconds},
+                             {"rmse", p.rmse},
+                             {"rel_mse", p.relMse},
+                             {"estimated", p.estimated}});
+  }
+  j["live_error"] = le;
   j["trace_width"] = session_->pathTracer().settings().width;
   j["trace_height"] = session_->pathTracer().settings().height;
   j["target_width"] = progressive_->targetWidth();
@@ -507,7 +672,7 @@ void WorkbenchWindow::saveRender(std::string base) {
     std::filesystem::create_directories(projectRoot() / "out");
     base = (projectRoot() / "out" / ("workbench_" + timestampName())).string();
   }
-  auto image = session_->image();
+  auto image = currentImage();
   eval::writePng(base + ".png", image, state_.display.exposure, state_.display.tonemap);
   eval::writeExr(base + ".exr", image);
   std::ofstream f(base + ".json");
@@ -527,7 +692,7 @@ void WorkbenchWindow::readTimestamps() {
   const double period = session_->context().timestampPeriodNs() * 1e-6;
   traceMs_ = double(ts[1] - ts[0]) * period;
   displayMs_ = double(ts[2] - ts[1]) * period;
-  progressive_->reportTraceTime(tracedPixels_, traceMs_);
+  if (!lastFrameHybrid_) progressive_->reportTraceTime(tracedPixels_, traceMs_);
   if (progressive_->generation() != traceGeneration_) {
     traceGeneration_ = progressive_->generation();
     traceSeconds_ = 0;
@@ -541,7 +706,20 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
   WB_VK(vkBeginCommandBuffer(cmd, &bi));
   vkCmdResetQueryPool(cmd, queries_, 0, 3);
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-  tracedPixels_ = progressive_->record(cmd);
+  render::HybridRenderer* hybrid = activeHybrid();
+  lastFrameHybrid_ = hybrid != nullptr;
+  if (hybrid) {
+    const bool run =
+        !state_.paused && (state_.targetSpp == 0 || hybrid->framesAccumulated() < state_.targetSpp);
+    tracedPixels_ = 0;
+    if (run) {
+      hybrid->record(cmd);
+      hybrid->advanceFrame();
+      tracedPixels_ = uint64_t(hybrid->settings().width) * hybrid->settings().height;
+    }
+  } else {
+    tracedPixels_ = progressive_->record(cmd);
+  }
   vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
 
   VkClearValue clear{};
@@ -557,15 +735,19 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
   gpu::DisplayPush push{};
   push.viewRect = {image.x, image.y, image.w, image.h};
   push.imageSize = {tracer.settings().width, tracer.settings().height};
-  const bool usePreview = progressive_->previewValid() && progressive_->samples() == 0;
+  const bool usePreview = !hybrid && progressive_->previewValid() && progressive_->samples() == 0;
   push.previewSize =
       usePreview ? glm::uvec2(progressive_->previewImage().width(), progressive_->previewImage().height())
                  : glm::uvec2(0u);
   push.exposureScale = std::exp2(state_.display.exposure);
   push.tonemap = uint32_t(state_.display.tonemap);
-  push.view = state_.display.view;
+  push.view = hybrid ? WB_VIEW_BEAUTY : state_.display.view;  // the debug views are the path tracer's AOVs
   push.encodeSrgb = swapchain_->formatIsSrgb() ? 0u : 1u;
   push.tracedRows = progressive_->samples() == 0 ? progressive_->cursorRow() : tracer.settings().height;
+  if (hybrid) {
+    push.imageSize = {hybrid->settings().width, hybrid->settings().height};
+    push.tracedRows = hybrid->settings().height;
+  }
   push.sceneScale = sceneRadius(session_->scene());
   push.maxVertices = float(tracer.settings().maxBounces + 1);
   if (image.w >= 1 && image.h >= 1) display_->record(cmd, push);
@@ -589,6 +771,7 @@ int WorkbenchWindow::run() {
       readTimestamps();
       hot_->frameFinished();
       counters_ = session_->pathTracer().readCounters();
+      updateLiveError();
       if (!captureTarget_.empty()) {
         capture_->write(captureTarget_);
         std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
@@ -604,7 +787,8 @@ int WorkbenchWindow::run() {
     if (options_.frames && frameCount_ >= options_.frames) break;
     if (hasScript_) {
       try {
-        if (!script_.step(*this) && !options_.frames) break;
+        // A finished script still lets a requested screenshot reach the screen.
+        if (!script_.step(*this) && !options_.frames && screenshotPath_.empty()) break;
       } catch (const std::exception& e) {
         fatalScriptError_ = e.what();
         exitCode = 1;
@@ -625,21 +809,27 @@ int WorkbenchWindow::run() {
     }
 
     gui_->beginFrame();
-    PanelContext pc{state_,
-                    session_->scene(),
-                    *progressive_,
-                    *hot_,
-                    session_->library(),
-                    camera_,
-                    pick_,
-                    frames_,
-                    counters_,
-                    traceSeconds_,
-                    ctx.deviceName(),
-                    vk::presentModeName(swapchain_->presentMode()),
-                    session_->pathTracer().settings().width,
-                    session_->pathTracer().settings().height,
-                    lastSaved_};
+    PanelContext pc{
+        state_,
+        session_->scene(),
+        *progressive_,
+        *hot_,
+        session_->library(),
+        camera_,
+        pick_,
+        frames_,
+        counters_,
+        traceSeconds_,
+        ctx.deviceName(),
+        vk::presentModeName(swapchain_->presentMode()),
+        activeHybrid() ? activeHybrid()->settings().width : session_->pathTracer().settings().width,
+        activeHybrid() ? activeHybrid()->settings().height : session_->pathTracer().settings().height,
+        lastSaved_,
+        activeHybrid(),
+        currentSamples(),
+        activeHybrid() ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
+                       : progressive_->secondsSinceReset(),
+        &liveError_};
     const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
     panelWidth_ = drawSidePanel(pc, W, H);
     const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
@@ -663,9 +853,24 @@ int WorkbenchWindow::run() {
       }
       state_.saveRequest.reset();
     }
-    progressive_->beginFrame();
+    render::HybridRenderer* hybrid = activeHybrid();
+    if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||
+                   hybrid->settings().height != progressive_->targetHeight())) {
+      render::RenderSettings hs = state_.settings;
+      hs.width = progressive_->targetWidth();
+      hs.height = progressive_->targetHeight();
+      hybrid->setSettings(hs);
+      ++hybridGeneration_;
+      hybridReset_ = Clock::now();
+    }
+    if (!hybrid) {
+      progressive_->options().stopAtSamples =
+          liveError_.nextCheckpoint(progressive_->samples(), progressive_->secondsSinceReset());
+      progressive_->beginFrame();
+    }
     const auto& tracer = session_->pathTracer();
-    display_->setSources({tracer.accumulationImage().view(), tracer.aovImage(render::Aov::Albedo).view(),
+    display_->setSources({hybrid ? hybrid->outputImage().view() : tracer.accumulationImage().view(),
+                          tracer.aovImage(render::Aov::Albedo).view(),
                           tracer.aovImage(render::Aov::Normal).view(),
                           tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view()});
 
@@ -772,6 +977,8 @@ int runWindowCommand(const std::vector<std::string>& args) {
   cli.add_option("--screenshot", o.screenshot, "PNG of the window (panel included) at exit");
   cli.add_option("--stats", o.statsPath,
                  "JSON statistics at exit (samples, resets, frame times, shader errors)");
+  cli.add_option("--reference", o.reference,
+                 "converged .exr of the same view: the Stats panel shows the running error against it");
   cli.add_option("--script", o.scriptPath, "run scripted commands (see src/app/window/script.h)");
   cli.add_option("--set", o.sets, std::string("NAME=VALUE setting at start; names: ") + settingNamesHelp());
   cli.add_flag("--no-vsync", o.noVsync, "present with MAILBOX/IMMEDIATE instead of FIFO");

@@ -73,10 +73,12 @@ std::optional<eval::Tonemap> tonemapFromName(const std::string& name) {
 const char* settingNamesHelp() {
   return "exposure, tonemap (clamp|reinhard|aces), view (beauty|albedo|shading_normal|geometric_normal|depth|"
          "bounces|dropped), max_bounces, rr_start, rr_min, rr_max, sampler (sobol|pcg), seed, spp (target, 0 "
-         "= "
-         "endless), paused, scale, preview, budget_ms, vsync, env_intensity, env_rotation, env_color R,G,B, "
-         "env "
-         "PATH, sun_direction X,Y,Z, sun_intensity, panel, material.N.roughness|metallic|base_color R,G,B";
+         "= endless), paused, scale, preview, budget_ms, vsync, env_intensity, env_rotation, env_color "
+         "R,G,B, "
+         "env PATH, sun_direction X,Y,Z, sun_intensity, panel, material.N.roughness|metallic|base_color "
+         "R,G,B, "
+         "mode (pathtrace|hybrid|reflections), sun_angle, ao_rays, ao_radius, temporal, reflection_depth, "
+         "reflection_roughness, reference PATH.exr (empty = noise estimate)";
 }
 
 void applySetting(WorkbenchState& st, const std::string& name, const std::string& value) {
@@ -139,6 +141,31 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
       l.radiance = old > 0.0f ? l.radiance * (want / old) : glm::vec3(want);
     }
     st.lightsDirty = true;
+  } else if (name == "mode") {
+    const auto m = render::parseRenderMode(value);
+    if (!m)
+      throw std::invalid_argument("mode: expected pathtrace, hybrid or reflections, got '" + value + "'");
+    st.mode = *m;
+  } else if (name == "sun_angle") {
+    const float f = toFloat(name, value);
+    if (f > 90.0f) throw std::invalid_argument("sun_angle: must be at most 90 degrees");
+    st.hybrid.sunAngleDeg = f;
+  } else if (name == "ao_rays") {
+    st.hybrid.aoRays = toUint(name, value);
+  } else if (name == "ao_radius") {
+    const float f = toFloat(name, value);
+    if (f < 0.0f) throw std::invalid_argument("ao_radius: must be non-negative");
+    st.hybrid.aoRadius = f;
+  } else if (name == "temporal") {
+    st.hybrid.temporal = toBool(name, value);
+  } else if (name == "reflection_depth") {
+    const uint32_t d = toUint(name, value);
+    if (d > 16) throw std::invalid_argument("reflection_depth: at most 16");
+    st.hybrid.reflectionDepth = d;
+  } else if (name == "reflection_roughness") {
+    st.hybrid.reflectionMaxRoughness = toFloat(name, value);
+  } else if (name == "reference") {
+    st.referencePath = value;
   } else if (name.rfind("material.", 0) == 0) {
     const auto dot = name.find('.', 9);
     if (dot == std::string::npos) throw std::invalid_argument(name + ": expected material.N.FIELD");

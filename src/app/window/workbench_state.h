@@ -9,6 +9,7 @@
 
 #include "display/display_types.h"
 #include "eval/image.h"
+#include "render/hybrid/hybrid_settings.h"
 #include "render/settings.h"
 #include "shared/gpu_types.h"
 
@@ -23,6 +24,9 @@ struct DisplaySettings {
 struct WorkbenchState {
   render::RenderSettings settings;  // width/height are ignored: the view size x resolutionScale decides
   DisplaySettings display;
+  // Path tracer or one of its fast, biased counterparts; changing it restarts accumulation.
+  render::RenderMode mode = render::RenderMode::PathTrace;
+  render::HybridSettings hybrid;
   float resolutionScale = 0.5f;
   bool fixedSize = false;  // --size given: trace at that size whatever the window
   uint32_t fixedWidth = 0, fixedHeight = 0;
@@ -46,6 +50,9 @@ struct WorkbenchState {
   bool quit = false;
 
   std::string envError;  // why the last environment change failed
+
+  // The running error panel: a reference .exr to compare with (empty = the noise estimate).
+  std::string referencePath;
 };
 
 const char* viewName(uint32_t view);

@@ -114,7 +114,7 @@ HybridRenderer::HybridRenderer(vk::Context& ctx, shader::ShaderLibrary& library,
     : ctx_(ctx),
       library_(library),
       gpuScene_(gpuScene),
-      env_(env),
+      env_(&env),
       settings_(settings),
       mode_(mode == RenderMode::PathTrace ? RenderMode::Hybrid : mode),
       hybrid_(hybrid),
@@ -209,7 +209,7 @@ void HybridRenderer::writeDescriptors(Pass pass) {
   s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
   s.writeSampledImages(0, WB_BIND_TEXTURES, gpuScene_.textureDescriptors());
-  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_.descriptor()});
+  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_->descriptor()});
   s.writeBuffer(0, WB_BIND_HYBRID_FRAME, uniforms_.handle());
   auto sampled = [&](const vk::Image& img) {
     return std::vector<VkDescriptorImageInfo>{
@@ -355,6 +355,21 @@ void HybridRenderer::setHybridSettings(const HybridSettings& hybrid) {
   frameIndex_ = 0;
 }
 
+void HybridRenderer::setEnvironment(const GpuEnvironment& env) {
+  vkDeviceWaitIdle(ctx_.device());
+  env_ = &env;
+  for (size_t i = 0; i < kPassCount; ++i) {
+    if (sets_[i]) writeDescriptors(static_cast<Pass>(i));
+  }
+  frameIndex_ = 0;
+}
+
+void HybridRenderer::setLights(const std::vector<gpu::DirectionalLight>& lights) {
+  hasSun_ = !lights.empty();
+  if (hasSun_) sun_ = lights.front();
+  frameIndex_ = 0;
+}
+
 float HybridRenderer::aoRadius() const {
   return hybrid_.aoRadius > 0.0f ? hybrid_.aoRadius : 0.15f * cameraDistance_;
 }
@@ -376,7 +391,7 @@ void HybridRenderer::updateUniforms() {
   u.sunCosAngle = sunCosAngle();
   u.sunRadiance = hasSun_ ? sun_.radiance : glm::vec3(0.0f);
   u.hasSun = hasSun_ ? 1u : 0u;
-  u.ambient = env_.isMap() ? glm::vec3(0.0f) : settings_.envColor * settings_.envIntensity;
+  u.ambient = env_->isMap() ? glm::vec3(0.0f) : settings_.envColor * settings_.envIntensity;
   u.aoRadius = aoRadius();
   u.aoRays = hybrid_.aoRays;
   u.flags = (mode_ == RenderMode::Reflections ? WB_HYBRID_FLAG_REFLECTIONS : 0u) |
@@ -386,7 +401,7 @@ void HybridRenderer::updateUniforms() {
   u.reflectionMaxRoughness = hybrid_.reflectionMaxRoughness;
   u.envIntensity = settings_.envIntensity;
   u.envRotation = glm::radians(settings_.envRotationDeg);
-  u.envMapPresent = env_.isMap() ? 1u : 0u;
+  u.envMapPresent = env_->isMap() ? 1u : 0u;
   u.seed = settings_.seed * 0x9E3779B9u;
   std::memcpy(uniforms_.mapped(), &u, sizeof(u));
 }

@@ -48,6 +48,9 @@ class HybridRenderer {
   void setCamera(const CameraState& camera);  // restarts temporal accumulation
   void setSettings(const RenderSettings& settings);
   void setHybridSettings(const HybridSettings& hybrid);
+  // The live window's edits: a new environment (waits for the device) and the sun (the first light).
+  void setEnvironment(const GpuEnvironment& env);
+  void setLights(const std::vector<gpu::DirectionalLight>& lights);
   const HybridSettings& hybridSettings() const { return hybrid_; }
   const RenderSettings& settings() const { return settings_; }
   void resetAccumulation() { frameIndex_ = 0; }
@@ -69,6 +72,9 @@ class HybridRenderer {
   // Pipelines committed per pass since construction (the initial build counts as 1).
   uint32_t pipelineBuilds(Pass p) const { return builds_[size_t(p)]; }
   VkPipeline pipelineHandle(Pass p) const;
+
+  // The composited linear radiance (RGBA32F storage image, GENERAL layout), e.g. for a display pass.
+  const vk::Image& outputImage() const { return output_; }
 
   // Readbacks (they wait for the device).
   std::vector<float> readOutput() const;        // RGBA32F linear radiance
@@ -94,7 +100,7 @@ class HybridRenderer {
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
   const GpuScene& gpuScene_;
-  const GpuEnvironment& env_;
+  const GpuEnvironment* env_;
   RenderSettings settings_;
   RenderMode mode_;
   HybridSettings hybrid_;
