@@ -17,6 +17,7 @@
 #include "app/process.h"
 #include "app/render_session.h"
 #include "common/paths.h"
+#include "eval/metrics.h"
 #include "scene/procedural.h"
 
 namespace fs = std::filesystem;
@@ -228,6 +229,106 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
           {"first_new_frame_ms_median", median(firstFrame)}};
 }
 
+// Speed against error of the three modes: time per frame, and the error against a converged path-traced
+// reference of the same view after 1 frame and after `frames` frames (hybrid modes accumulate their shadows
+// and AO over frames; the path tracer accumulates samples). The reference is cached in
+// shader_cache/references/ (keyed by scene, its mtime, size and spp).
+json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, uint32_t refSpp,
+                uint32_t frames, const std::string& speedSize, int repeats, const std::string& device,
+                std::string& deviceName, std::string& driver) {
+  const render::RenderMode modes[] = {render::RenderMode::PathTrace, render::RenderMode::Hybrid,
+                                      render::RenderMode::Reflections};
+  auto options = [&](const BenchScene& bs, render::RenderMode mode, uint32_t width, uint32_t height) {
+    SessionOptions o;
+    o.scenePath = bs.path;
+    o.sceneData = bs.data;
+    o.settings.width = width;
+    o.settings.height = height;
+    o.context.deviceName = device;
+    o.mode = mode;
+    o.quiet = true;
+    return o;
+  };
+  json rows = json::array();
+  for (const auto& bs : scenes) {
+    // The reference.
+    std::error_code ec;
+    const std::string mtime =
+        bs.path.empty() ? "generated"
+                        : std::to_string(fs::last_write_time(bs.path, ec).time_since_epoch().count());
+    const std::string key = "modes-reference v1 " + bs.name + " " + bs.path + " " + mtime + " " +
+                            std::to_string(w) + "x" + std::to_string(h) + " spp " + std::to_string(refSpp);
+    uint64_t hash = 1469598103934665603ull;
+    for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+    const fs::path refFile = shaderCacheDir() / "references" / (std::string(hex) + ".exr");
+    eval::ImageRGBA reference;
+    double refSeconds = 0;
+    if (fs::exists(refFile)) {
+      reference = eval::readExr(refFile);
+    } else {
+      std::fprintf(stderr, "bench: %s reference, %u spp at %ux%u ...\n", bs.name.c_str(), refSpp, w, h);
+      auto o = options(bs, render::RenderMode::PathTrace, w, h);
+      o.settings.seed = 0x5eed0000u;
+      RenderSession s(o);
+      refSeconds = s.render(refSpp);
+      reference = s.image();
+      fs::create_directories(refFile.parent_path());
+      eval::writeExr(refFile, reference);
+      std::ofstream(refFile.string() + ".txt") << key << "\n";
+    }
+    for (auto mode : modes) {
+      std::fprintf(stderr, "bench: %s in mode %s ...\n", bs.name.c_str(), render::renderModeName(mode));
+      RenderSession s(options(bs, mode, w, h));
+      deviceName = s.context().deviceName();
+      driver = s.context().driverInfo();
+      s.render(1);  // warm-up (the driver compiles pipelines at the first use)
+      s.render(1);
+      const eval::ImageRGBA one = s.image();
+      s.render(frames);
+      const eval::ImageRGBA many = s.image();
+      json r;
+      r["scene"] = bs.name;
+      r["mode"] = render::renderModeName(mode);
+      r["size"] = std::to_string(w) + "x" + std::to_string(h);
+      r["triangles"] = s.scene().triangleCount();
+      r["seconds_per_frame"] = median(s.frameSeconds());
+      r["frames"] = frames;
+      r["rmse_1_frame"] = eval::rmse(one, reference);
+      r["rel_mse_1_frame"] = eval::relMse(one, reference, 0.01);
+      r["rmse"] = eval::rmse(many, reference);
+      r["rel_mse"] = eval::relMse(many, reference, 0.01);
+      const auto mean = eval::meanRgb(many), refMean = eval::meanRgb(reference);
+      r["mean_rgb"] = {mean[0], mean[1], mean[2]};
+      r["reference_mean_rgb"] = {refMean[0], refMean[1], refMean[2]};
+      r["reference"] = {{"spp", refSpp}, {"file", refFile.string()}, {"seconds", refSeconds}};
+      rows.push_back(r);
+    }
+  }
+  // Speed at the size on the default scene: time per frame of each mode for the same view.
+  json speed = json::array();
+  unsigned sw = 0, sh = 0;
+  if (std::sscanf(speedSize.c_str(), "%ux%u", &sw, &sh) == 2 && sw && sh) {
+    for (auto mode : modes) {
+      std::fprintf(stderr, "bench: default scene, mode %s at %s ...\n", render::renderModeName(mode),
+                   speedSize.c_str());
+      RenderSession s(options(scenes.front(), mode, sw, sh));
+      s.render(1);  // warm-up
+      std::vector<double> t;
+      for (int r = 0; r < repeats; ++r) {
+        s.render(1);
+        t.push_back(s.frameSeconds().front());
+      }
+      speed.push_back({{"mode", render::renderModeName(mode)},
+                       {"size", speedSize},
+                       {"seconds_per_frame", median(t)},
+                       {"repeats", repeats}});
+    }
+  }
+  return {{"error", rows}, {"speed", speed}};
+}
+
 }  // namespace
 
 int runBenchCommand(const std::vector<std::string>& args) {
@@ -240,8 +341,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
   cli.add_option("--device", device, "Vulkan device name (substring)");
   cli.add_option("--size", size, "trace size WxH (default 512x512, 128x128 with --quick)");
   cli.add_option("--repeats", repeats, "repeats per measurement (median reported)");
-  std::vector<std::string> sections = {"pathtracer", "startup", "reload"};
-  cli.add_option("--only", sections, "sections to run: pathtracer startup reload");
+  std::vector<std::string> sections = {"pathtracer", "startup", "reload", "modes"};
+  cli.add_option("--only", sections, "sections to run: pathtracer startup reload modes");
   try {
     std::vector<std::string> reversed(args.rbegin(), args.rend());
     cli.parse(reversed);
@@ -310,6 +411,24 @@ int runBenchCommand(const std::vector<std::string>& args) {
       std::fprintf(stderr, "bench: hot reload ...\n");
       result["hot_reload"] = benchHotReload(quick ? 4 : 20, quick ? "64x64" : "128x128", work);
     }
+    if (has("modes")) {
+      std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};
+      for (const char* rel :
+           {"assets/gltf/DamagedHelmet/DamagedHelmet.gltf", "assets/gltf/vulkan-samples/teapot.gltf"}) {
+        const fs::path p = sharedDir() / rel;
+        if (fs::exists(p)) {
+          scenes.push_back({p.stem().string(), p.string(), std::nullopt});
+        } else {
+          std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n", p.string().c_str());
+        }
+      }
+      std::string deviceName, driver;
+      result["modes"] =
+          benchModes(scenes, quick ? 64 : 128, quick ? 64 : 128, quick ? 64 : 1024, quick ? 4 : 16,
+                     quick ? "320x180" : "1280x720", repeats, device, deviceName, driver);
+      result["device"] = deviceName;
+      result["driver"] = driver;
+    }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
@@ -331,6 +450,21 @@ int runBenchCommand(const std::vector<std::string>& args) {
                   r["rays_per_second"].get<double>(), r["primary_rays_per_second"].get<double>(),
                   r["bounce_rays_per_second"].get<double>(), r["shadow_rays_per_second"].get<double>(),
                   r["blas_build_ms"].get<double>());
+    }
+  }
+  if (result.contains("modes")) {
+    std::printf("%-14s %-12s %9s %12s %12s %12s %12s %12s\n", "scene", "mode", "size", "s/frame", "RMSE 1f",
+                "relMSE 1f", "RMSE Nf", "relMSE Nf");
+    for (const auto& r : result["modes"]["error"]) {
+      std::printf("%-14s %-12s %9s %12.4g %12.4g %12.4g %12.4g %12.4g\n",
+                  r["scene"].get<std::string>().c_str(), r["mode"].get<std::string>().c_str(),
+                  r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>(),
+                  r["rmse_1_frame"].get<double>(), r["rel_mse_1_frame"].get<double>(),
+                  r["rmse"].get<double>(), r["rel_mse"].get<double>());
+    }
+    for (const auto& r : result["modes"]["speed"]) {
+      std::printf("default scene %-12s at %s: %.3f s per frame\n", r["mode"].get<std::string>().c_str(),
+                  r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>());
     }
   }
   if (result.contains("startup")) std::printf("start-up: %s\n", result["startup"].dump().c_str());

@@ -180,9 +180,14 @@ class Progress {
   std::chrono::steady_clock::time_point last_{};
 };
 
+// Adds `samples` samples (hybrid modes: frames, which keep accumulating shadows and AO) to the current image.
 double timedRender(RenderSession& session, uint32_t samples) {
   const auto t0 = std::chrono::steady_clock::now();
-  session.pathTracer().render(samples);
+  if (auto* hybrid = session.hybrid()) {
+    hybrid->render(samples);
+  } else {
+    session.pathTracer().render(samples);
+  }
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -192,6 +197,8 @@ SessionOptions sessionOptions(const RenderOptions& ro) {
   so.settings = ro.settings;
   so.context.deviceName = ro.device;
   so.quiet = true;
+  so.mode = ro.mode;
+  so.hybrid = ro.hybrid;
   return so;
 }
 
@@ -227,7 +234,8 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
     return eval::readExr(file);
   }
   RenderOptions ro = base;
-  ro.settings.seed = 0x5eed0000u;  // never one of the runs' seeds
+  ro.settings.seed = 0x5eed0000u;           // never one of the runs' seeds
+  ro.mode = render::RenderMode::PathTrace;  // the reference is always the path tracer
   RenderSession session(sessionOptions(ro));
   session.pathTracer().resetAccumulation();
   double t = 0;
@@ -264,6 +272,10 @@ ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::
     session.pathTracer().setSettings(s);
     session.pathTracer().resetAccumulation();
     session.pathTracer().resetCounters();
+    if (auto* hybrid = session.hybrid()) {
+      hybrid->setSettings(s);
+      hybrid->resetAccumulation();
+    }
     const std::string label = "[" + std::to_string(index + 1) + "/" + std::to_string(count) + "] " +
                               cfg.name + " run " + std::to_string(run + 1);
     double t = 0;
@@ -444,10 +456,10 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
   md << "- Errors are averaged over the runs; variance is the mean per-pixel variance between runs (the "
         "noise "
         "part of the MSE), bias^2 ~ MSE - variance (when the reference is itself a render, its own noise is "
-        "part of this bias^2 floor). With the Sobol sampler the seeds of the runs are not independent "
-        "randomisations (the seed shifts every dimension by the same constant), so its variance column "
-        "underestimates the noise; use `--sampler pcg` where the variance matters. Efficiency = 1 / (MSE x "
-        "time).\n";
+        "part of this bias^2 floor). Each run's seed gives every Sobol dimension its own random shift "
+        "(Cranley-Patterson rotation), so runs are independent randomisations for both samplers. Hybrid "
+        "modes (`--mode hybrid|reflections`) count frames as spp; their bias^2 is what the approximation "
+        "costs against the path-traced reference. Efficiency = 1 / (MSE x time).\n";
   std::vector<double> finals;
   for (const auto& r : results)
     if (!r.checkpoints.empty()) finals.push_back(mean(r.checkpoints.back().relMse));

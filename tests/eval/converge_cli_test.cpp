@@ -7,7 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -78,4 +81,33 @@ TEST(ConvergeCli, BadConfigurationsAreOneLineErrors) {
   }
   const Result both = run("--reference x.exr --reference-spp 4 --out " + dir.string());
   EXPECT_EQ(both.code, 2) << both.output;
+}
+
+// Hybrid modes are configurations like any other: compared with the path-traced reference at equal time. With
+// hard shadows and no AO the hybrid image is deterministic (no variance between runs), unlike the path
+// tracer's, and its error is the approximation's bias.
+TEST(ConvergeCli, HybridModeConfigurationsRunTheHybridRenderer) {
+  const auto dir = tempDir("modes");
+  const Result r =
+      run("--size 16x16 --seconds 0.3 --runs 2 --reference-spp 32 --config 'pt:' --config 'hy:--mode hybrid "
+          "--ao-rays 0 --sun-angle 0' --out " +
+          dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream csv(dir / "converge.csv");
+  std::string line;
+  std::getline(
+      csv, line);  // header: config,flags,spp,seconds,seconds_min,seconds_max,runs,mse,rmse,relmse,variance
+  std::map<std::string, std::vector<std::string>> last;
+  while (std::getline(csv, line)) {
+    // flags are quoted and contain no commas here
+    std::vector<std::string> cols;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cols.push_back(c);
+    ASSERT_GE(cols.size(), 11u) << line;
+    last[cols[0]] = cols;
+  }
+  ASSERT_TRUE(last.count("pt") && last.count("hy")) << r.output;
+  EXPECT_GT(std::stod(last["pt"][10]), 0.0) << "the path tracer's runs differ";
+  EXPECT_LT(std::stod(last["hy"][10]), 1e-10) << "deterministic hybrid frames are identical between runs";
+  EXPECT_GT(std::stod(last["hy"][7]), 0.0) << "the hybrid image is not the reference";
 }
