@@ -80,8 +80,27 @@ void validateGlbContainer(const std::filesystem::path& path, const std::vector<u
 }
 
 // Image callback for tinygltf: decode anything stb understands to RGBA8; leave the rest empty with a warning.
-bool decodeImageRgba8(tinygltf::Image* image, const int imageIndex, std::string* /*err*/, std::string* warn,
-                      int /*reqWidth*/, int /*reqHeight*/, const unsigned char* bytes, int size, void*) {
+// `user` is the model being parsed: tinygltf 2.7 passes an image's bufferView to this callback without
+// checking it against its buffer, so the callback checks the range before anything reads it.
+bool decodeImageRgba8(tinygltf::Image* image, const int imageIndex, std::string* err, std::string* warn,
+                      int /*reqWidth*/, int /*reqHeight*/, const unsigned char* bytes, int size, void* user) {
+  if (image->bufferView >= 0 && user) {
+    const auto* model = static_cast<const tinygltf::Model*>(user);
+    const auto& views = model->bufferViews;
+    const size_t viewIndex = static_cast<size_t>(image->bufferView);
+    const bool viewOk = viewIndex < views.size() && views[viewIndex].buffer >= 0 &&
+                        static_cast<size_t>(views[viewIndex].buffer) < model->buffers.size();
+    const size_t available =
+        viewOk ? model->buffers[static_cast<size_t>(views[viewIndex].buffer)].data.size() : 0;
+    if (!viewOk || views[viewIndex].byteOffset > available ||
+        views[viewIndex].byteLength > available - views[viewIndex].byteOffset) {
+      if (err) {
+        *err += "image " + std::to_string(imageIndex) + ": bufferView " + std::to_string(image->bufferView) +
+                " runs past the end of its buffer (" + std::to_string(available) + " bytes)";
+      }
+      return false;
+    }
+  }
   image->width = image->height = 0;
   image->component = 4;
   image->bits = 8;
@@ -116,8 +135,8 @@ tinygltf::Model parseGltfFile(const std::filesystem::path& path, std::vector<std
     fail(path, "file too large");
 
   tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(decodeImageRgba8, nullptr);
   tinygltf::Model model;
+  parser.SetImageLoader(decodeImageRgba8, &model);
   std::string err, warn;
   const std::filesystem::path parent = path.parent_path();
   const std::string baseDir = parent.empty() ? std::string(".") : parent.string();

@@ -114,6 +114,22 @@ void appendU32(std::vector<uint8_t>& bytes, uint32_t value) {
   for (int i = 0; i < 4; ++i) bytes.push_back(uint8_t(value >> (8 * i)));
 }
 
+// An embedded image whose bufferView claims more bytes than its buffer holds: refused before the image
+// decoder reads past the buffer (tinygltf itself does not check it).
+TEST(BadInput, ImageBufferViewPastItsBuffer) {
+  test::SyntheticGltf g;
+  const std::vector<uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  const int view = g.addBufferView(png);
+  g.addSingleMeshNode({});
+  g.json["images"] = {{{"bufferView", view}, {"mimeType", "image/png"}}};
+  g.json["bufferViews"][view]["byteLength"] = 1 << 20;
+  g.json["bufferViews"][view]["byteOffset"] = 0;
+  expectRefused(g.write("image_view_overrun"), "runs past the end of its buffer");
+  g.json["bufferViews"][view]["byteLength"] = 8;
+  g.json["bufferViews"][view]["byteOffset"] = 1 << 30;
+  expectRefused(g.write("image_view_offset"), "runs past the end of its buffer");
+}
+
 TEST(BadInput, BrokenGlbContainers) {
   expectRefused(test::writeBinaryFile("short.glb", {'g', 'l', 'T', 'F', 2, 0}), "shorter");
   {
