@@ -88,6 +88,7 @@ int runShadersCommand(const std::vector<std::string>& args) {
       auto s = lib->compile({f, std::nullopt, defs});
       j["stage"] = stageName(s->stage);
       j["ok"] = true;
+      j["status"] = "ok";
       j["ms"] = s->compileMs;
       j["cache"] = s->cacheHit ? "hit" : "miss";
       j["spirvBytes"] = s->spirv.size() * 4;
@@ -118,6 +119,7 @@ int runShadersCommand(const std::vector<std::string>& args) {
       auto st = stageFromPath(f);
       j["stage"] = st ? stageName(*st) : "?";
       j["ok"] = false;
+      j["status"] = "error";
       j["diagnostics"] = nlohmann::json::array();
       for (const auto& d : e.diagnostics) {
         j["diagnostics"].push_back(

@@ -1,5 +1,7 @@
 #include "render/hot_reload.h"
 
+#include <map>
+
 namespace wb::render {
 namespace {
 
@@ -60,6 +62,7 @@ void HotReload::run() {
     p.event.ok = result->ok;
     p.event.error = result->error;
     auto t0 = std::chrono::steady_clock::now();
+    std::map<shader::ShaderLibrary::ProgramId, std::string> pipelineErrors;
     for (size_t i = 0; i < result->programs.size(); ++i) {
       Target target;
       {
@@ -72,9 +75,12 @@ void HotReload::run() {
         p.prepared.emplace_back(result->programs[i], target.prepare(result->builds[i]));
         p.event.pipelinesRebuilt.push_back(target.name);
       } catch (const std::exception& e) {
+        // The program compiled but its pipeline did not build: the last good pipeline stays, and the error is
+        // current (banner, Shaders panel) until a later build of this program succeeds.
+        const std::string message = target.name + ": pipeline creation failed: " + e.what();
         p.event.ok = false;
-        p.event.error +=
-            (p.event.error.empty() ? "" : "\n") + target.name + ": pipeline creation failed: " + e.what();
+        p.event.error += (p.event.error.empty() ? "" : "\n") + message;
+        pipelineErrors[result->programs[i]] = message;
       }
     }
     p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
@@ -84,6 +90,7 @@ void HotReload::run() {
         errors_[id] = result->error;
       }
       for (const auto& [id, ptr] : p.prepared) errors_.erase(id);
+      for (const auto& [id, message] : pipelineErrors) errors_[id] = message;
       pending_.push_back(std::move(p));
     }
   }

@@ -180,6 +180,9 @@ std::optional<std::vector<fs::path>> DiskCache::loadIndex(const Hash128& variant
     fs::remove(indexPath(variant), ec);
     return std::nullopt;
   }
+  std::error_code ec;
+  fs::last_write_time(indexPath(variant), fs::file_time_type::clock::now(),
+                      ec);  // LRU for pruning, as load()
   return files;
 }
 

@@ -93,7 +93,7 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx,
     ci.pColorBlendState = &blend;
     ci.pDynamicState = &dynamic;
     ci.layout = layout;
-    WB_VK(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_));
+    WB_VK(vkCreateGraphicsPipelines(ctx.device(), ctx.pipelineCache(), 1, &ci, nullptr, &pipeline_));
   } catch (...) {
     cleanup();
     throw;

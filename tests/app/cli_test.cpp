@@ -20,9 +20,10 @@ struct CommandResult {
   std::string output;  // stdout + stderr
 };
 
-CommandResult run(const std::string& args) {
+// Any shell command line (stdout + stderr captured unless it redirects them itself).
+CommandResult shell(const std::string& line, bool captureStderr = true) {
   CommandResult r;
-  std::string cmd = std::string(WB_WORKBENCH_BIN) + " " + args + " 2>&1";
+  std::string cmd = captureStderr ? line + " 2>&1" : line;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf;
@@ -31,6 +32,10 @@ CommandResult run(const std::string& args) {
   int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return r;
+}
+
+CommandResult run(const std::string& args) {
+  return shell(std::string(WB_WORKBENCH_BIN) + " " + args);
 }
 
 fs::path tempDir() {
@@ -125,4 +130,101 @@ TEST(Cli, EveryMalformedGltfIsRefusedOrRenderedWithoutCrashing) {
     }
   }
   EXPECT_GE(files, 10);
+}
+
+namespace {
+
+nlohmann::json readJsonFile(const fs::path& p) {
+  std::ifstream f(p);
+  return nlohmann::json::parse(f);
+}
+
+size_t filesUnder(const fs::path& dir) {
+  size_t n = 0;
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return 0;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); it != fs::recursive_directory_iterator(); ++it) {
+    n += it->is_regular_file(ec);
+  }
+  return n;
+}
+
+}  // namespace
+
+// A warm start of the default scene performs zero glslang compiles, and Mesa's own shader cache goes under
+// the shader cache unless the user set MESA_SHADER_CACHE_DIR.
+TEST(Cli, WarmStartOfTheDefaultSceneCompilesNothing) {
+  const auto dir = tempDir() / "warm";
+  fs::remove_all(dir);
+  const std::string env =
+      "env -u MESA_SHADER_CACHE_DIR WB_SHADER_CACHE_DIR=" + (dir / "cache").string() + " ";
+  const std::string args = " render --size 16x16 --spp 1 --out " + (dir / "o.png").string() + " --stats ";
+  auto cold = shell(env + WB_WORKBENCH_BIN + args + (dir / "cold.json").string());
+  ASSERT_EQ(cold.code, 0) << cold.output;
+  auto warm = shell(env + WB_WORKBENCH_BIN + args + (dir / "warm.json").string());
+  ASSERT_EQ(warm.code, 0) << warm.output;
+  const auto c = readJsonFile(dir / "cold.json")["shader_cache"],
+             w = readJsonFile(dir / "warm.json")["shader_cache"];
+  EXPECT_GT(c["compiles"].get<int>(), 0) << c.dump();
+  EXPECT_EQ(w["compiles"].get<int>(), 0) << w.dump();
+  EXPECT_GT(w["hits"].get<int>(), 0) << w.dump();
+  EXPECT_GT(filesUnder(dir / "cache" / "mesa"), 0u) << "Mesa's disk cache is not under the shader cache";
+  // A user's MESA_SHADER_CACHE_DIR is kept.
+  const fs::path mine = dir / "users_mesa_cache";
+  auto user = shell("env MESA_SHADER_CACHE_DIR=" + mine.string() + " WB_SHADER_CACHE_DIR=" +
+                    (dir / "cache2").string() + " " + WB_WORKBENCH_BIN + args + (dir / "user.json").string());
+  ASSERT_EQ(user.code, 0) << user.output;
+  EXPECT_GT(filesUnder(mine), 0u);
+  EXPECT_EQ(filesUnder(dir / "cache2" / "mesa"), 0u);
+}
+
+// `shaders --json`: per file the stage, status, compile ms, cache hit or miss and the reflected bindings; a
+// define is a separate cache entry; a broken file is status "error" with file:line and a non-zero exit.
+TEST(Cli, ShadersJsonReportsEachFile) {
+  const auto dir = tempDir() / "shaders_json";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string env = "WB_SHADER_CACHE_DIR=" + (dir / "cache").string() + " ";
+  const std::string target = (fs::path(WB_SOURCE_DIR) / "shaders/pathtracer").string();
+  auto shaders = [&](const std::string& extra, const std::string& out) {
+    return shell("env " + env + WB_WORKBENCH_BIN + " shaders --json " + extra + " " + target + " > " +
+                 (dir / out).string());
+  };
+  ASSERT_EQ(shaders("", "first.json").code, 0);
+  ASSERT_EQ(shaders("", "second.json").code, 0);
+  ASSERT_EQ(shaders("--define WB_TEST_ONLY=1", "defined.json").code, 0);
+  const auto first = readJsonFile(dir / "first.json"), second = readJsonFile(dir / "second.json");
+  const auto defined = readJsonFile(dir / "defined.json");
+  ASSERT_GE(first.size(), 5u);  // raygen, 2 miss, closest-hit, any-hit
+  bool sawClosestHit = false;
+  for (size_t i = 0; i < first.size(); ++i) {
+    const auto& f = first[i];
+    EXPECT_EQ(f["status"], "ok") << f.dump();
+    EXPECT_TRUE(f["ms"].is_number());
+    EXPECT_EQ(f["cache"], "miss") << f["file"];
+    EXPECT_EQ(second[i]["cache"], "hit") << second[i]["file"];
+    EXPECT_EQ(defined[i]["cache"], "miss") << "a define is part of the key: " << defined[i]["file"];
+    EXPECT_TRUE(f["bindings"].is_array());
+    if (f["stage"] == "rchit") {
+      sawClosestHit = true;
+      bool tlas = false;
+      for (const auto& b : f["bindings"]) tlas |= b["type"] == "acceleration-structure";
+      EXPECT_TRUE(tlas) << "the closest-hit traces shadow rays: " << f["bindings"].dump();
+    }
+  }
+  EXPECT_TRUE(sawClosestHit);
+  std::ofstream(dir / "bad.rgen")
+      << "#version 460\n#extension GL_EXT_ray_tracing : require\nvoid main() { nope(); }\n";
+  auto bad = shell("env " + env + WB_WORKBENCH_BIN + " shaders --json " + (dir / "bad.rgen").string() +
+                       " > " + (dir / "bad.json").string() + " 2> " + (dir / "bad.err").string(),
+                   false);
+  EXPECT_EQ(bad.code, 1);
+  const auto b = readJsonFile(dir / "bad.json");
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(b[0]["status"], "error");
+  EXPECT_EQ(b[0]["stage"], "rgen");
+  EXPECT_EQ(b[0]["diagnostics"][0]["line"], 3);
+  std::ifstream err(dir / "bad.err");
+  const std::string text((std::istreambuf_iterator<char>(err)), {});
+  EXPECT_NE(text.find("bad.rgen:3: error"), std::string::npos) << text;
 }

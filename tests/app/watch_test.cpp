@@ -81,6 +81,15 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
   EXPECT_TRUE(lines[0]["ok"].get<bool>()) << lines[0].dump();
   EXPECT_EQ(lines[0]["pipelines_rebuilt"], nlohmann::json::array({"pathtracer"}));
   EXPECT_TRUE(lines[0]["edit_to_first_frame_ms"].is_number());
+  // The rest of the log line's contract: what changed, what was recompiled, and the times.
+  ASSERT_EQ(lines[0]["files_changed"].size(), 1u) << lines[0].dump();
+  EXPECT_NE(lines[0]["files_changed"][0].get<std::string>().find("closesthit.rchit"), std::string::npos);
+  ASSERT_EQ(lines[0]["stages_recompiled"].size(), 1u)
+      << "only the edited stage recompiles: " << lines[0].dump();
+  EXPECT_NE(lines[0]["stages_recompiled"][0].get<std::string>().find("closesthit.rchit"), std::string::npos);
+  EXPECT_GT(lines[0]["compile_ms"].get<double>(), 0.0);
+  EXPECT_GT(lines[0]["pipeline_ms"].get<double>(), 0.0);
+  EXPECT_GE(lines[0]["edit_to_new_pipeline_ms"].get<double>(), 0.0);
 
   // A syntax error on line 3: reported with file:line, the old pipeline keeps rendering.
   std::string broken = good;

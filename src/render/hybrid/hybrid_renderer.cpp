@@ -273,7 +273,7 @@ std::shared_ptr<void> HybridRenderer::preparePipeline(
       ci.stage.pName = "main";
       ci.layout = p->layout->handle();
       const VkResult r =
-          vkCreateComputePipelines(ctx_.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p->compute);
+          vkCreateComputePipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &p->compute);
       vkDestroyShaderModule(ctx_.device(), module, nullptr);
       WB_VK(r);
       break;
