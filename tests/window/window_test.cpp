@@ -314,3 +314,80 @@ TEST(Window, RunningErrorAgainstAReferenceAndTheNoiseEstimate) {
   EXPECT_TRUE(b["history"][0]["estimated"].get<bool>());
   EXPECT_LT(b["history"][3]["rmse"].get<double>(), b["history"][0]["rmse"].get<double>());
 }
+
+namespace {
+
+int pngWidth(const fs::path& png, int* height = nullptr) {
+  int w = 0, h = 0, n = 0;
+  if (!stbi_info(png.c_str(), &w, &h, &n)) return -1;
+  if (height) *height = h;
+  return w;
+}
+
+// Mean absolute difference of two same-size screenshots over the image area (right of the panel).
+double imageAreaDifference(const fs::path& a, const fs::path& b, int panelWidth) {
+  int w = 0, h = 0, n = 0, w2 = 0, h2 = 0;
+  unsigned char* pa = stbi_load(a.c_str(), &w, &h, &n, 4);
+  unsigned char* pb = stbi_load(b.c_str(), &w2, &h2, &n, 4);
+  double sum = 0;
+  size_t count = 0;
+  if (pa && pb && w == w2 && h == h2) {
+    for (int y = 0; y < h - 24; ++y) {
+      for (int x = panelWidth + 4; x < w; ++x) {
+        for (int c = 0; c < 3; ++c)
+          sum += std::abs(int(pa[4 * (y * w + x) + c]) - int(pb[4 * (y * w + x) + c]));
+        ++count;
+      }
+    }
+  }
+  if (pa) stbi_image_free(pa);
+  if (pb) stbi_image_free(pb);
+  return count ? sum / double(3 * count) : -1;
+}
+
+}  // namespace
+
+// Saving (the F12 key and the button run the same request), a debug view, resizing, and the panel layout
+// file only when asked for.
+TEST(Window, SaveDebugViewResizeAndImguiIni) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("save");
+  const auto script = dir / "script.txt";
+  writeFile(script, "wait_samples 1 60\nsave " + (dir / "saved").string() +
+                        "\nset view albedo\nframes 2\nscreenshot " + (dir / "albedo.png").string() +
+                        "\nframes 1\nset view beauty\nframes 2\nscreenshot " + (dir / "beauty.png").string() +
+                        "\nframes 1\nresize 400 300\nframes 3\nstats " + (dir / "resized.json").string() +
+                        "\nscreenshot " + (dir / "resized.png").string() + "\n");
+  auto r = runWindow("--imgui-ini " + (dir / "layout.ini").string() + " --script " + script.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  // PNG (tonemapped), EXR (linear) and the parameters beside them.
+  EXPECT_GT(pngWidth(dir / "saved.png"), 0);
+  EXPECT_TRUE(fs::exists(dir / "saved.exr"));
+  const auto params = readJson(dir / "saved.json");
+  EXPECT_EQ(params["max_bounces"], 8);
+  EXPECT_EQ(params["mode"], "pathtrace");
+  EXPECT_TRUE(params.contains("camera"));
+  // The albedo view shows something else than the beauty image.
+  EXPECT_GT(imageAreaDifference(dir / "albedo.png", dir / "beauty.png", 144), 5.0);
+  // The window was resized: the swapchain, the screenshot and the trace size follow.
+  int h = 0;
+  EXPECT_EQ(pngWidth(dir / "resized.png", &h), 400);
+  EXPECT_EQ(h, 300);
+  const auto j = readJson(dir / "resized.json");
+  EXPECT_EQ(j["window_width"], 400);
+  EXPECT_EQ(j["window_height"], 300);
+  EXPECT_EQ(j["target_height"], 150);  // half the view (resolution scale 0.5)
+  EXPECT_TRUE(fs::exists(dir / "layout.ini")) << "--imgui-ini names where the layout is kept";
+}
+
+TEST(Window, ModeFlagStartsInThatMode) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("modeflag");
+  auto r =
+      runWindow("--mode reflections --reflection-depth 3 --frames 4 --stats " + (dir / "s.json").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = readJson(dir / "s.json");
+  EXPECT_EQ(j["mode"], "reflections");
+  EXPECT_EQ(j["parameters"]["hybrid"]["reflection_depth"], 3);
+  EXPECT_GE(j["samples"].get<int>(), 3);
+}

@@ -82,7 +82,8 @@ std::unique_ptr<PreparedDisplayPipeline> DisplayPass::prepare(
   ci.pDynamicState = &dyn;
   ci.layout = prepared->layout->handle();
   ci.renderPass = renderPass_;
-  VkResult r = vkCreateGraphicsPipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &prepared->pipeline);
+  VkResult r =
+      vkCreateGraphicsPipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &prepared->pipeline);
   for (auto m : modules) vkDestroyShaderModule(ctx_.device(), m, nullptr);
   WB_VK(r);
   return prepared;

@@ -26,7 +26,8 @@ void applyStyle() {
 
 }  // namespace
 
-GuiLayer::GuiLayer(vk::Context& ctx, GLFWwindow* window, const vk::Swapchain& swapchain) : ctx_(ctx) {
+GuiLayer::GuiLayer(vk::Context& ctx, GLFWwindow* window, const vk::Swapchain& swapchain, std::string iniPath)
+    : ctx_(ctx), iniPath_(std::move(iniPath)) {
   VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 64}};
   VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   pi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
@@ -38,7 +39,8 @@ GuiLayer::GuiLayer(vk::Context& ctx, GLFWwindow* window, const vk::Swapchain& sw
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;  // no imgui.ini next to the user's files
+  // No imgui.ini next to the user's files unless asked for (--imgui-ini keeps the panel layout there).
+  io.IniFilename = iniPath_.empty() ? nullptr : iniPath_.c_str();
   io.LogFilename = nullptr;
   applyStyle();
   ImGui_ImplGlfw_InitForVulkan(window, true);

@@ -1,5 +1,8 @@
-// Dear ImGui on GLFW + Vulkan, drawing into the swapchain's render pass. No imgui.ini is read or written.
+// Dear ImGui on GLFW + Vulkan, drawing into the swapchain's render pass. No imgui.ini is read or written
+// unless the user names one (--imgui-ini).
 #pragma once
+#include <string>
+
 #include <vulkan/vulkan.h>
 
 struct GLFWwindow;
@@ -13,7 +16,7 @@ namespace wb::app {
 
 class GuiLayer {
  public:
-  GuiLayer(vk::Context& ctx, GLFWwindow* window, const vk::Swapchain& swapchain);
+  GuiLayer(vk::Context& ctx, GLFWwindow* window, const vk::Swapchain& swapchain, std::string iniPath = {});
   ~GuiLayer();
   GuiLayer(const GuiLayer&) = delete;
   GuiLayer& operator=(const GuiLayer&) = delete;
@@ -25,6 +28,7 @@ class GuiLayer {
  private:
   vk::Context& ctx_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  std::string iniPath_;  // ImGui keeps a pointer to it
 };
 
 }  // namespace wb::app

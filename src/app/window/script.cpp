@@ -10,7 +10,7 @@ namespace {
 
 const std::set<std::string> kCommands = {"frames", "set",    "screenshot",  "save",         "stats",
                                          "copy",   "orbit",  "wait_reload", "wait_samples", "reset_camera",
-                                         "reset",  "reload", "quit"};
+                                         "reset",  "reload", "quit",        "resize"};
 
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;
@@ -43,7 +43,7 @@ void Script::addLine(const std::string& line, const std::string& where) {
     throw std::runtime_error(where + ": unknown command '" + c.words[0] + "'");
   const std::string& cmd = c.words[0];
   const size_t need =
-      cmd == "set" || cmd == "copy" || cmd == "orbit" ? 3
+      cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
       : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" || cmd == "wait_samples"
           ? 2
           : 1;
@@ -95,6 +95,11 @@ bool Script::step(ScriptHost& host) {
           host.scriptStats(w[1]);
         } else if (cmd == "copy") {
           std::filesystem::copy_file(w[1], w[2], std::filesystem::copy_options::overwrite_existing);
+        } else if (cmd == "resize") {
+          const double rw = numberArg(w, 1, 0, c.where), rh = numberArg(w, 2, 0, c.where);
+          if (rw < 64 || rh < 64 || rw > 16384 || rh > 16384)
+            throw std::runtime_error("resize: expected W H of 64..16384");
+          host.scriptResize(int(rw), int(rh));
         } else if (cmd == "orbit") {
           host.scriptOrbit(float(numberArg(w, 1, 0, c.where)), float(numberArg(w, 2, 0, c.where)));
         } else {

@@ -8,6 +8,7 @@
 //   wait_reload [SECONDS]    render until the next shader reload is applied (default timeout 20 s)
 //   wait_samples N [SECONDS] render until N samples are accumulated (default timeout 60 s)
 //   orbit DX DY              drag the orbit camera by DX, DY pixels
+//   resize W H               resize the window (the swapchain and the trace size follow)
 //   reset_camera | reset | reload | quit
 // Blank lines and lines starting with # are ignored.
 #pragma once
@@ -27,6 +28,7 @@ class ScriptHost {
   virtual void scriptSave(const std::string& base) = 0;
   virtual void scriptStats(const std::string& path) = 0;
   virtual void scriptOrbit(float dx, float dy) = 0;
+  virtual void scriptResize(int width, int height) = 0;
   virtual void scriptCommand(const std::string& name) = 0;  // reset_camera, reset, reload, quit
   virtual size_t reloadCount() const = 0;
   virtual uint32_t samples() const = 0;

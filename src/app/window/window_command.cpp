@@ -42,14 +42,14 @@ struct WindowOptions {
   std::string windowSize = "1280x720";
   uint32_t windowWidth = 1280, windowHeight = 720;
   uint64_t frames = 0;
-  std::string screenshot, statsPath, scriptPath, reference;
+  std::string screenshot, statsPath, scriptPath, reference, imguiIni;
   std::vector<std::string> sets;
   float scale = 0.5f;
   bool noVsync = false;
 };
 
 const std::vector<std::string> kWindowValueFlags = {"--frames", "--screenshot", "--stats", "--script",
-                                                    "--set",    "--window",     "--scale"};
+                                                    "--set",    "--window",     "--scale", "--imgui-ini"};
 const std::vector<std::string> kWindowBoolFlags = {"--no-vsync"};
 
 float sceneRadius(const scene::Scene& s) {
@@ -83,6 +83,7 @@ class WorkbenchWindow : public ScriptHost {
     if (camera_.update(in)) cameraChanged_ = true;
   }
   void scriptCommand(const std::string& name) override;
+  void scriptResize(int width, int height) override { glfwSetWindowSize(window_, width, height); }
   size_t reloadCount() const override { return hot_->history().size(); }
   uint32_t samples() const override {
     if (activeHybrid()) return activeHybrid()->framesAccumulated();
@@ -196,7 +197,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   glfwGetFramebufferSize(window_, &fbw, &fbh);
   swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
   display_ = std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass());
-  gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_);
+  gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
   progressive_ = std::make_unique<ProgressiveTracer>(ctx, session_->pathTracer());
   capture_ = std::make_unique<SwapchainCapture>(ctx);
 
@@ -981,6 +982,7 @@ int runWindowCommand(const std::vector<std::string>& args) {
                  "converged .exr of the same view: the Stats panel shows the running error against it");
   cli.add_option("--script", o.scriptPath, "run scripted commands (see src/app/window/script.h)");
   cli.add_option("--set", o.sets, std::string("NAME=VALUE setting at start; names: ") + settingNamesHelp());
+  cli.add_option("--imgui-ini", o.imguiIni, "read and write the panel layout in this file (default: none)");
   cli.add_flag("--no-vsync", o.noVsync, "present with MAILBOX/IMMEDIATE instead of FIFO");
   try {
     std::vector<std::string> reversed(args.rbegin(), args.rend());
