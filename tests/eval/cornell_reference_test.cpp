@@ -39,9 +39,11 @@ TEST(CornellReference, AgreesWithCyclesWithinNoise) {
     std::printf("channel %d: ours %.5f (se %.5f, %.3f%%) cycles %.5f: %+.3f%% (%+.1f se)\n", c, m[c], se,
                 100.0 * se / m[c], r[c], 100.0 * rel, (m[c] - r[c]) / se);
     // Measured (8 x 384 spp, PCG): se ~0.03% per channel; ours is +0.08..+0.10% brighter than Cycles (3-4 se:
-    // a real but tiny residual between the two renderers, unexplained). The README's bound for a correct
-    // render is 1%; we hold 0.3% (~10 se, 3x the residual): a back-face emitter (+3%) or a lost bounce fails
-    // by far.
+    // a real but tiny residual between the two renderers). Investigated: it is not the image border (pixel
+    // filter), it is the same in every quarter of the image within noise and in every channel, so it is no
+    // colour, emitter-side or bounce-count effect; what remains is how each renderer offsets its rays near
+    // the box's edges, which we cannot inspect in Cycles. The README's bound for a correct render is 1%; we
+    // hold 0.3% (~10 se, 3x the residual): a back-face emitter (+3%) or a lost bounce fails by far.
     EXPECT_LT(std::abs(rel), 0.003) << "channel " << c;
   }
   // Per-pixel structure: the Cycles reference's own noise (README: relMSE 1.4e-5 per 256x256 pixel, i.e.
@@ -56,6 +58,10 @@ TEST(CornellReference, AgreesWithCyclesWithinNoise) {
   std::printf("per-pixel test at 16x16: %s\n", t.summary().c_str());
   EXPECT_TRUE(t.pixelTestPass) << t.summary();
   EXPECT_TRUE(t.chiSquarePass) << t.summary();
-  std::printf("relMSE at 16x16: %.3g\n", eval::relMse(ours.mean, reference));
+  // relMSE after the box downsample (measured 2.2e-5: noise plus the 0.1% residual's 1e-6); a back-face
+  // emitter (+3% overall, far more near the light) or a lost bounce is above 1e-3.
+  const double relMse = eval::relMse(ours.mean, reference);
+  std::printf("relMSE at 16x16: %.3g\n", relMse);
+  EXPECT_LT(relMse, 1e-4);
   expectNoValidationErrors(*session);
 }
