@@ -257,7 +257,8 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
         bs.path.empty() ? "generated"
                         : std::to_string(fs::last_write_time(bs.path, ec).time_since_epoch().count());
     const std::string key = "modes-reference v1 " + bs.name + " " + bs.path + " " + mtime + " " +
-                            std::to_string(w) + "x" + std::to_string(h) + " spp " + std::to_string(refSpp);
+                            std::to_string(w) + "x" + std::to_string(h) + " spp " + std::to_string(refSpp) +
+                            " shaders " + shaderSourceFingerprint();
     uint64_t hash = 1469598103934665603ull;
     for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
     char hex[17];

@@ -222,7 +222,7 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(scene, ec);
   std::string key = "scene " + canonical.string() + " mtime " + mtimeOf(scene) + " " + settingsKey(s) +
-                    " spp " + std::to_string(spp) + " v1";
+                    " spp " + std::to_string(spp) + " shaders " + shaderSourceFingerprint() + " v2";
   if (!s.envPath.empty()) key += " envmtime " + mtimeOf(s.envPath);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));

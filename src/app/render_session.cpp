@@ -1,6 +1,10 @@
 #include "app/render_session.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 
 #include "common/paths.h"
 #include "sampling/environment.h"
@@ -34,6 +38,30 @@ scene::SceneFeatures featuresFor(const scene::Scene& scene, const render::Render
                    : black                   ? scene::EnvironmentKind::None
                                              : scene::EnvironmentKind::Constant;
   return scene::analyzeFeatures(scene, env);
+}
+
+std::string shaderSourceFingerprint() {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(shaderDir(), ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_regular_file(ec)) files.push_back(it->path());
+  }
+  std::sort(files.begin(), files.end());
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  auto mix = [&h](const char* data, size_t n) {
+    for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ull;
+  };
+  for (const auto& f : files) {
+    const std::string rel = std::filesystem::relative(f, shaderDir(), ec).string();
+    mix(rel.data(), rel.size() + 1);
+    std::ifstream in(f, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    mix(text.data(), text.size());
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
 }
 
 RenderSession::RenderSession(const SessionOptions& options) {

@@ -30,6 +30,10 @@ render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settin
 // The shader specialisation for a scene and the environment the settings ask for (generic with --generic).
 scene::SceneFeatures featuresFor(const scene::Scene& scene, const render::RenderSettings& settings);
 
+// A hash of every file under shaders/ (names and contents): part of the key of anything cached from a render
+// (the references of `converge` and `bench`), so a renderer change never reuses a stale image.
+std::string shaderSourceFingerprint();
+
 class RenderSession {
  public:
   explicit RenderSession(const SessionOptions& options);

@@ -111,3 +111,39 @@ TEST(ConvergeCli, HybridModeConfigurationsRunTheHybridRenderer) {
   EXPECT_LT(std::stod(last["hy"][10]), 1e-10) << "deterministic hybrid frames are identical between runs";
   EXPECT_GT(std::stod(last["hy"][7]), 0.0) << "the hybrid image is not the reference";
 }
+
+// Without --reference the command renders a reference once and caches it; the key includes the shaders'
+// sources, so an edit of any shader renders a new one instead of comparing against a stale image.
+TEST(ConvergeCli, CachedReferenceIsReusedUntilAShaderChanges) {
+  const auto root = tempDir("root");
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const std::string env =
+      "WB_ROOT=" + root.string() + " WB_SHADER_CACHE_DIR=" + (root / "cache").string() + " ";
+  auto converge = [&](const std::string& out) {
+    Result r;
+    const std::string cmd = "env " + env + WB_WORKBENCH_BIN +
+                            " converge --size 8x8 --seconds 0.05 --runs 1 " +
+                            "--reference-spp 4 --config 'a:' --out " + (root / out).string() + " 2>&1";
+    FILE* p = popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    size_t n;
+    while (p && (n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
+    const int status = p ? pclose(p) : -1;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream md(root / out / "converge.md");
+    return std::make_pair(
+        r, std::string((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>()));
+  };
+  auto [r1, md1] = converge("one");
+  ASSERT_EQ(r1.code, 0) << r1.output;
+  EXPECT_NE(md1.find("rendered now by this command and cached"), std::string::npos) << md1;
+  auto [r2, md2] = converge("two");
+  ASSERT_EQ(r2.code, 0) << r2.output;
+  EXPECT_NE(md2.find("cached render of the same scene"), std::string::npos) << md2;
+  std::ofstream(root / "shaders/pathtracer/closesthit.rchit", std::ios::app) << "\n// an edit\n";
+  auto [r3, md3] = converge("three");
+  ASSERT_EQ(r3.code, 0) << r3.output;
+  EXPECT_NE(md3.find("rendered now by this command and cached"), std::string::npos) << md3;
+}
