@@ -199,7 +199,7 @@ struct HybridUniforms {
   float envRotation;  // radians about +Y
   uint envMapPresent;
   uint seed;
-  float pad0;
+  float reflectionMinMetallic;   // ... and metallic at least this (0 = smooth dielectrics too)
   float pad1;
   float pad2;
 };

@@ -108,7 +108,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
                        {"ao_rays", h.aoRays},
                        {"temporal", h.temporal},
                        {"reflection_depth", h.reflectionDepth},
-                       {"reflection_max_roughness", h.reflectionMaxRoughness}};
+                       {"reflection_max_roughness", h.reflectionMaxRoughness},
+                       {"reflection_min_metallic", h.reflectionMinMetallic}};
       }
       if (referenceImage) {
         eval::requireSameSize(image, *referenceImage, "--reference");

@@ -53,6 +53,9 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--reflection-roughness", h.reflectionMaxRoughness,
                  "reflections: trace reflections below this roughness")
       ->capture_default_str();
+  app.add_option("--reflection-metallic", h.reflectionMinMetallic,
+                 "reflections: ... on surfaces at least this metallic (0 = smooth dielectrics too)")
+      ->capture_default_str();
 }
 
 static float parseFloat(const std::string& text, const std::string& what) {

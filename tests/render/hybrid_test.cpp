@@ -212,6 +212,104 @@ TEST(Hybrid, MirrorPlaneReflectsTheColouredBox) {
   expectNoValidationErrors(*session);
 }
 
+// Reflections are traced for smooth metals only by default (--reflection-metallic 0.5); with 0 the smooth
+// dielectric gets them too. The depth is a specialisation constant: 0 rebuilds the pipeline and traces none.
+TEST(Hybrid, ReflectionsFollowMetalnessAndTheDepthConstant) {
+  scene::Scene sc;
+  sc.sourcePath = "gloss-test";
+  gpu::Material gloss = lambert(glm::vec3(0.5f));
+  gloss.metallic = 0.0f;
+  gloss.roughness = 0.0f;
+  gloss.specularFactor = 1.0f;
+  sc.materials = {gloss};
+  sc.materialNames = {"smooth-dielectric"};
+  sc.meshes = {quadMesh(3.0f, 0)};
+  sc.instances.push_back({0, glm::mat4(1.0f), "plane"});
+  sc.camera.eye = glm::vec3(0.0f, 1.0f, 2.0f);
+  sc.camera.target = glm::vec3(0.0f, 0.0f, -0.5f);
+  sc.camera.yfov = 0.9f;
+  sc.bounds = {glm::vec3(-3, 0, -3), glm::vec3(3, 0.1f, 3)};
+  auto traced = [](const std::vector<float>& refl) {
+    size_t n = 0;
+    for (size_t i = 3; i < refl.size(); i += 4) n += refl[i] > 0.5f;
+    return n;
+  };
+  auto o = hybridOptions(sc, render::RenderMode::Reflections, 32);
+  o.settings.envColor = glm::vec3(0.3f);
+  auto session = makeSession(o);
+  auto* hybrid = session->hybrid();
+  session->render(1);
+  EXPECT_EQ(traced(hybrid->readReflection()), 0u) << "a dielectric is not traced by default";
+  auto h = hybrid->hybridSettings();
+  h.reflectionMinMetallic = 0.0f;
+  hybrid->setHybridSettings(h);
+  session->render(1);
+  const size_t all = traced(hybrid->readReflection());
+  EXPECT_GT(all, 32u * 32u / 3) << "the plane covers the lower part of the image";
+  const uint32_t builds = hybrid->pipelineBuilds(Pass::Reflection);
+  h.reflectionDepth = 0;
+  hybrid->setHybridSettings(h);
+  EXPECT_EQ(hybrid->pipelineBuilds(Pass::Reflection), builds + 1) << "a new specialisation constant";
+  session->render(1);
+  EXPECT_EQ(traced(hybrid->readReflection()), 0u);
+  expectNoValidationErrors(*session);
+}
+
+// Ambient occlusion, the second ray type: the floor right next to a box is occluded, the open floor is not.
+TEST(Hybrid, AmbientOcclusionDarkensTheFloorNextToABox) {
+  scene::Scene sc;
+  sc.sourcePath = "ao-test";
+  sc.materials = {lambert(glm::vec3(0.8f))};
+  sc.materialNames = {"white"};
+  const glm::vec3 half(0.3f, 0.3f, 0.3f);
+  sc.meshes = {quadMesh(4.0f, 0), boxMesh(half, 0)};
+  sc.instances.push_back({0, glm::mat4(1.0f), "floor"});
+  glm::mat4 t(1.0f);
+  t[3] = glm::vec4(0.0f, half.y, 0.0f, 1.0f);
+  sc.instances.push_back({1, t, "box"});
+  sc.camera.eye = glm::vec3(0.0f, 3.0f, 1.5f);
+  sc.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+  sc.camera.yfov = 1.0f;
+  sc.bounds = {glm::vec3(-4, 0, -4), glm::vec3(4, 0.6f, 4)};
+  auto o = hybridOptions(sc, render::RenderMode::Hybrid, 64);
+  o.settings.envColor = glm::vec3(1.0f);
+  o.hybrid.aoRays = 4;
+  o.hybrid.aoRadius = 0.5f;
+  auto session = makeSession(o);
+  session->render(8);  // AO averaged over 8 frames (temporal accumulation)
+  const auto ao = session->hybrid()->readAoMask();
+  const auto& cam = session->sceneCamera();
+  double nearSum = 0, farSum = 0;
+  int nearCount = 0, farCount = 0;
+  for (uint32_t y = 0; y < 64; ++y) {
+    for (uint32_t x = 0; x < 64; ++x) {
+      glm::vec3 o3, d;
+      cameraRay(cam, 64, 64, x + 0.5f, y + 0.5f, o3, d);
+      if (d.y >= 0.0f || hitBox(o3, d, glm::vec3(-half.x, 0.0f, -half.z), half * glm::vec3(1, 2, 1)) >= 0.0f)
+        continue;
+      const glm::vec3 p = o3 + d * (-o3.y / d.y);
+      // Distance in the floor plane from the box's footprint.
+      const float dx = std::max(std::abs(p.x) - half.x, 0.0f), dz = std::max(std::abs(p.z) - half.z, 0.0f);
+      const float dist = std::sqrt(dx * dx + dz * dz);
+      const double open = ao[y * 64 + x] / 255.0;
+      if (dist > 0.02f && dist < 0.08f) {
+        nearSum += open;
+        ++nearCount;
+      } else if (dist > 0.8f && std::abs(p.x) < 3.5f && std::abs(p.z) < 3.5f) {
+        farSum += open;
+        ++farCount;
+      }
+    }
+  }
+  ASSERT_GT(nearCount, 10);
+  ASSERT_GT(farCount, 100);
+  std::printf("AO: %.3f next to the box (%d px), %.3f in the open (%d px)\n", nearSum / nearCount, nearCount,
+              farSum / farCount, farCount);
+  EXPECT_LT(nearSum / nearCount, 0.85);
+  EXPECT_GT(farSum / farCount, 0.97);
+  expectNoValidationErrors(*session);
+}
+
 namespace {
 
 // A temporary copy of shaders/ that the test may edit.

@@ -42,6 +42,7 @@ void hybridControls(PanelContext& c) {
     int depth = int(h.reflectionDepth);
     if (ImGui::SliderInt("reflection depth", &depth, 0, 8)) h.reflectionDepth = uint32_t(depth);
     ImGui::SliderFloat("reflect below roughness", &h.reflectionMaxRoughness, 0.0f, 1.0f, "%.2f");
+    ImGui::SliderFloat("reflect from metallic", &h.reflectionMinMetallic, 0.0f, 1.0f, "%.2f");
   }
   ImGui::TextDisabled("frames %u; debug views need the path tracer", c.samples);
 }

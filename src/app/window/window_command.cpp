@@ -459,7 +459,8 @@ void WorkbenchWindow::applyState() {
   const auto& ha = applied_.hybrid;
   if (hy.sunAngleDeg != ha.sunAngleDeg || hy.aoRadius != ha.aoRadius || hy.aoRays != ha.aoRays ||
       hy.temporal != ha.temporal || hy.reflectionDepth != ha.reflectionDepth ||
-      hy.reflectionMaxRoughness != ha.reflectionMaxRoughness) {
+      hy.reflectionMaxRoughness != ha.reflectionMaxRoughness ||
+      hy.reflectionMinMetallic != ha.reflectionMinMetallic) {
     for (auto& h : hybrids_)
       if (h) h->setHybridSettings(hy);
     restart = true;
@@ -590,7 +591,8 @@ nlohmann::json WorkbenchWindow::parametersJson() {
                    {"ao_rays", hs.aoRays},
                    {"temporal", hs.temporal},
                    {"reflection_depth", hs.reflectionDepth},
-                   {"reflection_roughness", hs.reflectionMaxRoughness}};
+                   {"reflection_roughness", hs.reflectionMaxRoughness},
+                   {"reflection_metallic", hs.reflectionMinMetallic}};
   }
   j["max_bounces"] = s.maxBounces;
   j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};

@@ -78,7 +78,7 @@ const char* settingNamesHelp() {
          "env PATH, sun_direction X,Y,Z, sun_intensity, panel, material.N.roughness|metallic|base_color "
          "R,G,B, "
          "mode (pathtrace|hybrid|reflections), sun_angle, ao_rays, ao_radius, temporal, reflection_depth, "
-         "reflection_roughness, reference PATH.exr (empty = noise estimate)";
+         "reflection_roughness, reflection_metallic, reference PATH.exr (empty = noise estimate)";
 }
 
 void applySetting(WorkbenchState& st, const std::string& name, const std::string& value) {
@@ -164,6 +164,8 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
     st.hybrid.reflectionDepth = d;
   } else if (name == "reflection_roughness") {
     st.hybrid.reflectionMaxRoughness = toFloat(name, value);
+  } else if (name == "reflection_metallic") {
+    st.hybrid.reflectionMinMetallic = toFloat(name, value);
   } else if (name == "reference") {
     st.referencePath = value;
   } else if (name.rfind("material.", 0) == 0) {

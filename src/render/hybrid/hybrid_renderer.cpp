@@ -399,6 +399,7 @@ void HybridRenderer::updateUniforms() {
   u.width = settings_.width;
   u.height = settings_.height;
   u.reflectionMaxRoughness = hybrid_.reflectionMaxRoughness;
+  u.reflectionMinMetallic = hybrid_.reflectionMinMetallic;
   u.envIntensity = settings_.envIntensity;
   u.envRotation = glm::radians(settings_.envRotationDeg);
   u.envMapPresent = env_->isMap() ? 1u : 0u;
