@@ -84,8 +84,13 @@ void main() {
   sm.baseColor = baseColor.rgb;
   sm.metallic = clamp(metallic, 0.0, 1.0);
   sm.roughness = clamp(roughness, 0.0, 1.0);
+#if WB_HAS_SPECULAR
   sm.specularFactor = m.specularFactor;
   sm.specularColor = m.specularColorFactor;
+#else  // no material of the scene sets KHR_materials_specular: its defaults, folded by the compiler
+  sm.specularFactor = 1.0;
+  sm.specularColor = vec3(1.0);
+#endif
 
   payload.hitT = gl_HitTEXT;
   payload.albedo = baseColor.rgb;

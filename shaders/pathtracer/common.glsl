@@ -20,6 +20,7 @@
 #define WB_HAS_NORMAL_MAPS 1
 #define WB_HAS_EMISSIVE 1
 #define WB_HAS_TEXTURES 1
+#define WB_HAS_SPECULAR 1
 #define WB_LIGHT_COUNT frame.lightCount
 #define WB_ENV_MODE 2
 #endif

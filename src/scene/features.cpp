@@ -9,7 +9,8 @@ SceneFeatures genericFeatures() {
 SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
   SceneFeatures f;
   f.generic = false;
-  f.alphaMask = f.alphaBlend = f.normalMaps = f.emissive = f.textures = false;
+  f.alphaMask = f.alphaBlend = f.normalMaps = f.emissive = f.textures = f.specular = false;
+  f.extensions = scene.extensionsUsed;
   // Only materials that some primitive uses count.
   std::vector<bool> used(scene.materials.size(), false);
   for (const auto& mesh : scene.meshes) {
@@ -24,6 +25,7 @@ SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
     f.alphaBlend = f.alphaBlend || m.alphaMode == WB_ALPHA_BLEND;
     f.normalMaps = f.normalMaps || m.normalTexture >= 0;
     f.emissive = f.emissive || m.emissive.x > 0.0f || m.emissive.y > 0.0f || m.emissive.z > 0.0f;
+    f.specular = f.specular || m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
     f.textures = f.textures || m.baseColorTexture >= 0 || m.normalTexture >= 0 ||
                  m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
   }
@@ -42,6 +44,7 @@ std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
       {"WB_HAS_NORMAL_MAPS", flag(f.normalMaps)},
       {"WB_HAS_EMISSIVE", flag(f.emissive)},
       {"WB_HAS_TEXTURES", flag(f.textures)},
+      {"WB_HAS_SPECULAR", flag(f.specular)},
       {"WB_LIGHT_COUNT", std::to_string(f.directionalLights) + "u"},
       {"WB_ENV_MODE", std::to_string(static_cast<int>(f.environment))},
   };
@@ -58,6 +61,8 @@ std::string describeFeatures(const SceneFeatures& f) {
   if (f.normalMaps) s += " normal-maps";
   if (f.emissive) s += " emissive";
   if (f.textures) s += " textures";
+  if (f.specular) s += " specular";
+  for (const auto& e : f.extensions) s += " " + e;
   return s;
 }
 

@@ -16,9 +16,14 @@ struct SceneFeatures {
   bool normalMaps = true;
   bool emissive = true;
   bool textures = true;
+  bool specular =
+      true;  // some material sets KHR_materials_specular values other than the defaults (1, white)
   uint32_t directionalLights = 0;
   EnvironmentKind environment = EnvironmentKind::Map;
   bool generic = true;  // the all-features build: every branch compiled in, light count read at run time
+  // The glTF extensions the scene's file uses (informational: the code they need is decided by the flags
+  // above, so two scenes with the same flags share compiled variants).
+  std::vector<std::string> extensions;
 
   bool anyAlpha() const { return alphaMask || alphaBlend; }
   bool operator==(const SceneFeatures&) const = default;

@@ -128,6 +128,7 @@ Scene loadGltf(const std::filesystem::path& path) {
   LoadContext ctx(model, path.filename().string(), scene.warnings);
   try {
     checkExtensions(ctx);
+    scene.extensionsUsed = model.extensionsUsed;
     validateBufferViewsAndAccessors(ctx);
     convertMaterialsAndTextures(ctx, scene);
     convertMeshes(ctx, scene);

@@ -86,6 +86,8 @@ struct Scene {
   Camera camera;  // the first perspective camera of the default scene, else frameBounds(bounds, 0.7)
   Bounds bounds;
   std::vector<std::string> warnings;  // one line per unsupported feature met, each named
+  std::vector<std::string>
+      extensionsUsed;  // the file's glTF extensions (extensionsUsed), for the feature set
 
   size_t triangleCount() const;  // over all instances (a mesh placed twice counts twice)
 };

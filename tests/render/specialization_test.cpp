@@ -2,6 +2,8 @@
 // carries only the stages the scene needs, and variants are cached like any other shader.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "common/paths.h"
 #include "gpu_fixture.h"
 #include "scene/features.h"
@@ -12,8 +14,9 @@ using namespace wb::testing;
 
 namespace {
 
-eval::ImageRGBA renderDefault(bool generic) {
+eval::ImageRGBA renderScene(const std::string& path, bool generic) {
   app::SessionOptions o;
+  o.scenePath = path;
   o.settings.width = 32;
   o.settings.height = 32;
   o.settings.generic = generic;
@@ -23,6 +26,27 @@ eval::ImageRGBA renderDefault(bool generic) {
   expectNoValidationErrors(*session);
   return session->image();
 }
+
+eval::ImageRGBA renderDefault(bool generic) {
+  return renderScene("", generic);
+}
+
+// Same sample streams, same maths: equal up to floating-point reassociation in the compiled code.
+void expectSameImage(const eval::ImageRGBA& a, const eval::ImageRGBA& b) {
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  double meanA = 0, meanB = 0, maxRel = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    meanA += a.pixels[i];
+    meanB += b.pixels[i];
+    maxRel = std::max(maxRel,
+                      std::abs(double(a.pixels[i]) - b.pixels[i]) / (std::abs(double(b.pixels[i])) + 1e-2));
+  }
+  EXPECT_NEAR(meanA / meanB, 1.0, 1e-4);
+  EXPECT_LT(maxRel, 1e-2) << "per-pixel difference beyond floating-point noise";
+}
+
+const std::string kHelmet = (sharedDir() / "assets/gltf/DamagedHelmet/DamagedHelmet.gltf").string();
 
 }  // namespace
 
@@ -35,6 +59,9 @@ TEST(Specialization, DefaultSceneFeatures) {
   EXPECT_TRUE(f.emissive);  // the ceiling panel
   EXPECT_TRUE(f.textures);
   EXPECT_EQ(f.directionalLights, 1u);
+  EXPECT_TRUE(f.specular);  // Lambert walls: specularFactor 0
+  EXPECT_NE(std::find(f.extensions.begin(), f.extensions.end(), "KHR_lights_punctual"), f.extensions.end());
+  EXPECT_NE(scene::describeFeatures(f).find("KHR_materials_specular"), std::string::npos);
   EXPECT_EQ(render::PathTracer::stageKeys(f).size(), 5u) << "alpha-masked leaf needs the any-hit stage";
 }
 
@@ -53,20 +80,23 @@ TEST(Specialization, OpaqueSceneHasNoAnyHitStageAndNoTextures) {
 }
 
 TEST(Specialization, SpecialisedAndGenericRenderTheSameImage) {
-  const auto a = renderDefault(false);
-  const auto b = renderDefault(true);
-  ASSERT_EQ(a.pixels.size(), b.pixels.size());
-  // Same sample streams, same maths: equal up to floating-point reassociation in the compiled code.
-  double meanA = 0, meanB = 0, maxRel = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    meanA += a.pixels[i];
-    meanB += b.pixels[i];
-    maxRel = std::max(maxRel,
-                      std::abs(double(a.pixels[i]) - b.pixels[i]) / (std::abs(double(b.pixels[i])) + 1e-2));
-  }
-  EXPECT_NEAR(meanA / meanB, 1.0, 1e-4);
-  EXPECT_LT(maxRel, 1e-2) << "per-pixel difference beyond floating-point noise";
+  expectSameImage(renderDefault(false), renderDefault(true));
+}
+
+// An opaque scene without KHR_materials_specular and without directional lights: the specialised build has no
+// any-hit stage, no specular-extension code and no light loop, and still renders the generic build's image.
+TEST(Specialization, OpaqueTexturedModelRendersTheSameImageSpecialised) {
+  const auto scene = scene::loadGltf(kHelmet);
+  const auto f = scene::analyzeFeatures(scene, scene::EnvironmentKind::Constant);
+  EXPECT_FALSE(f.anyAlpha());
+  EXPECT_FALSE(f.specular);
+  EXPECT_TRUE(f.normalMaps);
+  EXPECT_TRUE(f.textures);
+  EXPECT_EQ(f.directionalLights, 0u);
+  EXPECT_EQ(render::PathTracer::stageKeys(f).size(), 4u);
+  const auto defines = scene::featureDefines(f);
+  EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_HAS_SPECULAR", "0"}), defines.end());
+  expectSameImage(renderScene(kHelmet, false), renderScene(kHelmet, true));
 }
 
 TEST(Specialization, SwitchingVariantsReusesCompiledShaders) {

@@ -405,11 +405,13 @@ void WorkbenchWindow::applyState() {
   if (st.materialsDirty) {
     session_->gpuScene().updateMaterials(st.materials);
     // Emission or other features the specialised shaders compiled out need the generic build.
-    bool emissive = false;
-    for (const auto& m : st.materials) emissive |= m.emissive != glm::vec3(0.0f);
-    if (emissive && !tracer.features().emissive && !tracer.features().generic) {
-      st.settings.generic = true;
+    bool emissive = false, specular = false;
+    for (const auto& m : st.materials) {
+      emissive |= m.emissive != glm::vec3(0.0f);
+      specular |= m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
     }
+    const auto& f = tracer.features();
+    if (!f.generic && ((emissive && !f.emissive) || (specular && !f.specular))) st.settings.generic = true;
     st.materialsDirty = false;
     restart = true;
   }
