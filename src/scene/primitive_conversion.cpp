@@ -159,7 +159,7 @@ std::optional<Primitive> convertPrimitive(LoadContext& ctx, const tinygltf::Prim
     }
   }
   if (!normalsValid) {
-    generateNormals(primitive.vertices, primitive.indices);
+    makeFlatNormals(primitive.vertices, primitive.indices);
     primitive.generatedNormals = true;
   }
 

@@ -9,20 +9,25 @@ glm::vec3 anyPerpendicular(const glm::vec3& n) {
   return glm::normalize(glm::cross(n, axis));
 }
 
-void generateNormals(std::vector<gpu::Vertex>& vertices, const std::vector<uint32_t>& indices) {
-  std::vector<glm::dvec3> sums(vertices.size(), glm::dvec3(0.0));
+void makeFlatNormals(std::vector<gpu::Vertex>& vertices, std::vector<uint32_t>& indices) {
+  std::vector<gpu::Vertex> flat;
+  flat.reserve(indices.size() / 3 * 3);
   for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-    const uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
-    const glm::dvec3 p0(vertices[i0].position), p1(vertices[i1].position), p2(vertices[i2].position);
-    const glm::dvec3 faceNormal = glm::cross(p1 - p0, p2 - p0);  // length = 2 * area
-    sums[i0] += faceNormal;
-    sums[i1] += faceNormal;
-    sums[i2] += faceNormal;
+    const gpu::Vertex& a = vertices[indices[t]];
+    const gpu::Vertex& b = vertices[indices[t + 1]];
+    const gpu::Vertex& c = vertices[indices[t + 2]];
+    const glm::dvec3 p0(a.position), p1(b.position), p2(c.position);
+    const glm::dvec3 face = glm::cross(p1 - p0, p2 - p0);
+    const double length = glm::length(face);
+    const glm::vec3 n = length > 0.0 && std::isfinite(length) ? glm::vec3(face / length) : glm::vec3(0, 1, 0);
+    for (const gpu::Vertex* v : {&a, &b, &c}) {
+      flat.push_back(*v);
+      flat.back().normal = n;
+    }
   }
-  for (size_t i = 0; i < vertices.size(); ++i) {
-    const double length = glm::length(sums[i]);
-    vertices[i].normal = length > 0.0 ? glm::vec3(sums[i] / length) : glm::vec3(0.0f, 1.0f, 0.0f);
-  }
+  vertices = std::move(flat);
+  indices.resize(vertices.size());
+  for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<uint32_t>(i);
 }
 
 void generateTangents(std::vector<gpu::Vertex>& vertices, const std::vector<uint32_t>& indices) {

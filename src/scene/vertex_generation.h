@@ -8,9 +8,10 @@
 
 namespace wb::scene {
 
-// Area-weighted vertex normals from the triangles (each triangle adds its unnormalised face normal, whose
-// length is twice its area). Vertices no non-degenerate triangle touches get +Y.
-void generateNormals(std::vector<gpu::Vertex>& vertices, const std::vector<uint32_t>& indices);
+// Flat normals, as glTF requires when a primitive has no NORMAL: every triangle gets its own three vertices
+// (copies of its corners) carrying its face normal, and the indices become 0, 1, 2, ... Degenerate triangles
+// get +Y.
+void makeFlatNormals(std::vector<gpu::Vertex>& vertices, std::vector<uint32_t>& indices);
 
 // Tangents from UV derivatives (accumulated per vertex, Gram-Schmidt against the normal, handedness in w so
 // that cross(normal, tangent.xyz) * w points along +v). Needs normals and UVs. Vertices without usable UV

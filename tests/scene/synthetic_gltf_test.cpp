@@ -47,8 +47,10 @@ template <class T>
 void checkIndexType(int componentType, const std::string& name) {
   SyntheticGltf gltf;
   const int positions = gltf.addData(kTrianglePositions, kFloat, "VEC3");
+  const int normals = gltf.addData(std::vector<float>{0, 1, 0, 0, 1, 0, 0, 1, 0}, kFloat, "VEC3");
   const int indices = gltf.addData(std::vector<T>{2, 1, 0}, componentType, "SCALAR");
-  gltf.addSingleMeshNode({{"attributes", {{"POSITION", positions}}}, {"indices", indices}});
+  gltf.addSingleMeshNode(
+      {{"attributes", {{"POSITION", positions}, {"NORMAL", normals}}}, {"indices", indices}});
   const Scene scene = loadGltf(gltf.write(name));
   ASSERT_EQ(scene.meshes.size(), 1u);
   EXPECT_EQ(scene.meshes[0].primitives[0].indices, (std::vector<uint32_t>{2, 1, 0}));
@@ -257,12 +259,29 @@ TEST(SyntheticGltf, CyclesAreRefused) {
   EXPECT_NE(refusal(gltf, "bad_child").find("child 5"), std::string::npos);
 }
 
+// glTF: without NORMAL the normals are flat. A quad folded along its diagonal keeps two face normals.
+TEST(SyntheticGltf, MissingNormalsAreFlat) {
+  SyntheticGltf gltf;
+  const int p = gltf.addData(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 0, -1, 1, 1, -1}, kFloat, "VEC3");
+  const int i = gltf.addData(std::vector<uint16_t>{0, 1, 2, 2, 1, 3}, kUShort, "SCALAR");
+  gltf.addSingleMeshNode({{"attributes", {{"POSITION", p}}}, {"indices", i}});
+  const Scene scene = loadGltf(gltf.write("flat"));
+  const Primitive& prim = scene.meshes[0].primitives[0];
+  EXPECT_TRUE(prim.generatedNormals);
+  ASSERT_EQ(prim.vertices.size(), 6u);  // the shared corners are split
+  for (int v = 0; v < 3; ++v) EXPECT_NEAR(prim.vertices[v].normal.y, 1.0f, 1e-6f);
+  const glm::vec3 second = glm::normalize(glm::cross(glm::vec3(1, 0, 1), glm::vec3(1, 1, 0)));
+  for (int v = 3; v < 6; ++v) EXPECT_NEAR(glm::dot(prim.vertices[v].normal, second), 1.0f, 1e-5f);
+}
+
 TEST(SyntheticGltf, PrimitiveModes) {
   SyntheticGltf gltf;
   const int p = gltf.addData(std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, kFloat, "VEC3");
-  gltf.addSingleMeshNode({{"attributes", {{"POSITION", p}}}, {"mode", 5}});
-  gltf.json["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", p}}}, {"mode", 1}});
-  gltf.json["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", p}}}, {"mode", 6}});
+  const int n = gltf.addData(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3");
+  const json attributes = {{"POSITION", p}, {"NORMAL", n}};  // with normals: no flat-normal split
+  gltf.addSingleMeshNode({{"attributes", attributes}, {"mode", 5}});
+  gltf.json["meshes"][0]["primitives"].push_back({{"attributes", attributes}, {"mode", 1}});
+  gltf.json["meshes"][0]["primitives"].push_back({{"attributes", attributes}, {"mode", 6}});
   const Scene scene = loadGltf(gltf.write("modes"));
   ASSERT_EQ(scene.meshes[0].primitives.size(), 2u);  // strip and fan kept, lines skipped
   EXPECT_EQ(scene.meshes[0].primitives[0].indices, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2}));

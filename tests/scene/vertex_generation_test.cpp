@@ -13,25 +13,27 @@ gpu::Vertex vertex(glm::vec3 p, float u, float v) {
   return out;
 }
 
-TEST(VertexGeneration, AreaWeightedNormalsOfAFold) {
-  // Two triangles sharing the edge 0-1: a large one in the XY plane (normal +Z, area 2) and a small one in
-  // the XZ plane (normal +Y, area 0.5). The shared vertices get (0, 0.5, 2) normalised.
+TEST(VertexGeneration, FlatNormalsOfAFold) {
+  // Two triangles sharing the edge 0-1, one in the XY plane (normal +Z) and one in the XZ plane (normal +Y):
+  // glTF asks for flat normals, so the shared corners are split and each triangle keeps its face normal.
   std::vector<gpu::Vertex> vertices = {vertex({0, 0, 0}, 0, 0), vertex({2, 0, 0}, 1, 0),
                                        vertex({0, 2, 0}, 0, 1), vertex({0, 0, -0.5f}, 0, 0)};
-  const std::vector<uint32_t> indices = {0, 1, 2, 0, 1, 3};
-  generateNormals(vertices, indices);
-  const glm::vec3 expected = glm::normalize(glm::vec3(0.0f, 0.5f * 2.0f, 2.0f * 2.0f));
-  EXPECT_NEAR(vertices[0].normal.y, expected.y, 1e-6f);
-  EXPECT_NEAR(vertices[0].normal.z, expected.z, 1e-6f);
-  EXPECT_NEAR(vertices[2].normal.z, 1.0f, 1e-6f);
-  EXPECT_NEAR(vertices[3].normal.y, 1.0f, 1e-6f);
+  std::vector<uint32_t> indices = {0, 1, 2, 0, 1, 3, 0, 0, 1};  // the last one is degenerate
+  makeFlatNormals(vertices, indices);
+  ASSERT_EQ(vertices.size(), 9u);
+  EXPECT_EQ(indices, (std::vector<uint32_t>{0, 1, 2, 3, 4, 5, 6, 7, 8}));
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(vertices[i].normal.z, 1.0f, 1e-6f) << i;
+  for (int i = 3; i < 6; ++i) EXPECT_NEAR(vertices[i].normal.y, 1.0f, 1e-6f) << i;
+  for (int i = 6; i < 9; ++i) EXPECT_EQ(vertices[i].normal, glm::vec3(0, 1, 0)) << i;
+  EXPECT_EQ(vertices[4].position, glm::vec3(2, 0, 0));  // corners copied with their attributes
+  EXPECT_EQ(vertices[4].u, 1.0f);
 }
 
 TEST(VertexGeneration, TangentsFollowUAndHandednessFollowsV) {
   std::vector<gpu::Vertex> vertices = {vertex({0, 0, 0}, 0, 0), vertex({1, 0, 0}, 1, 0),
                                        vertex({0, 1, 0}, 0, 1)};
-  const std::vector<uint32_t> indices = {0, 1, 2};
-  generateNormals(vertices, indices);
+  std::vector<uint32_t> indices = {0, 1, 2};
+  makeFlatNormals(vertices, indices);
   generateTangents(vertices, indices);
   for (const gpu::Vertex& v : vertices) {
     EXPECT_NEAR(v.tangent.x, 1.0f, 1e-6f);
@@ -47,8 +49,8 @@ TEST(VertexGeneration, TangentsFollowUAndHandednessFollowsV) {
 TEST(VertexGeneration, DegenerateUvsStillGiveAPerpendicularUnitTangent) {
   std::vector<gpu::Vertex> vertices = {vertex({0, 0, 0}, 0, 0), vertex({1, 0, 0}, 0, 0),
                                        vertex({0, 1, 0}, 0, 0)};
-  const std::vector<uint32_t> indices = {0, 1, 2};
-  generateNormals(vertices, indices);
+  std::vector<uint32_t> indices = {0, 1, 2};
+  makeFlatNormals(vertices, indices);
   generateTangents(vertices, indices);
   for (const gpu::Vertex& v : vertices) {
     EXPECT_NEAR(glm::length(glm::vec3(v.tangent)), 1.0f, 1e-6f);
