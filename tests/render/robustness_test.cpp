@@ -2,7 +2,9 @@
 // change the furnace (robust ray origins, no scene epsilon), alpha modes, and the AOVs.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -247,4 +249,44 @@ TEST(Aov, AlbedoAndNormalOfALambertPlane) {
   EXPECT_GT(minDist, 4.9);  // the plane is at least the camera height (5) away
   EXPECT_LT(maxDist, 20.0);
   expectNoValidationErrors(*session);
+}
+
+// The drop path itself: a sample that is Inf or NaN is counted and never accumulated. An emitter of infinite
+// (then NaN) radiance fills the view: every sample is dropped, the image stays finite (black), and the
+// albedo AOV's alpha reports a dropped fraction of 1 (the "NaN/Inf dropped" debug view).
+TEST(NonFiniteSamples, AreCountedAndNeverAccumulated) {
+  for (const float bad : {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()}) {
+    SCOPED_TRACE(std::isnan(bad) ? "NaN" : "Inf");
+    scene::Scene sc;
+    sc.sourcePath = "non-finite-emitter";
+    gpu::Material m = lambert(glm::vec3(0.5f));
+    sc.materials = {m};
+    sc.materialNames = {"bad-emitter"};
+    sc.meshes = {quadMesh(100.0f, 0)};
+    sc.instances.push_back({0, glm::mat4(1.0f), "plane"});
+    sc.camera.eye = glm::vec3(0.0f, 2.0f, 0.5f);
+    sc.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
+    sc.camera.yfov = 0.5f;
+    sc.bounds = {glm::vec3(-100, 0, -100), glm::vec3(100, 0.1f, 100)};
+    app::SessionOptions o;
+    o.sceneData = sc;
+    o.settings.width = 16;
+    o.settings.height = 16;
+    o.settings.aov = true;
+    o.settings.generic = true;  // every feature compiled in: the emission is read whatever its value
+    auto session = makeSession(o);
+    // The host refuses non-finite emission when it builds the light tables, so the bad value arrives the
+    // way a live edit does: straight into the material buffer.
+    m.emissive = glm::vec3(bad, 0.0f, 0.0f);
+    session->gpuScene().updateMaterials({m});
+    session->render(4);
+    const auto counters = session->pathTracer().readCounters();
+    EXPECT_EQ(counters.droppedSamples, 16u * 16u * 4u) << "every sample sees the emitter";
+    const auto stats = imageStats(session->image());
+    EXPECT_EQ(stats.nonFinite, 0u);
+    EXPECT_EQ(stats.maxValue, 0.0f) << "nothing was accumulated";
+    const auto albedo = session->aov(render::Aov::Albedo);
+    for (size_t i = 3; i < albedo.pixels.size(); i += 4) ASSERT_NEAR(albedo.pixels[i], 1.0f, 1e-3f) << i / 4;
+    expectNoValidationErrors(*session);
+  }
 }
