@@ -4,6 +4,8 @@
 #include "scene/emitters.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace wb::render {
 namespace {
@@ -25,7 +27,7 @@ VkSamplerAddressMode toAddress(int gl) {
 
 }  // namespace
 
-GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
+GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx), source_(scene) {
   if (scene.instances.empty() || scene.triangleCount() == 0) {
     throw std::runtime_error("scene '" + scene.sourcePath.string() + "' has no triangles to render");
   }
@@ -65,16 +67,7 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
   lights_ = vk::makeBuffer(ctx, scene.lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   lightCount_ = static_cast<uint32_t>(scene.lights.size());
 
-  const auto emitters = scene::emissiveTriangles(scene);
-  std::vector<gpu::EnvAliasEntry> alias;
-  if (!emitters.empty()) {
-    const auto weights = scene::emitterWeights(scene, emitters);
-    for (double w : weights) emitterTotalPower_ += float(w);
-    alias = buildAliasTable(weights);
-  }
-  emitterCount_ = static_cast<uint32_t>(emitters.size());
-  emitters_ = vk::makeBuffer(ctx, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  emitterAlias_ = vk::makeBuffer(ctx, alias, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  buildEmitters(scene.materials);
 
   std::vector<vk::TlasInstance> instances;
   for (const auto& inst : scene.instances) {
@@ -128,8 +121,29 @@ GpuScene::~GpuScene() {
   for (auto s : samplers_) vkDestroySampler(ctx_.device(), s, nullptr);
 }
 
+void GpuScene::buildEmitters(const std::vector<gpu::Material>& materials) {
+  const auto emitters = scene::emissiveTriangles(source_, materials);
+  std::vector<gpu::EnvAliasEntry> alias;
+  emitterTotalPower_ = 0.0f;
+  if (!emitters.empty()) {
+    const auto weights = scene::emitterWeights(materials, emitters);
+    for (double w : weights) emitterTotalPower_ += float(w);
+    alias = buildAliasTable(weights);
+  }
+  emitterCount_ = static_cast<uint32_t>(emitters.size());
+  emitters_ = vk::makeBuffer(ctx_, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  emitterAlias_ = vk::makeBuffer(ctx_, alias, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  ++emitterVersion_;
+}
+
 void GpuScene::updateMaterials(const std::vector<gpu::Material>& materials) {
+  if (materials.size() != source_.materials.size()) {
+    throw std::invalid_argument("updateMaterials: " + std::to_string(materials.size()) +
+                                " materials, the scene has " + std::to_string(source_.materials.size()));
+  }
+  vkDeviceWaitIdle(ctx_.device());  // the emitter buffers may be in use
   materials_.upload(materials.data(), materials.size() * sizeof(gpu::Material));
+  buildEmitters(materials);
 }
 
 void GpuScene::updateLights(const std::vector<gpu::DirectionalLight>& lights) {

@@ -27,19 +27,27 @@ class GpuScene {
   const vk::Buffer& emitterAlias() const { return emitterAlias_; }
   uint32_t emitterCount() const { return emitterCount_; }
   float emitterTotalPower() const { return emitterTotalPower_; }
+  // Changes whenever the emitter buffers are rebuilt (a material edit): passes rewrite their descriptors.
+  uint64_t emitterVersion() const { return emitterVersion_; }
   // One entry per scene texture (a 1x1 white image where a texture has no usable image).
   const std::vector<VkDescriptorImageInfo>& textureDescriptors() const { return textureInfos_; }
   const vk::AccelerationStructures& accel() const { return *accel_; }
   uint64_t deviceBytes() const;
   bool anyNonOpaque() const { return anyNonOpaque_; }
 
-  // Material factors can be edited live; this rewrites the material buffer.
+  // Material factors can be edited live; this rewrites the material buffer and rebuilds the area lights'
+  // table (an edited emission changes what next-event estimation samples; MIS needs the two to agree). Call
+  // it at a frame boundary: it waits for the device.
   void updateMaterials(const std::vector<gpu::Material>& materials);
   // Light directions and radiance can be edited live too (the light count is fixed at load).
   void updateLights(const std::vector<gpu::DirectionalLight>& lights);
 
  private:
+  void buildEmitters(const std::vector<gpu::Material>& materials);
+
   vk::Context& ctx_;
+  const scene::Scene& source_;
+  uint64_t emitterVersion_ = 0;
   std::vector<vk::Buffer> vertexBuffers_, indexBuffers_;
   vk::Buffer geometries_, materials_, lights_, emitters_, emitterAlias_;
   uint32_t emitterCount_ = 0;

@@ -107,6 +107,7 @@ void PathTracer::createImages() {
 
 void PathTracer::writeDescriptors() {
   auto& s = *sets_;
+  emitterVersion_ = scene_.emitterVersion();
   s.writeAccelerationStructure(0, WB_BIND_TLAS, scene_.tlas());
   s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
   s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
@@ -204,6 +205,8 @@ void PathTracer::updateFrameUniforms() {
 
 void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) {
   PixelRegion r = region.value_or(PixelRegion{0, 0, settings_.width, settings_.height});
+  // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
+  if (scene_.emitterVersion() != emitterVersion_) writeDescriptors();
   if (sampleIndex_ == 0 && (!region || (r.x == 0 && r.y == 0))) updateFrameUniforms();
   gpu::PushConstants pc{};
   pc.sampleIndex = sampleIndex_;

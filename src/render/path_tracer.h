@@ -103,6 +103,7 @@ class PathTracer {
   std::vector<std::pair<scene::SceneFeatures, shader::ShaderLibrary::ProgramId>> variants_;
   std::unique_ptr<vk::PipelineLayout> layout_;
   std::unique_ptr<vk::DescriptorSets> sets_;
+  uint64_t emitterVersion_ = 0;  // the scene's emitter buffers the descriptors point at
   std::unique_ptr<vk::RayTracingPipeline> pipeline_;
   vk::Image accum_, albedo_, normal_, info_;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;

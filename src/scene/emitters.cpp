@@ -9,13 +9,20 @@ float emitterLuminance(const gpu::Material& m) {
 }
 
 std::vector<gpu::EmissiveTriangle> emissiveTriangles(const Scene& scene) {
+  return emissiveTriangles(scene, scene.materials);
+}
+
+std::vector<gpu::EmissiveTriangle> emissiveTriangles(const Scene& scene,
+                                                     const std::vector<gpu::Material>& materials) {
   std::vector<gpu::EmissiveTriangle> out;
   for (const auto& inst : scene.instances) {
     if (inst.mesh < 0 || size_t(inst.mesh) >= scene.meshes.size()) continue;
     for (const auto& prim : scene.meshes[inst.mesh].primitives) {
-      if (prim.material < 0 || size_t(prim.material) >= scene.materials.size()) continue;
-      const auto& m = scene.materials[prim.material];
-      if (!(emitterLuminance(m) > 0.0f)) continue;
+      if (prim.material < 0 || size_t(prim.material) >= materials.size()) continue;
+      const auto& m = materials[prim.material];
+      // A non-finite emission is no light to sample: paths that hit it are dropped and counted instead.
+      const float luminance = emitterLuminance(m);
+      if (!(luminance > 0.0f) || !std::isfinite(luminance)) continue;
       for (size_t t = 0; t + 2 < prim.indices.size(); t += 3) {
         gpu::EmissiveTriangle e{};
         const gpu::Vertex* v[3] = {&prim.vertices[prim.indices[t]], &prim.vertices[prim.indices[t + 1]],
@@ -38,10 +45,14 @@ std::vector<gpu::EmissiveTriangle> emissiveTriangles(const Scene& scene) {
 }
 
 std::vector<double> emitterWeights(const Scene& scene, const std::vector<gpu::EmissiveTriangle>& emitters) {
+  return emitterWeights(scene.materials, emitters);
+}
+
+std::vector<double> emitterWeights(const std::vector<gpu::Material>& materials,
+                                   const std::vector<gpu::EmissiveTriangle>& emitters) {
   std::vector<double> w;
   w.reserve(emitters.size());
-  for (const auto& e : emitters)
-    w.push_back(double(emitterLuminance(scene.materials[e.materialIndex])) * e.area);
+  for (const auto& e : emitters) w.push_back(double(emitterLuminance(materials[e.materialIndex])) * e.area);
   return w;
 }
 

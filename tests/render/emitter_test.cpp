@@ -2,6 +2,7 @@
 // alone and with light sampling alone), and a single-sided emitter lights nothing behind it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/paths.h"
@@ -120,4 +121,56 @@ TEST(Emitters, SingleSidedEmitterLightsOnlyInFront) {
   };
   EXPECT_EQ(cornerSum(false), 0.0) << "the back of a single-sided emitter must not light the floor";
   EXPECT_GT(cornerSum(true), 1e-3) << "facing the floor it lights it";
+}
+
+namespace {
+
+eval::ImageRGBA renderCornell(const scene::Scene& scene, const std::vector<gpu::Material>* edit) {
+  app::SessionOptions o;
+  o.sceneData = scene;
+  o.settings.width = 24;
+  o.settings.height = 24;
+  o.settings.envColor = glm::vec3(0.0f);
+  o.settings.maxBounces = 6;
+  o.settings.seed = 7;
+  auto session = makeSession(o);
+  if (edit) session->gpuScene().updateMaterials(*edit);
+  session->render(16);
+  expectNoValidationErrors(*session);
+  return session->image();
+}
+
+double meanOf(const eval::ImageRGBA& img) {
+  const auto s = imageStats(img);
+  EXPECT_EQ(s.nonFinite, 0u);
+  return (s.mean[0] + s.mean[1] + s.mean[2]) / 3.0;
+}
+
+}  // namespace
+
+// Live material edits rebuild the area lights' table, so next-event estimation samples what is there now:
+// twice the emission renders exactly twice the image (same samples), and a wall made emissive by an edit
+// renders what a scene loaded with that emission renders.
+TEST(Emitters, MaterialEditsRebuildTheLightTable) {
+  const auto scene = scene::loadGltf(sharedDir() / "reference/cornell.gltf");
+  const auto& names = scene.materialNames;
+  const size_t light = std::find(names.begin(), names.end(), "cb_light") - names.begin();
+  const size_t red = std::find(names.begin(), names.end(), "cb_red") - names.begin();
+  ASSERT_LT(light, names.size());
+  ASSERT_LT(red, names.size());
+
+  const double base = meanOf(renderCornell(scene, nullptr));
+  auto brighter = scene.materials;
+  brighter[light].emissive *= 2.0f;
+  const double doubled = meanOf(renderCornell(scene, &brighter));
+  EXPECT_NEAR(doubled / base, 2.0, 2e-3);
+
+  auto glowing = scene.materials;
+  glowing[red].emissive = glm::vec3(0.5f, 0.05f, 0.05f);
+  scene::Scene loaded = scene;
+  loaded.materials = glowing;
+  const double edited = meanOf(renderCornell(scene, &glowing));
+  const double fresh = meanOf(renderCornell(loaded, nullptr));
+  EXPECT_NEAR(edited / fresh, 1.0, 1e-3);
+  EXPECT_GT(edited, base * 1.05) << "the glowing wall adds light";
 }
