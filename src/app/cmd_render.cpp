@@ -65,10 +65,8 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const double seconds = session.render(ro.settings.spp);
     const auto image = session.image();
     eval::writeImage(outPath, image);
-    if (ro.settings.aov) {
-      eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));
-      eval::writeImage(aovPath(outPath, "normal"), session.aov(render::Aov::Normal));
-    }
+    if (ro.aovAlbedo) eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));
+    if (ro.aovNormal) eval::writeImage(aovPath(outPath, "normal"), session.aov(render::Aov::Normal));
     const auto counters = session.pathTracer().readCounters();
     double mean[3] = {0, 0, 0};
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {

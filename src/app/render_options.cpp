@@ -139,6 +139,7 @@ void finishRenderOptions(RenderOptions& o) {
       if (part != "albedo" && part != "normal") {
         throw std::invalid_argument("--aov: expected albedo and/or normal, got '" + part + "'");
       }
+      (part == "albedo" ? o.aovAlbedo : o.aovNormal) = true;
     }
     s.aov = true;
   }

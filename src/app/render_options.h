@@ -16,7 +16,8 @@ struct RenderOptions {
   render::RenderSettings settings;
   std::string envColor;  // "R,G,B"
   std::string sampler = "sobol";
-  std::string aov;  // "albedo,normal"
+  std::string aov;                            // "albedo,normal"
+  bool aovAlbedo = false, aovNormal = false;  // which --aov images to write
   std::string device;
   std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)
   bool noRussianRoulette = false;

@@ -228,3 +228,42 @@ TEST(Cli, ShadersJsonReportsEachFile) {
   const std::string text((std::istreambuf_iterator<char>(err)), {});
   EXPECT_NE(text.find("bad.rgen:3: error"), std::string::npos) << text;
 }
+
+// The render flags through the binary: each one reaches the stats, --aov writes the AOVs it names, a hybrid
+// mode renders in that mode, and --reference adds the error against it.
+TEST(Cli, RenderFlagsReachTheStatsAndFiles) {
+  const auto dir = tempDir() / "flags";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  auto r =
+      run("render --size 16x16 --spp 2 --max-bounces 3 --rr-start 1 --rr-min 0.1 --rr-max 0.9 --seed 5 "
+          "--sampler pcg --env-rotation 30 --env-intensity 0.5 --aov albedo --out " +
+          (dir / "a.exr").string() + " --stats " + (dir / "a.json").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto a = readJsonFile(dir / "a.json");
+  EXPECT_EQ(a["max_bounces"], 3);
+  EXPECT_EQ(a["rr_start"], 1);
+  EXPECT_NEAR(a["rr_min"].get<double>(), 0.1, 1e-6);
+  EXPECT_NEAR(a["rr_max"].get<double>(), 0.9, 1e-6);
+  EXPECT_EQ(a["seed"], 5);
+  EXPECT_EQ(a["sampler"], "pcg");
+  EXPECT_EQ(a["mode"], "pathtrace");
+  EXPECT_GT(a["paths_per_second"].get<double>(), 0.0);
+  EXPECT_TRUE(fs::exists(dir / "a.albedo.exr"));
+  EXPECT_FALSE(fs::exists(dir / "a.normal.exr")) << "--aov albedo names only the albedo";
+  // Same view in hybrid mode, compared with the path-traced image as its reference.
+  auto h = run("render --size 16x16 --spp 2 --mode hybrid --reference " + (dir / "a.exr").string() +
+               " --out " + (dir / "h.png").string() + " --stats " + (dir / "h.json").string());
+  ASSERT_EQ(h.code, 0) << h.output;
+  const auto hj = readJsonFile(dir / "h.json");
+  EXPECT_EQ(hj["mode"], "hybrid");
+  EXPECT_TRUE(hj.contains("hybrid"));
+  EXPECT_GT(hj["error_vs_reference"]["rmse"].get<double>(), 0.0);
+  EXPECT_GT(hj["error_vs_reference"]["rel_mse"].get<double>(), 0.0);
+  EXPECT_GT(hj["seconds_per_frame"].get<double>(), 0.0);
+  // A reference of another size is a one-line error.
+  auto bad = run("render --size 8x8 --spp 1 --reference " + (dir / "a.exr").string() + " --out " +
+                 (dir / "b.png").string() + " --stats " + (dir / "b.json").string());
+  EXPECT_NE(bad.code, 0);
+  EXPECT_LE(lineCount(bad.output), 2u) << bad.output;
+}
