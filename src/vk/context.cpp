@@ -1,5 +1,6 @@
 #include "vk/context.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -33,6 +34,40 @@ bool layerAvailable(const char* name) {
     if (std::strcmp(l.layerName, name) == 0) return true;
   }
   return false;
+}
+
+// The features the device is created with below, for the devices that could have them at all (Vulkan 1.3 and
+// the ray tracing extensions: querying their feature structures is only valid then).
+std::vector<std::string> missingDeviceFeatures(VkPhysicalDevice d, const DeviceCandidate& c) {
+  if (c.apiVersion < VK_API_VERSION_1_3) return {};
+  for (const auto& e : requiredDeviceExtensions()) {
+    if (std::find(c.extensions.begin(), c.extensions.end(), e) == c.extensions.end()) return {};
+  }
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  rt.pNext = &as;
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.pNext = &rt;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  f12.pNext = &f13;
+  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  f.pNext = &f12;
+  vkGetPhysicalDeviceFeatures2(d, &f);
+  std::vector<std::string> missing;
+  auto need = [&](VkBool32 have, const char* name) {
+    if (!have) missing.emplace_back(name);
+  };
+  need(f12.bufferDeviceAddress, "bufferDeviceAddress");
+  need(f12.runtimeDescriptorArray, "runtimeDescriptorArray");
+  need(f12.descriptorBindingPartiallyBound, "descriptorBindingPartiallyBound");
+  need(f12.scalarBlockLayout, "scalarBlockLayout");
+  need(f13.dynamicRendering, "dynamicRendering");
+  need(f13.synchronization2, "synchronization2");
+  need(rt.rayTracingPipeline, "rayTracingPipeline");
+  need(as.accelerationStructure, "accelerationStructure");
+  return missing;
 }
 
 bool envFlag(const char* name) {
@@ -165,6 +200,7 @@ void Context::pickDevice(const ContextOptions& options) {
     std::vector<VkExtensionProperties> exts(e);
     vkEnumerateDeviceExtensionProperties(d, nullptr, &e, exts.data());
     for (const auto& x : exts) c.extensions.emplace_back(x.extensionName);
+    c.missingFeatures = missingDeviceFeatures(d, c);
     candidates.push_back(std::move(c));
   }
   auto required = requiredDeviceExtensions();

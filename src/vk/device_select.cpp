@@ -49,19 +49,21 @@ DeviceChoice chooseDevice(const std::vector<DeviceCandidate>& candidates,
   for (size_t i = 0; i < candidates.size(); ++i) {
     const auto& c = candidates[i];
     auto missing = missingExtensions(c, required);
-    bool oldApi = c.apiVersion < VK_API_VERSION_1_2;
+    bool oldApi = c.apiVersion < VK_API_VERSION_1_3;
     if (!report.empty()) report += "; ";
     report += "'" + c.name + "'";
-    if (missing.empty() && !oldApi) {
+    const bool qualifies = missing.empty() && !oldApi && c.missingFeatures.empty();
+    if (qualifies) {
       report += " (qualifies)";
     } else {
       report += " lacks";
-      if (oldApi) report += " Vulkan 1.2 (has " + versionString(c.apiVersion) + ")";
+      if (oldApi) report += " Vulkan 1.3 (has " + versionString(c.apiVersion) + ")";
       for (const auto& m : missing) report += " " + m;
+      for (const auto& f : c.missingFeatures) report += " feature " + f;
     }
     bool nameOk = nameOverride.empty() || lower(c.name).find(lower(nameOverride)) != std::string::npos;
     overrideMatched = overrideMatched || (!nameOverride.empty() && nameOk);
-    if (!missing.empty() || oldApi || !nameOk) continue;
+    if (!qualifies || !nameOk) continue;
     if (!best || rank(c) > rank(candidates[*best])) best = i;
   }
   if (best) {

@@ -13,6 +13,7 @@ struct DeviceCandidate {
   bool cpu = false;
   uint32_t apiVersion = 0;
   std::vector<std::string> extensions;
+  std::vector<std::string> missingFeatures;  // device features the workbench needs that this one lacks
 };
 
 struct DeviceChoice {
@@ -24,7 +25,8 @@ struct DeviceChoice {
 const std::vector<std::string>& requiredDeviceExtensions();
 
 // Picks the best qualifying device: a name override (substring, case-insensitive) first, else discrete GPU,
-// else integrated, else anything else (lavapipe). Devices missing an extension or Vulkan 1.2 never qualify.
+// else integrated, else anything else (lavapipe). Devices missing an extension, a feature or Vulkan 1.3 never
+// qualify (so a GPU without, say, dynamic rendering falls back to lavapipe instead of failing).
 DeviceChoice chooseDevice(const std::vector<DeviceCandidate>& candidates,
                           const std::vector<std::string>& required, const std::string& nameOverride = "");
 

@@ -58,7 +58,20 @@ TEST(DeviceSelect, NoQualifyingDeviceNamesDevicesAndMissingExtensions) {
 TEST(DeviceSelect, OldApiVersionDoesNotQualify) {
   auto choice = chooseDevice({device("ancient", true, false, rt(), VK_API_VERSION_1_1)}, rt());
   EXPECT_FALSE(choice.index);
-  EXPECT_NE(choice.error.find("Vulkan 1.2"), std::string::npos) << choice.error;
+  EXPECT_NE(choice.error.find("Vulkan 1.3"), std::string::npos) << choice.error;
+  auto onePointTwo = chooseDevice({device("older", true, false, rt(), VK_API_VERSION_1_2)}, rt());
+  EXPECT_FALSE(onePointTwo.index) << "dynamic rendering and synchronization2 are Vulkan 1.3";
+}
+
+TEST(DeviceSelect, AGpuLackingAFeatureFallsBackToLavapipeAndIsNamed) {
+  auto gpu = device("Some GPU", true, false, rt());
+  gpu.missingFeatures = {"scalarBlockLayout"};
+  auto choice = chooseDevice({gpu, device("llvmpipe", false, true, rt())}, rt());
+  ASSERT_TRUE(choice.index);
+  EXPECT_EQ(*choice.index, 1u);
+  auto none = chooseDevice({gpu}, rt());
+  EXPECT_FALSE(none.index);
+  EXPECT_NE(none.error.find("feature scalarBlockLayout"), std::string::npos) << none.error;
 }
 
 TEST(DeviceSelect, UnknownOverrideIsReported) {
