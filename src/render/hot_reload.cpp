@@ -27,7 +27,10 @@ void HotReload::start() {
   if (running_) return;
   reloader_.start();
   running_ = true;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    shader::lowerThreadPriority();  // pipeline builds yield the cores to the frames
+    run();
+  });
 }
 
 void HotReload::stop() {

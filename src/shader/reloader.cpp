@@ -1,5 +1,9 @@
 #include "shader/reloader.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include "shader/watcher.h"
 
 #include <poll.h>
@@ -9,6 +13,15 @@
 
 #include <algorithm>
 #include <set>
+
+namespace wb::shader {
+
+void lowerThreadPriority() {
+  const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
+  ::setpriority(PRIO_PROCESS, tid, 10);  // best effort: a failure only keeps the normal priority
+}
+
+}  // namespace wb::shader
 
 namespace wb::shader {
 
@@ -48,7 +61,10 @@ void Reloader::start() {
   watcher_ = std::make_unique<DirWatcher>(dirs_);
   wakeFd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   running_ = true;
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    lowerThreadPriority();  // compiles yield the cores to the frames (lavapipe renders on the CPU)
+    run();
+  });
 }
 
 void Reloader::stop() {

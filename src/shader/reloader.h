@@ -13,6 +13,10 @@
 
 namespace wb::shader {
 
+// Lowers the calling thread's scheduling priority (nice +10, Linux threads have their own): background
+// compiles and pipeline builds then take the CPU only when the render loop and lavapipe's threads leave it.
+void lowerThreadPriority();
+
 struct ReloadResult {
   std::vector<fs::path> filesChanged;
   std::vector<std::string> stagesRecompiled;       // stage file paths (+ " [K=V,...]") whose SPIR-V changed
