@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What the path tracer's rays/s on lavapipe depends on (issue: close the gap to Embree): dispatch shape (tiles),
-# llvmpipe thread count, specialised vs generic shaders, path length. Each row: median of 3 renders of the
+# llvmpipe thread count, specialised vs generic shaders, payload size, path length. Each row: median of 3 renders of the
 # default scene at 512x512, 4 spp, after one warm-up render. Prints a Markdown table.
 #   bash bench/dispatch_experiments.sh [build/workbench] > docs/bench/lavapipe_dispatch.md
 set -euo pipefail
@@ -38,4 +38,6 @@ measure "LP_NUM_THREADS=4 (2x cores)" "LP_NUM_THREADS=4"
 measure "generic shaders (all features)" "WB=1" --generic
 measure "max bounces 2" "WB=1" --max-bounces 2
 measure "no NEE (no shadow rays)" "WB=1" --no-nee
+measure "payload +64 bytes" "WB=1" --define WB_PAYLOAD_PAD_VEC4=4
+measure "payload +256 bytes" "WB=1" --define WB_PAYLOAD_PAD_VEC4=16
 measure "GALLIVM_PERF=nopt (no LLVM optimisation)" "GALLIVM_PERF=nopt"

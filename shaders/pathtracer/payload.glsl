@@ -21,6 +21,9 @@ struct PathPayload {
   float pad;
   vec3 geoNormal;  // out at bounce 0: geometric normal, facing the ray (AOV)
   float pad2;
+#ifdef WB_PAYLOAD_PAD_VEC4  // payload-size experiments: --define WB_PAYLOAD_PAD_VEC4=N adds N unused vec4s
+  vec4 experimentPad[WB_PAYLOAD_PAD_VEC4];
+#endif
 };
 
 struct ShadowPayload {

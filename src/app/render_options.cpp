@@ -1,5 +1,7 @@
 #include "app/render_options.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -33,6 +35,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--device", o.device, "Vulkan device name (substring)");
   app.add_option("--tile", o.tile, "trace each sample in tiles of WxH (dispatch-shape experiments)");
   app.add_flag("--generic", s.generic, "all-features shaders instead of the scene-specialised build");
+  app.add_option("--define", o.defines,
+                 "preprocessor define K=V (or K) for the path tracer's shaders; repeatable");
   app.add_option(
          "--mode", o.modeName,
          "pathtrace (reference), hybrid (raster + ray traced shadows/AO) or reflections (hybrid + ray "
@@ -127,6 +131,17 @@ void finishRenderOptions(RenderOptions& o) {
   }
   if (!std::isfinite(o.hybrid.sunAngleDeg) || o.hybrid.sunAngleDeg > 90.0f) {
     throw std::invalid_argument("--sun-angle: must be at most 90 degrees");
+  }
+  s.defines.clear();
+  for (const auto& d : o.defines) {
+    const auto eq = d.find('=');
+    const std::string name = d.substr(0, eq);
+    const bool valid =
+        !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+        std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+    if (!valid)
+      throw std::invalid_argument("--define: expected NAME=VALUE with a C identifier, got '" + d + "'");
+    s.defines.emplace_back(name, eq == std::string::npos ? std::string() : d.substr(eq + 1));
   }
   s.russianRoulette = !o.noRussianRoulette;
   s.nee = !o.noNee;

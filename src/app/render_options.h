@@ -18,6 +18,7 @@ struct RenderOptions {
   std::string sampler = "sobol";
   std::string aov;                            // "albedo,normal"
   bool aovAlbedo = false, aovNormal = false;  // which --aov images to write
+  std::vector<std::string> defines;           // --define K=V
   std::string device;
   std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)
   bool noRussianRoulette = false;

@@ -32,12 +32,20 @@ render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settin
 }
 
 scene::SceneFeatures featuresFor(const scene::Scene& scene, const render::RenderSettings& settings) {
-  if (settings.generic) return scene::genericFeatures();
+  std::vector<shader::Define> extra;
+  for (const auto& [k, v] : settings.defines) extra.push_back({k, v});
+  if (settings.generic) {
+    auto f = scene::genericFeatures();
+    f.extraDefines = extra;
+    return f;
+  }
   const bool black = settings.envColor == glm::vec3(0.0f) || settings.envIntensity == 0.0f;
   const auto env = !settings.envPath.empty() ? scene::EnvironmentKind::Map
                    : black                   ? scene::EnvironmentKind::None
                                              : scene::EnvironmentKind::Constant;
-  return scene::analyzeFeatures(scene, env);
+  auto f = scene::analyzeFeatures(scene, env);
+  f.extraDefines = extra;
+  return f;
 }
 
 std::string shaderSourceFingerprint() {

@@ -2,6 +2,8 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 #include <glm/glm.hpp>
 
 namespace wb::render {
@@ -24,6 +26,9 @@ struct RenderSettings {
   // Dispatch shape of a headless sample: tiles of this size (0 = the whole image in one vkCmdTraceRaysKHR).
   uint32_t tileWidth = 0, tileHeight = 0;
   bool generic = false;  // the all-features shader build instead of the scene-specialised one
+  // Extra preprocessor defines for the path tracer's stages (`--define K=V`): shader experiments from the
+  // command line; part of the variant key like the scene's features.
+  std::vector<std::pair<std::string, std::string>> defines;
 
   // Environment: an equirectangular .hdr, or a constant colour.
   std::string envPath;

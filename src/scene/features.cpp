@@ -35,9 +35,14 @@ SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
 }
 
 std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
-  if (f.generic) return {{"WB_GENERIC", "1"}};
+  std::vector<shader::Define> out;
+  if (f.generic) {
+    out = {{"WB_GENERIC", "1"}};
+    out.insert(out.end(), f.extraDefines.begin(), f.extraDefines.end());
+    return out;
+  }
   auto flag = [](bool b) { return std::string(b ? "1" : "0"); };
-  return {
+  out = {
       {"WB_SPECIALIZED", "1"},
       {"WB_HAS_ALPHA_MASK", flag(f.alphaMask)},
       {"WB_HAS_ALPHA_BLEND", flag(f.alphaBlend)},
@@ -48,10 +53,14 @@ std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
       {"WB_LIGHT_COUNT", std::to_string(f.directionalLights) + "u"},
       {"WB_ENV_MODE", std::to_string(static_cast<int>(f.environment))},
   };
+  out.insert(out.end(), f.extraDefines.begin(), f.extraDefines.end());
+  return out;
 }
 
 std::string describeFeatures(const SceneFeatures& f) {
-  if (f.generic) return "generic (all features)";
+  std::string extra;
+  for (const auto& d : f.extraDefines) extra += " -D" + d.name + (d.value.empty() ? "" : "=" + d.value);
+  if (f.generic) return "generic (all features)" + extra;
   std::string s = "lights=" + std::to_string(f.directionalLights) + " env=" +
                   (f.environment == EnvironmentKind::None       ? "none"
                    : f.environment == EnvironmentKind::Constant ? "constant"
@@ -63,7 +72,7 @@ std::string describeFeatures(const SceneFeatures& f) {
   if (f.textures) s += " textures";
   if (f.specular) s += " specular";
   for (const auto& e : f.extensions) s += " " + e;
-  return s;
+  return s + extra;
 }
 
 }  // namespace wb::scene

@@ -24,6 +24,7 @@ struct SceneFeatures {
   // The glTF extensions the scene's file uses (informational: the code they need is decided by the flags
   // above, so two scenes with the same flags share compiled variants).
   std::vector<std::string> extensions;
+  std::vector<shader::Define> extraDefines;  // the user's `--define K=V`, appended to the feature defines
 
   bool anyAlpha() const { return alphaMask || alphaBlend; }
   bool operator==(const SceneFeatures&) const = default;
