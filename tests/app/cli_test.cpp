@@ -267,3 +267,21 @@ TEST(Cli, RenderFlagsReachTheStatsAndFiles) {
   EXPECT_NE(bad.code, 0);
   EXPECT_LE(lineCount(bad.output), 2u) << bad.output;
 }
+
+// --define K=V reaches the path tracer's shaders as its own cached variant; a bad name is a one-line error.
+TEST(Cli, DefineIsAShaderVariant) {
+  const auto dir = tempDir() / "define";
+  fs::remove_all(dir);
+  const std::string env = "env WB_SHADER_CACHE_DIR=" + (dir / "cache").string() + " ";
+  const std::string args = " render --size 8x8 --spp 1 --out " + (dir / "o.png").string() + " --stats ";
+  ASSERT_EQ(shell(env + WB_WORKBENCH_BIN + args + (dir / "plain.json").string()).code, 0);
+  auto d = shell(env + WB_WORKBENCH_BIN + args + (dir / "defined.json").string() +
+                 " --define WB_PAYLOAD_PAD_VEC4=4");
+  ASSERT_EQ(d.code, 0) << d.output;
+  EXPECT_GT(readJsonFile(dir / "defined.json")["shader_cache"]["compiles"].get<int>(), 0)
+      << "a define is a new variant: its stages compile";
+  auto bad = run("render --size 8x8 --spp 1 --out " + (dir / "b.png").string() + " --define 1bad=2");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("--define"), std::string::npos) << bad.output;
+  EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
+}
