@@ -1,5 +1,6 @@
 #include "render/path_tracer.h"
 
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
@@ -53,6 +54,15 @@ PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const G
                        const GpuEnvironment& env, const RenderSettings& settings,
                        const scene::SceneFeatures& features)
     : ctx_(ctx), library_(library), scene_(scene), env_(&env), settings_(settings) {
+  // Experimental, off unless WB_PIPELINE_LIBRARY=1: the libraries are created without a validation error on
+  // lavapipe and the test of their reuse passes, but a pipeline linked from them renders nothing on lavapipe
+  // (Mesa 25.0) and the NVIDIA driver (580, H200) crashes at its first use. Until that is understood,
+  // pipelines are monolithic (lavapipe would not gain anyway: llvmpipe compiles the linked pipeline as one
+  // function).
+  const char* lib = std::getenv("WB_PIPELINE_LIBRARY");
+  if (ctx.pipelineLibrarySupported() && lib && std::string(lib) == "1") {
+    libraries_ = std::make_unique<vk::RtLibraryCache>(ctx);
+  }
   frameUniforms_ = vk::Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
@@ -136,8 +146,9 @@ std::unique_ptr<PreparedPipeline> PathTracer::preparePipeline(
       {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, anyHit, -1}};
   auto prepared = std::make_unique<PreparedPipeline>();
   prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
-  prepared->pipeline = std::make_unique<vk::RayTracingPipeline>(ctx_, build.stages, groups, kMissCount,
-                                                                prepared->layout->handle(), kMaxRecursion);
+  prepared->pipeline = std::make_unique<vk::RayTracingPipeline>(
+      ctx_, build.stages, groups, kMissCount, prepared->layout->handle(), kMaxRecursion,
+      std::vector<vk::SpecializationConstant>{}, libraries_.get(), vk::layoutKey(build.layout));
   return prepared;
 }
 
@@ -150,6 +161,8 @@ void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
   writeDescriptors();
   pipelineMs_ = pipeline_->createMs();
   sampleIndex_ = 0;
+  // Libraries of the last few builds stay (variants and an edit in flight); older ones go.
+  if (libraries_) libraries_->trim(24, pipeline_->libraryKeys());
 }
 
 void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {

@@ -74,6 +74,10 @@ class PathTracer {
   void commitPipeline(std::unique_ptr<PreparedPipeline> prepared);
   void swapPipeline(const shader::ShaderLibrary::ProgramBuild& build);  // both at once
   double lastPipelineMs() const { return pipelineMs_; }
+  // With WB_PIPELINE_LIBRARY=1 (experimental, see the constructor) pipelines are linked from per-group
+  // libraries: an edit recompiles only the changed group. nullptr when monolithic (the default).
+  const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
+  bool pipelineLinked() const { return pipeline_ && pipeline_->linked(); }
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
@@ -104,6 +108,8 @@ class PathTracer {
   std::unique_ptr<vk::PipelineLayout> layout_;
   std::unique_ptr<vk::DescriptorSets> sets_;
   uint64_t emitterVersion_ = 0;  // the scene's emitter buffers the descriptors point at
+  std::unique_ptr<vk::RtLibraryCache>
+      libraries_;  // before pipeline_: destroyed after the pipelines linked from it
   std::unique_ptr<vk::RayTracingPipeline> pipeline_;
   vk::Image accum_, albedo_, normal_, info_;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;

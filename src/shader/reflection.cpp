@@ -35,6 +35,21 @@ bool isBufferDim(const spirv_cross::Compiler& c, const spirv_cross::Resource& r)
   return c.get_type(r.type_id).image.dim == spv::DimBuffer;
 }
 
+// Conservative byte size of a type: scalars and vectors rounded up to 16 bytes per member, arrays multiplied.
+uint32_t conservativeSize(const spirv_cross::Compiler& c, const spirv_cross::SPIRType& t) {
+  uint32_t size = 0;
+  if (t.basetype == spirv_cross::SPIRType::Struct) {
+    for (const auto member : t.member_types) size += conservativeSize(c, c.get_type(member));
+  } else {
+    size = std::max<uint32_t>(16, (t.width / 8) * t.vecsize * t.columns);
+    size = (size + 15) / 16 * 16;
+  }
+  for (size_t i = 0; i < t.array.size(); ++i) {
+    if (t.array_size_literal[i]) size *= std::max<uint32_t>(t.array[i], 1);
+  }
+  return size;
+}
+
 }  // namespace
 
 Reflection reflectSpirv(const std::vector<uint32_t>& spirv, Stage stage, const fs::path& file) {
@@ -61,6 +76,28 @@ Reflection reflectSpirv(const std::vector<uint32_t>& spirv, Stage stage, const f
     add(res.separate_samplers, [](auto&) { return VK_DESCRIPTOR_TYPE_SAMPLER; });
     add(res.acceleration_structures, [](auto&) { return VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR; });
     add(res.subpass_inputs, [](auto&) { return VK_DESCRIPTOR_TYPE_INPUT_ATTACHMENT; });
+    // Ray payloads, callable data and hit attributes are no "resources" to SPIRV-Cross: find their
+    // OpVariables (and the pointer types that name what they hold) in the module itself.
+    std::map<uint32_t, uint32_t> pointee;                  // OpTypePointer id -> pointed-to type
+    std::vector<std::pair<uint32_t, uint32_t>> variables;  // (pointer type, storage class)
+    for (size_t i = 5; i < spirv.size();) {
+      const uint32_t count = spirv[i] >> 16, op = spirv[i] & 0xFFFFu;
+      if (count == 0 || i + count > spirv.size()) break;
+      if (op == spv::OpTypePointer && count >= 4) pointee[spirv[i + 1]] = spirv[i + 3];
+      if (op == spv::OpVariable && count >= 4) variables.emplace_back(spirv[i + 1], spirv[i + 3]);
+      i += count;
+    }
+    for (const auto& [pointerType, storage] : variables) {
+      const bool payload =
+          storage == spv::StorageClassRayPayloadKHR || storage == spv::StorageClassIncomingRayPayloadKHR ||
+          storage == spv::StorageClassCallableDataKHR || storage == spv::StorageClassIncomingCallableDataKHR;
+      const bool attribute = storage == spv::StorageClassHitAttributeKHR;
+      const auto it = pointee.find(pointerType);
+      if ((!payload && !attribute) || it == pointee.end()) continue;
+      const uint32_t bytes = conservativeSize(c, c.get_type(it->second));
+      uint32_t& field = payload ? out.rayPayloadBytes : out.hitAttributeBytes;
+      field = std::max(field, bytes);
+    }
     for (const auto& pc : res.push_constant_buffers) {
       const auto& type = c.get_type(pc.base_type_id);
       const uint32_t size = static_cast<uint32_t>(c.get_declared_struct_size(type));

@@ -64,6 +64,11 @@ struct DescriptorBinding {
 struct Reflection {
   std::vector<DescriptorBinding> bindings;  // sorted by set, binding; only what the stage uses
   std::vector<VkPushConstantRange> pushConstants;
+  // Ray tracing stages: an upper bound of the largest ray payload / callable data and of the hit attributes
+  // the stage declares, in bytes (every member counted at 16-byte alignment): what a pipeline library's
+  // interface must cover.
+  uint32_t rayPayloadBytes = 0;
+  uint32_t hitAttributeBytes = 0;
 };
 
 struct CompiledShader {

@@ -209,6 +209,7 @@ void Context::pickDevice(const ContextOptions& options) {
   if (!choice.index) throw VulkanError(choice.error);
   physical_ = devices[*choice.index];
   deviceName_ = candidates[*choice.index].name;
+  cpuDevice_ = candidates[*choice.index].cpu;
   for (const auto& e : candidates[*choice.index].extensions) {
     if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
   }
@@ -227,6 +228,7 @@ void Context::pickDevice(const ContextOptions& options) {
   rt_.handleAlignment = rtProps.shaderGroupHandleAlignment;
   rt_.baseAlignment = rtProps.shaderGroupBaseAlignment;
   rt_.maxRecursionDepth = rtProps.maxRayRecursionDepth;
+  rt_.maxHitAttributeSize = rtProps.maxRayHitAttributeSize;
   rt_.minScratchAlignment = asProps.minAccelerationStructureScratchOffsetAlignment;
   timestampPeriod_ = props.properties.limits.timestampPeriod;
   driverInfo_ = std::string(driver.driverName) + " " + driver.driverInfo;

@@ -28,6 +28,7 @@ struct RayTracingProperties {
   uint32_t baseAlignment = 0;
   uint32_t maxRecursionDepth = 0;
   uint32_t minScratchAlignment = 0;
+  uint32_t maxHitAttributeSize = 32;
 };
 
 class Context {
@@ -47,6 +48,7 @@ class Context {
   const RayTracingProperties& rayTracing() const { return rt_; }
   bool validationEnabled() const { return validation_; }
   bool pipelineLibrarySupported() const { return pipelineLibrary_; }
+  bool cpuDevice() const { return cpuDevice_; }  // a software rasteriser (lavapipe)
   float timestampPeriodNs() const { return timestampPeriod_; }
   // The pipeline cache every pipeline is created with (persisted at exit when a directory was given).
   VkPipelineCache pipelineCache() const { return pipelineCache_ ? pipelineCache_->handle() : VK_NULL_HANDLE; }
@@ -98,6 +100,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_{};
   bool validation_ = false;
   bool pipelineLibrary_ = false;
+  bool cpuDevice_ = false;
   float timestampPeriod_ = 1.0f;
   std::atomic<uint32_t> validationErrors_{0};
   mutable std::mutex messagesMutex_;

@@ -1,13 +1,84 @@
 #include "vk/rt_pipeline.h"
 
+#include <algorithm>
 #include <chrono>
+#include <sstream>
 
 namespace wb::vk {
+
+RtLibraryCache::RtLibraryCache(Context& ctx) : ctx_(ctx) {}
+
+RtLibraryCache::~RtLibraryCache() {
+  for (auto& [key, e] : libraries_) vkDestroyPipeline(ctx_.device(), e.pipeline, nullptr);
+}
+
+VkPipeline RtLibraryCache::get(const std::string& key, const std::function<VkPipeline()>& create) {
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = libraries_.find(key); it != libraries_.end()) {
+      it->second.lastUse = ++clock_;
+      return it->second.pipeline;
+    }
+  }
+  VkPipeline lib = create();  // outside the lock: the driver's compile is the slow part
+  std::lock_guard lock(mutex_);
+  auto [it, inserted] = libraries_.emplace(key, Entry{lib, 0});
+  if (!inserted) {
+    vkDestroyPipeline(ctx_.device(), lib, nullptr);  // another thread made the same one meanwhile
+  } else {
+    ++created_;
+  }
+  it->second.lastUse = ++clock_;
+  return it->second.pipeline;
+}
+
+void RtLibraryCache::trim(size_t maxLibraries, const std::vector<std::string>& inUse) {
+  std::lock_guard lock(mutex_);
+  while (libraries_.size() > maxLibraries) {
+    auto oldest = libraries_.end();
+    for (auto it = libraries_.begin(); it != libraries_.end(); ++it) {
+      if (std::find(inUse.begin(), inUse.end(), it->first) != inUse.end()) continue;
+      if (oldest == libraries_.end() || it->second.lastUse < oldest->second.lastUse) oldest = it;
+    }
+    if (oldest == libraries_.end()) return;
+    vkDestroyPipeline(ctx_.device(), oldest->second.pipeline, nullptr);
+    libraries_.erase(oldest);
+  }
+}
+
+size_t RtLibraryCache::size() const {
+  std::lock_guard lock(mutex_);
+  return libraries_.size();
+}
+
+std::string layoutKey(const shader::PipelineLayoutDesc& desc) {
+  std::ostringstream k;
+  for (const auto& b : desc.bindings) {
+    k << b.set << ':' << b.binding << ':' << b.type << ':' << b.count << ':' << b.runtimeArray << ':'
+      << b.stages << ';';
+  }
+  for (const auto& p : desc.pushConstants)
+    k << "pc" << p.offset << ':' << p.size << ':' << p.stageFlags << ';';
+  return k.str();
+}
+
+namespace {
+
+uint64_t hashWords(const std::vector<uint32_t>& words) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a over the SPIR-V
+  for (uint32_t w : words) {
+    for (int i = 0; i < 4; ++i) h = (h ^ ((w >> (8 * i)) & 0xFFu)) * 1099511628211ull;
+  }
+  return h;
+}
+
+}  // namespace
 
 RayTracingPipeline::RayTracingPipeline(
     Context& ctx, const std::vector<std::shared_ptr<const shader::CompiledShader>>& stages,
     const std::vector<RtShaderGroup>& groups, uint32_t missCount, VkPipelineLayout layout,
-    uint32_t maxRecursionDepth, const std::vector<SpecializationConstant>& constants)
+    uint32_t maxRecursionDepth, const std::vector<SpecializationConstant>& constants,
+    RtLibraryCache* libraries, const std::string& layoutId)
     : ctx_(ctx) {
   auto t0 = std::chrono::steady_clock::now();
   if (maxRecursionDepth > ctx.rayTracing().maxRecursionDepth) {
@@ -55,15 +126,78 @@ RayTracingPipeline::RayTracingPipeline(
       gi.intersectionShader = idx(g.intersection);
       groupInfos.push_back(gi);
     }
-    VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
-    ci.stageCount = static_cast<uint32_t>(stageInfos.size());
-    ci.pStages = stageInfos.data();
-    ci.groupCount = static_cast<uint32_t>(groupInfos.size());
-    ci.pGroups = groupInfos.data();
-    ci.maxPipelineRayRecursionDepth = maxRecursionDepth;
-    ci.layout = layout;
-    WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci,
-                                             nullptr, &pipeline_));
+    if (libraries && ctx.pipelineLibrarySupported()) {
+      // One library per group: its stages (re-indexed from 0) and the group. The interface covers every
+      // stage.
+      VkRayTracingPipelineInterfaceCreateInfoKHR iface{
+          VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_INTERFACE_CREATE_INFO_KHR};
+      for (const auto& st : stages) {
+        iface.maxPipelineRayPayloadSize =
+            std::max(iface.maxPipelineRayPayloadSize, st->reflection.rayPayloadBytes);
+        iface.maxPipelineRayHitAttributeSize =
+            std::max(iface.maxPipelineRayHitAttributeSize, st->reflection.hitAttributeBytes);
+      }
+      iface.maxPipelineRayHitAttributeSize =
+          std::min(std::max(iface.maxPipelineRayHitAttributeSize, 8u), ctx.rayTracing().maxHitAttributeSize);
+      std::vector<VkPipeline> libs;
+      for (size_t g = 0; g < groups.size(); ++g) {
+        std::vector<VkPipelineShaderStageCreateInfo> localStages;
+        VkRayTracingShaderGroupCreateInfoKHR local = groupInfos[g];
+        std::ostringstream key;
+        key << "group "
+            << (g == 0           ? "raygen"
+                : g <= missCount ? "miss"
+                                 : "hit")
+            << " recursion " << maxRecursionDepth << " payload " << iface.maxPipelineRayPayloadSize
+            << " attr " << iface.maxPipelineRayHitAttributeSize << " layout " << layoutId;
+        for (const auto& c : constants) key << " spec " << c.id << '=' << c.value;
+        for (uint32_t* slot : {&local.generalShader, &local.closestHitShader, &local.anyHitShader,
+                               &local.intersectionShader}) {
+          if (*slot == VK_SHADER_UNUSED_KHR) continue;
+          const uint32_t stage = *slot;
+          key << " stage " << stageInfos[stage].stage << ':' << std::hex << hashWords(stages[stage]->spirv)
+              << std::dec;
+          *slot = static_cast<uint32_t>(localStages.size());
+          localStages.push_back(stageInfos[stage]);
+        }
+        libraryKeys_.push_back(key.str());
+        libs.push_back(libraries->get(libraryKeys_.back(), [&] {
+          VkRayTracingPipelineCreateInfoKHR lci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+          lci.flags = VK_PIPELINE_CREATE_LIBRARY_BIT_KHR;
+          lci.stageCount = static_cast<uint32_t>(localStages.size());
+          lci.pStages = localStages.data();
+          lci.groupCount = 1;
+          lci.pGroups = &local;
+          lci.maxPipelineRayRecursionDepth = maxRecursionDepth;
+          lci.pLibraryInterface = &iface;
+          lci.layout = layout;
+          VkPipeline lib = VK_NULL_HANDLE;
+          WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &lci,
+                                                   nullptr, &lib));
+          return lib;
+        }));
+      }
+      VkPipelineLibraryCreateInfoKHR li{VK_STRUCTURE_TYPE_PIPELINE_LIBRARY_CREATE_INFO_KHR};
+      li.libraryCount = static_cast<uint32_t>(libs.size());
+      li.pLibraries = libs.data();
+      VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+      ci.pLibraryInfo = &li;
+      ci.pLibraryInterface = &iface;
+      ci.maxPipelineRayRecursionDepth = maxRecursionDepth;
+      ci.layout = layout;
+      WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci,
+                                               nullptr, &pipeline_));
+    } else {
+      VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+      ci.stageCount = static_cast<uint32_t>(stageInfos.size());
+      ci.pStages = stageInfos.data();
+      ci.groupCount = static_cast<uint32_t>(groupInfos.size());
+      ci.pGroups = groupInfos.data();
+      ci.maxPipelineRayRecursionDepth = maxRecursionDepth;
+      ci.layout = layout;
+      WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci,
+                                               nullptr, &pipeline_));
+    }
     const uint32_t hitCount = static_cast<uint32_t>(groups.size()) - 1 - missCount;
     sbt_ = ShaderBindingTable(ctx, pipeline_, missCount, hitCount);
   } catch (...) {

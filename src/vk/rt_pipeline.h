@@ -1,6 +1,11 @@
 // A ray tracing pipeline from compiled stages and shader groups, with its shader binding table.
 #pragma once
+#include <atomic>
+#include <functional>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -22,12 +27,53 @@ struct SpecializationConstant {
   uint32_t value = 0;
 };
 
+// Pipeline libraries (VK_KHR_pipeline_library), one per shader group, kept across rebuilds: a pipeline linked
+// from them recompiles only the groups whose SPIR-V, specialisation, layout or interface changed, so an edit
+// of the closest-hit shader compiles one library and links. Thread-safe (hot reload builds on a worker
+// thread).
+class RtLibraryCache {
+ public:
+  explicit RtLibraryCache(Context& ctx);
+  ~RtLibraryCache();
+  RtLibraryCache(const RtLibraryCache&) = delete;
+  RtLibraryCache& operator=(const RtLibraryCache&) = delete;
+
+  // The library for `key`, made by `create` when there is none yet.
+  VkPipeline get(const std::string& key, const std::function<VkPipeline()>& create);
+  // Destroys the least recently used libraries beyond `maxLibraries`, never one in `inUse` (a library must
+  // outlive the pipelines linked from it; the most recent builds' stay, so a prepared but not yet committed
+  // pipeline keeps its libraries).
+  void trim(size_t maxLibraries, const std::vector<std::string>& inUse);
+  uint64_t librariesCreated() const { return created_; }
+  size_t size() const;
+
+ private:
+  Context& ctx_;
+  mutable std::mutex mutex_;
+  struct Entry {
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    uint64_t lastUse = 0;
+  };
+  std::map<std::string, Entry> libraries_;
+  uint64_t clock_ = 0;
+  std::atomic<uint64_t> created_{0};
+};
+
+// A key that identifies a reflected pipeline layout's contents (libraries need a compatible layout).
+std::string layoutKey(const shader::PipelineLayoutDesc& desc);
+
 class RayTracingPipeline {
  public:
-  // Groups must come in SBT order: one raygen, then `missCount` miss groups, then the hit groups.
+  // Groups must come in SBT order: one raygen, then `missCount` miss groups, then the hit groups. With a
+  // library cache (and a device with VK_KHR_pipeline_library) the pipeline is linked from per-group
+  // libraries; `layoutId` must then identify the layout's contents (layoutKey()).
   RayTracingPipeline(Context& ctx, const std::vector<std::shared_ptr<const shader::CompiledShader>>& stages,
                      const std::vector<RtShaderGroup>& groups, uint32_t missCount, VkPipelineLayout layout,
-                     uint32_t maxRecursionDepth, const std::vector<SpecializationConstant>& constants = {});
+                     uint32_t maxRecursionDepth, const std::vector<SpecializationConstant>& constants = {},
+                     RtLibraryCache* libraries = nullptr, const std::string& layoutId = {});
+  // The libraries this pipeline was linked from (their cache keys); empty when monolithic.
+  const std::vector<std::string>& libraryKeys() const { return libraryKeys_; }
+  bool linked() const { return !libraryKeys_.empty(); }
   ~RayTracingPipeline();
   RayTracingPipeline(const RayTracingPipeline&) = delete;
   RayTracingPipeline& operator=(const RayTracingPipeline&) = delete;
@@ -41,6 +87,7 @@ class RayTracingPipeline {
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   ShaderBindingTable sbt_;
   double createMs_ = 0;
+  std::vector<std::string> libraryKeys_;
 };
 
 }  // namespace wb::vk
