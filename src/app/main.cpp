@@ -1,6 +1,11 @@
 // workbench: the Vulkan ray tracing shader workbench. Subcommands: render, shaders (and the live window when
 // run with no subcommand).
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+
+#include <execinfo.h>
+#include <unistd.h>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -15,6 +20,19 @@
 #include "vk/context.h"
 
 namespace {
+
+// A crash still says where: the call stack (addresses relative to the binary's load address, for addr2line)
+// goes to stderr before the default action ends the process.
+void crashHandler(int sig) {
+  void* frames[64];
+  const int n = backtrace(frames, 64);
+  const char* head =
+      sig == SIGSEGV ? "workbench: segmentation fault; stack:\n" : "workbench: fatal signal; stack:\n";
+  (void)!write(2, head, std::strlen(head));
+  backtrace_symbols_fd(frames, n, 2);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
 
 void usage() {
   std::printf(
@@ -55,6 +73,12 @@ int runDefault(const std::vector<std::string>& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reports crashes itself
+  std::signal(SIGSEGV, crashHandler);
+  std::signal(SIGBUS, crashHandler);
+  std::signal(SIGILL, crashHandler);
+  std::signal(SIGFPE, crashHandler);
+#endif
   std::vector<std::string> args(argv + 1, argv + argc);
   if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
     usage();

@@ -54,13 +54,12 @@ PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const G
                        const GpuEnvironment& env, const RenderSettings& settings,
                        const scene::SceneFeatures& features)
     : ctx_(ctx), library_(library), scene_(scene), env_(&env), settings_(settings) {
-  // Experimental, off unless WB_PIPELINE_LIBRARY=1: the libraries are created without a validation error on
-  // lavapipe and the test of their reuse passes, but a pipeline linked from them renders nothing on lavapipe
-  // (Mesa 25.0) and the NVIDIA driver (580, H200) crashes at its first use. Until that is understood,
-  // pipelines are monolithic (lavapipe would not gain anyway: llvmpipe compiles the linked pipeline as one
-  // function).
+  // On GPUs by default; not on lavapipe: Mesa 25.0 links ray tracing libraries without a validation error but
+  // the linked pipeline renders nothing (and it would gain nothing there: llvmpipe compiles the linked
+  // pipeline as one function at its first dispatch). WB_PIPELINE_LIBRARY=0 / =1 forces it off / on.
   const char* lib = std::getenv("WB_PIPELINE_LIBRARY");
-  if (ctx.pipelineLibrarySupported() && lib && std::string(lib) == "1") {
+  const bool forced = lib && std::string(lib) == "1", off = lib && std::string(lib) == "0";
+  if (ctx.pipelineLibrarySupported() && !off && (!ctx.cpuDevice() || forced)) {
     libraries_ = std::make_unique<vk::RtLibraryCache>(ctx);
   }
   frameUniforms_ = vk::Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);

@@ -74,8 +74,8 @@ class PathTracer {
   void commitPipeline(std::unique_ptr<PreparedPipeline> prepared);
   void swapPipeline(const shader::ShaderLibrary::ProgramBuild& build);  // both at once
   double lastPipelineMs() const { return pipelineMs_; }
-  // With WB_PIPELINE_LIBRARY=1 (experimental, see the constructor) pipelines are linked from per-group
-  // libraries: an edit recompiles only the changed group. nullptr when monolithic (the default).
+  // On GPUs with VK_KHR_pipeline_library (not lavapipe; WB_PIPELINE_LIBRARY=0/1 forces it) pipelines are
+  // linked from per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.
   const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
   bool pipelineLinked() const { return pipeline_ && pipeline_->linked(); }
 
