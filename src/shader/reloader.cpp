@@ -163,7 +163,9 @@ void Reloader::run() {
         continue;
       }
       if (e.isDir()) continue;
-      if (e.mask & IN_MODIFY) writing.insert(e.path);
+      // A file just created or modified is being written until its IN_CLOSE_WRITE (a writer descheduled
+      // between open() and write() must not get its empty file compiled).
+      if (e.mask & (IN_MODIFY | IN_CREATE)) writing.insert(e.path);
       if (e.mask & (IN_CLOSE_WRITE | IN_DELETE | IN_MOVED_FROM)) writing.erase(e.path);
       pending.insert(e.path);
     }

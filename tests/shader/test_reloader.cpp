@@ -149,6 +149,22 @@ TEST_F(ReloaderFixture, DeleteThenRecreate) {
   EXPECT_TRUE(has(r.programs, rt));
 }
 
+// A writer descheduled between creating the file and writing it (seen under load in CI): the empty new file
+// is not compiled; the reload comes once, with the written contents.
+TEST_F(ReloaderFixture, DeleteThenSlowRecreate) {
+  fs::remove(dir / "common.glsl");
+  std::this_thread::sleep_for(60ms);
+  const int fd = ::open((dir / "common.glsl").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(fd, 0);
+  std::this_thread::sleep_for(200ms);  // longer than the quiet period, shorter than the write grace
+  const std::string text = "#define TINT vec3(0.0, 0.0, 1.0)\n";
+  ASSERT_EQ(::write(fd, text.data(), text.size()), ssize_t(text.size()));
+  ::close(fd);
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(has(r.programs, graphics));
+}
+
 TEST_F(ReloaderFixture, Touch) {
   fs::last_write_time(dir / "g.frag", fs::file_time_type::clock::now());
   auto r = expectOne();
