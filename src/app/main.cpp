@@ -21,6 +21,7 @@
 
 namespace {
 
+#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reports crashes itself
 // A crash still says where: the call stack (addresses relative to the binary's load address, for addr2line)
 // goes to stderr before the default action ends the process.
 void crashHandler(int sig) {
@@ -33,6 +34,7 @@ void crashHandler(int sig) {
   std::signal(sig, SIG_DFL);
   std::raise(sig);
 }
+#endif
 
 void usage() {
   std::printf(
