@@ -380,6 +380,18 @@ TEST(Window, SaveDebugViewResizeAndImguiIni) {
   EXPECT_TRUE(fs::exists(dir / "layout.ini")) << "--imgui-ini names where the layout is kept";
 }
 
+TEST(Window, VsyncToggleRecreatesTheSwapchain) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("vsync");
+  writeFile(dir / "s.txt", "frames 2\nstats " + (dir / "on.json").string() +
+                               "\nset vsync off\nframes 3\nstats " + (dir / "off.json").string() + "\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(readJson(dir / "on.json")["present_mode"], "FIFO (vsync)");
+  EXPECT_NE(readJson(dir / "off.json")["present_mode"], "FIFO (vsync)");
+  EXPECT_FALSE(readJson(dir / "off.json")["parameters"].is_null());
+}
+
 TEST(Window, ModeFlagStartsInThatMode) {
   REQUIRE_XVFB();
   const auto dir = tempDir("modeflag");
