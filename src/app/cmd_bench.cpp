@@ -19,6 +19,7 @@
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "scene/procedural.h"
+#include "shader/hash.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -85,16 +86,25 @@ struct BenchScene {
   std::optional<scene::Scene> data;
 };
 
-// Path tracer rates of one scene and variant: medians over `repeats` runs of `spp` samples after a warm-up.
-json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h, uint32_t spp, int repeats,
-                     const std::string& device, std::string& deviceName, std::string& driver) {
+// A session on a bench scene at a size, in a mode, on the chosen device.
+SessionOptions benchSession(const BenchScene& bs, uint32_t w, uint32_t h, const std::string& device,
+                            render::RenderMode mode = render::RenderMode::PathTrace) {
   SessionOptions o;
   o.scenePath = bs.path;
   o.sceneData = bs.data;
   o.settings.width = w;
   o.settings.height = h;
-  o.settings.generic = generic;
   o.context.deviceName = device;
+  o.mode = mode;
+  o.quiet = true;
+  return o;
+}
+
+// Path tracer rates of one scene and variant: medians over `repeats` runs of `spp` samples after a warm-up.
+json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h, uint32_t spp, int repeats,
+                     const std::string& device, std::string& deviceName, std::string& driver) {
+  SessionOptions o = benchSession(bs, w, h, device);
+  o.settings.generic = generic;
   RenderSession s(o);
   deviceName = s.context().deviceName();
   driver = s.context().driverInfo();
@@ -238,17 +248,6 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
                 std::string& deviceName, std::string& driver) {
   const render::RenderMode modes[] = {render::RenderMode::PathTrace, render::RenderMode::Hybrid,
                                       render::RenderMode::Reflections};
-  auto options = [&](const BenchScene& bs, render::RenderMode mode, uint32_t width, uint32_t height) {
-    SessionOptions o;
-    o.scenePath = bs.path;
-    o.sceneData = bs.data;
-    o.settings.width = width;
-    o.settings.height = height;
-    o.context.deviceName = device;
-    o.mode = mode;
-    o.quiet = true;
-    return o;
-  };
   json rows = json::array();
   for (const auto& bs : scenes) {
     // The reference.
@@ -259,18 +258,15 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
     const std::string key = "modes-reference v1 " + bs.name + " " + bs.path + " " + mtime + " " +
                             std::to_string(w) + "x" + std::to_string(h) + " spp " + std::to_string(refSpp) +
                             " shaders " + shaderSourceFingerprint();
-    uint64_t hash = 1469598103934665603ull;
-    for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
-    const fs::path refFile = shaderCacheDir() / "references" / (std::string(hex) + ".exr");
+    const fs::path refFile =
+        shaderCacheDir() / "references" / (shader::Hasher().add(key).finish().hex() + ".exr");
     eval::ImageRGBA reference;
     double refSeconds = 0;
     if (fs::exists(refFile)) {
       reference = eval::readExr(refFile);
     } else {
       std::fprintf(stderr, "bench: %s reference, %u spp at %ux%u ...\n", bs.name.c_str(), refSpp, w, h);
-      auto o = options(bs, render::RenderMode::PathTrace, w, h);
+      auto o = benchSession(bs, w, h, device);
       o.settings.seed = 0x5eed0000u;
       RenderSession s(o);
       refSeconds = s.render(refSpp);
@@ -281,7 +277,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
     }
     for (auto mode : modes) {
       std::fprintf(stderr, "bench: %s in mode %s ...\n", bs.name.c_str(), render::renderModeName(mode));
-      RenderSession s(options(bs, mode, w, h));
+      RenderSession s(benchSession(bs, w, h, device, mode));
       deviceName = s.context().deviceName();
       driver = s.context().driverInfo();
       s.render(1);  // warm-up (the driver compiles pipelines at the first use)
@@ -314,7 +310,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
     for (auto mode : modes) {
       std::fprintf(stderr, "bench: default scene, mode %s at %s ...\n", render::renderModeName(mode),
                    speedSize.c_str());
-      RenderSession s(options(scenes.front(), mode, sw, sh));
+      RenderSession s(benchSession(scenes.front(), sw, sh, device, mode));
       s.render(1);  // warm-up
       std::vector<double> t;
       for (int r = 0; r < repeats; ++r) {

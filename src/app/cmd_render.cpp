@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/render_options.h"
+#include "app/hybrid_json.h"
 #include "app/render_session.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
@@ -99,16 +100,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
         for (size_t i = 1; i < frames.size(); ++i) rest += frames[i];
         j["seconds_per_frame_after_first"] = rest / double(frames.size() - 1);
       }
-      if (auto* hybrid = session.hybrid()) {
-        const auto& h = hybrid->hybridSettings();
-        j["hybrid"] = {{"sun_cos_angle", hybrid->sunCosAngle()},
-                       {"ao_radius", hybrid->aoRadius()},
-                       {"ao_rays", h.aoRays},
-                       {"temporal", h.temporal},
-                       {"reflection_depth", h.reflectionDepth},
-                       {"reflection_max_roughness", h.reflectionMaxRoughness},
-                       {"reflection_min_metallic", h.reflectionMinMetallic}};
-      }
+      if (auto* hybrid = session.hybrid()) j["hybrid"] = hybridSettingsJson(*hybrid);
       if (referenceImage) {
         eval::requireSameSize(image, *referenceImage, "--reference");
         j["error_vs_reference"] = {{"reference", reference},

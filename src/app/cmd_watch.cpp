@@ -66,15 +66,7 @@ int runWatchCommand(const std::vector<std::string>& args) {
     RenderSession session(so);
     auto& tracer = session.pathTracer();
     render::HotReload hot(session.library(), {shaderDir()});
-    hot.addTarget(tracer.program(),
-                  {"pathtracer",
-                   [&tracer](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-                     return std::shared_ptr<render::PreparedPipeline>(tracer.preparePipeline(b));
-                   },
-                   [&tracer](std::shared_ptr<void> p) {
-                     auto prepared = std::static_pointer_cast<render::PreparedPipeline>(p);
-                     tracer.commitPipeline(std::make_unique<render::PreparedPipeline>(std::move(*prepared)));
-                   }});
+    tracer.addHotReloadTarget(hot);
     // The hybrid modes' raster and ray tracing pipelines reload through the same shader library.
     if (auto* hybrid = session.hybrid()) hybrid->addHotReloadTargets(hot);
     hot.start();

@@ -2,11 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <fstream>
-#include <iterator>
 
 #include "common/paths.h"
+#include "shader/hash.h"
 #include "sampling/environment.h"
 
 namespace wb::app {
@@ -56,20 +54,12 @@ std::string shaderSourceFingerprint() {
     if (it->is_regular_file(ec)) files.push_back(it->path());
   }
   std::sort(files.begin(), files.end());
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
-  auto mix = [&h](const char* data, size_t n) {
-    for (size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ull;
-  };
+  shader::Hasher h;
   for (const auto& f : files) {
-    const std::string rel = std::filesystem::relative(f, shaderDir(), ec).string();
-    mix(rel.data(), rel.size() + 1);
-    std::ifstream in(f, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    mix(text.data(), text.size());
+    h.add(std::filesystem::relative(f, shaderDir(), ec).string());
+    h.add(shader::readFile(f).value_or(std::string()));
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
+  return h.finish().hex();
 }
 
 RenderSession::RenderSession(const SessionOptions& options) {

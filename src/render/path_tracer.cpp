@@ -164,6 +164,17 @@ void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
   if (libraries_) libraries_->trim(24, pipeline_->libraryKeys());
 }
 
+void PathTracer::addHotReloadTarget(HotReload& hot) {
+  hot.addTarget(program_, {"pathtracer",
+                           [this](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
+                             return std::shared_ptr<PreparedPipeline>(preparePipeline(b));
+                           },
+                           [this](std::shared_ptr<void> p) {
+                             auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
+                             commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
+                           }});
+}
+
 void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {
   commitPipeline(preparePipeline(build));
 }

@@ -7,6 +7,7 @@
 
 #include "render/environment.h"
 #include "render/gpu_scene.h"
+#include "render/hot_reload.h"
 #include "render/settings.h"
 #include "scene/features.h"
 #include "scene/scene.h"
@@ -73,6 +74,8 @@ class PathTracer {
   std::unique_ptr<PreparedPipeline> preparePipeline(const shader::ShaderLibrary::ProgramBuild& build) const;
   void commitPipeline(std::unique_ptr<PreparedPipeline> prepared);
   void swapPipeline(const shader::ShaderLibrary::ProgramBuild& build);  // both at once
+  // Registers the current program with a HotReload ("pathtracer"): prepare on its worker, commit at poll().
+  void addHotReloadTarget(HotReload& hot);
   double lastPipelineMs() const { return pipelineMs_; }
   // On GPUs with VK_KHR_pipeline_library (not lavapipe; WB_PIPELINE_LIBRARY=0/1 forces it) pipelines are
   // linked from per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.

@@ -36,38 +36,54 @@ bool layerAvailable(const char* name) {
   return false;
 }
 
-// The features the device is created with below, for the devices that could have them at all (Vulkan 1.3 and
-// the ray tracing extensions: querying their feature structures is only valid then).
+// What a device supports of the feature structures the device is created with (one query, chained in place:
+// not copyable, the pNext chain points into the object itself).
+struct SupportedFeatures {
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 base{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+
+  explicit SupportedFeatures(VkPhysicalDevice d) {
+    rt.pNext = &as;
+    f13.pNext = &rt;
+    f12.pNext = &f13;
+    base.pNext = &f12;
+    vkGetPhysicalDeviceFeatures2(d, &base);
+  }
+  SupportedFeatures(const SupportedFeatures&) = delete;
+  SupportedFeatures& operator=(const SupportedFeatures&) = delete;
+
+  // The features the workbench cannot run without.
+  std::vector<std::string> missingEssentials() const {
+    std::vector<std::string> missing;
+    auto need = [&](VkBool32 have, const char* name) {
+      if (!have) missing.emplace_back(name);
+    };
+    need(f12.bufferDeviceAddress, "bufferDeviceAddress");
+    need(f12.runtimeDescriptorArray, "runtimeDescriptorArray");
+    need(f12.descriptorBindingPartiallyBound, "descriptorBindingPartiallyBound");
+    need(f12.scalarBlockLayout, "scalarBlockLayout");
+    need(f13.dynamicRendering, "dynamicRendering");
+    need(f13.synchronization2, "synchronization2");
+    need(rt.rayTracingPipeline, "rayTracingPipeline");
+    need(as.accelerationStructure, "accelerationStructure");
+    return missing;
+  }
+};
+
+// For device selection: the essential features a candidate lacks. Only devices that could have them at all
+// are queried (Vulkan 1.3 and the ray tracing extensions: chaining their feature structures is only valid
+// then).
 std::vector<std::string> missingDeviceFeatures(VkPhysicalDevice d, const DeviceCandidate& c) {
   if (c.apiVersion < VK_API_VERSION_1_3) return {};
   for (const auto& e : requiredDeviceExtensions()) {
     if (std::find(c.extensions.begin(), c.extensions.end(), e) == c.extensions.end()) return {};
   }
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
-  rt.pNext = &as;
-  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  f13.pNext = &rt;
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  f12.pNext = &f13;
-  VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  f.pNext = &f12;
-  vkGetPhysicalDeviceFeatures2(d, &f);
-  std::vector<std::string> missing;
-  auto need = [&](VkBool32 have, const char* name) {
-    if (!have) missing.emplace_back(name);
-  };
-  need(f12.bufferDeviceAddress, "bufferDeviceAddress");
-  need(f12.runtimeDescriptorArray, "runtimeDescriptorArray");
-  need(f12.descriptorBindingPartiallyBound, "descriptorBindingPartiallyBound");
-  need(f12.scalarBlockLayout, "scalarBlockLayout");
-  need(f13.dynamicRendering, "dynamicRendering");
-  need(f13.synchronization2, "synchronization2");
-  need(rt.rayTracingPipeline, "rayTracingPipeline");
-  need(as.accelerationStructure, "accelerationStructure");
-  return missing;
+  return SupportedFeatures(d).missingEssentials();
 }
 
 bool envFlag(const char* name) {
@@ -280,35 +296,19 @@ void Context::createDevice(const ContextOptions& options) {
   features.features.samplerAnisotropy = VK_FALSE;
   features.pNext = &f12;
 
-  // Check what the device supports and refuse clearly if something essential is missing.
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR asHave{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtHave{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
-  rtHave.pNext = &asHave;
-  VkPhysicalDeviceVulkan13Features h13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  h13.pNext = &rtHave;
-  VkPhysicalDeviceVulkan12Features h12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  h12.pNext = &h13;
-  VkPhysicalDeviceFeatures2 have{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  have.pNext = &h12;
-  vkGetPhysicalDeviceFeatures2(physical_, &have);
+  // Selection already refused devices without the essentials; the optional ones are enabled where present.
+  const SupportedFeatures have(physical_);
   std::string missing;
-  if (!h12.bufferDeviceAddress) missing += " bufferDeviceAddress";
-  if (!h12.runtimeDescriptorArray) missing += " runtimeDescriptorArray";
-  if (!h12.descriptorBindingPartiallyBound) missing += " descriptorBindingPartiallyBound";
-  if (!h12.scalarBlockLayout) missing += " scalarBlockLayout";
-  if (!h13.dynamicRendering) missing += " dynamicRendering";
-  if (!h13.synchronization2) missing += " synchronization2";
-  if (!rtHave.rayTracingPipeline) missing += " rayTracingPipeline";
-  if (!asHave.accelerationStructure) missing += " accelerationStructure";
+  for (const auto& m : have.missingEssentials()) missing += " " + m;
   if (!missing.empty()) throw VulkanError("device '" + deviceName_ + "' lacks features:" + missing);
+  const auto& h12 = have.f12;
+  const auto& h13 = have.f13;
   f12.shaderStorageBufferArrayNonUniformIndexing = h12.shaderStorageBufferArrayNonUniformIndexing;
   f12.shaderSampledImageArrayNonUniformIndexing = h12.shaderSampledImageArrayNonUniformIndexing;
   f12.descriptorBindingVariableDescriptorCount = h12.descriptorBindingVariableDescriptorCount;
   f12.hostQueryReset = h12.hostQueryReset;
   f13.maintenance4 = h13.maintenance4;
-  features.features.shaderInt64 = have.features.shaderInt64;
+  features.features.shaderInt64 = have.base.features.shaderInt64;
 
   std::vector<const char*> extensions;
   for (const auto& e : requiredDeviceExtensions()) extensions.push_back(e.c_str());

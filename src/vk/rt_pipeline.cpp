@@ -4,6 +4,8 @@
 #include <chrono>
 #include <sstream>
 
+#include "shader/hash.h"
+
 namespace wb::vk {
 
 RtLibraryCache::RtLibraryCache(Context& ctx) : ctx_(ctx) {}
@@ -61,18 +63,6 @@ std::string layoutKey(const shader::PipelineLayoutDesc& desc) {
     k << "pc" << p.offset << ':' << p.size << ':' << p.stageFlags << ';';
   return k.str();
 }
-
-namespace {
-
-uint64_t hashWords(const std::vector<uint32_t>& words) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a over the SPIR-V
-  for (uint32_t w : words) {
-    for (int i = 0; i < 4; ++i) h = (h ^ ((w >> (8 * i)) & 0xFFu)) * 1099511628211ull;
-  }
-  return h;
-}
-
-}  // namespace
 
 RayTracingPipeline::RayTracingPipeline(
     Context& ctx, const std::vector<std::shared_ptr<const shader::CompiledShader>>& stages,
@@ -155,7 +145,8 @@ RayTracingPipeline::RayTracingPipeline(
                                &local.intersectionShader}) {
           if (*slot == VK_SHADER_UNUSED_KHR) continue;
           const uint32_t stage = *slot;
-          key << " stage " << stageInfos[stage].stage << ':' << std::hex << hashWords(stages[stage]->spirv)
+          key << " stage " << stageInfos[stage].stage << ':' << std::hex
+              << shader::hash64(stages[stage]->spirv.data(), stages[stage]->spirv.size() * sizeof(uint32_t))
               << std::dec;
           *slot = static_cast<uint32_t>(localStages.size());
           localStages.push_back(stageInfos[stage]);

@@ -9,29 +9,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/run_command.h"
 #include "common/paths.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CommandResult {
-  int code = -1;
-  std::string output;  // stdout + stderr
-};
-
 // Any shell command line (stdout + stderr captured unless it redirects them itself).
+using wb::testing::CommandResult;
+
 CommandResult shell(const std::string& line, bool captureStderr = true) {
-  CommandResult r;
-  std::string cmd = captureStderr ? line + " 2>&1" : line;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
+  return wb::testing::runCommand(line, captureStderr);
 }
 
 CommandResult run(const std::string& args) {

@@ -10,28 +10,19 @@
 #include <map>
 #include <sstream>
 #include <string>
+
+#include "../common/run_command.h"
 #include <vector>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string output;
-};
+using Result = wb::testing::CommandResult;
 
-Result run(const std::string& args) {
-  Result r;
-  const std::string cmd = std::string(WB_WORKBENCH_BIN) + " converge " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
+// `workbench converge ARGS`, with optional NAME=VALUE environment settings before it.
+Result run(const std::string& args, const std::string& env = "") {
+  return wb::testing::runCommand("env " + env + " " + WB_WORKBENCH_BIN + " converge " + args);
 }
 
 fs::path tempDir(const std::string& name) {
@@ -122,16 +113,9 @@ TEST(ConvergeCli, CachedReferenceIsReusedUntilAShaderChanges) {
   const std::string env =
       "WB_ROOT=" + root.string() + " WB_SHADER_CACHE_DIR=" + (root / "cache").string() + " ";
   auto converge = [&](const std::string& out) {
-    Result r;
-    const std::string cmd = "env " + env + WB_WORKBENCH_BIN +
-                            " converge --size 8x8 --seconds 0.05 --runs 1 " +
-                            "--reference-spp 4 --config 'a:' --out " + (root / out).string() + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    size_t n;
-    while (p && (n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-    const int status = p ? pclose(p) : -1;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const Result r = run(
+        "--size 8x8 --seconds 0.05 --runs 1 --reference-spp 4 --config 'a:' --out " + (root / out).string(),
+        env);
     std::ifstream md(root / out / "converge.md");
     return std::make_pair(
         r, std::string((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>()));

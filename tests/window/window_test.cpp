@@ -15,25 +15,16 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
+#include "../common/run_command.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CommandResult {
-  int code = -1;
-  std::string output;
-};
+using wb::testing::CommandResult;
 
 CommandResult runShell(const std::string& cmd) {
-  CommandResult r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return r;
+  return wb::testing::runCommand(cmd);
 }
 
 bool haveXvfb() {

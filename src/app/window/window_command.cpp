@@ -13,6 +13,7 @@
 #include <imgui.h>
 #include <nlohmann/json.hpp>
 
+#include "app/hybrid_json.h"
 #include "app/reload_log.h"
 #include "app/render_options.h"
 #include "app/render_session.h"
@@ -265,16 +266,7 @@ WorkbenchWindow::~WorkbenchWindow() {
 void WorkbenchWindow::registerHotReload() {
   auto& tracer = session_->pathTracer();
   if (std::find(hotTargets_.begin(), hotTargets_.end(), tracer.program()) == hotTargets_.end()) {
-    hot_->addTarget(
-        tracer.program(),
-        {"pathtracer",
-         [&tracer](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-           return std::shared_ptr<render::PreparedPipeline>(tracer.preparePipeline(b));
-         },
-         [&tracer](std::shared_ptr<void> p) {
-           auto prepared = std::static_pointer_cast<render::PreparedPipeline>(p);
-           tracer.commitPipeline(std::make_unique<render::PreparedPipeline>(std::move(*prepared)));
-         }});
+    tracer.addHotReloadTarget(*hot_);
     hotTargets_.push_back(tracer.program());
   }
   DisplayPass* display = display_.get();
@@ -585,16 +577,9 @@ nlohmann::json WorkbenchWindow::parametersJson() {
   j["preview"] = !activeHybrid() && progressive_->inPreview();
   j["mode"] = render::renderModeName(state_.mode);
   if (const auto* h = activeHybrid()) {
-    const auto& hs = h->hybridSettings();
     j["width"] = h->settings().width;
     j["height"] = h->settings().height;
-    j["hybrid"] = {{"sun_cos_angle", h->sunCosAngle()},
-                   {"ao_radius", h->aoRadius()},
-                   {"ao_rays", hs.aoRays},
-                   {"temporal", hs.temporal},
-                   {"reflection_depth", hs.reflectionDepth},
-                   {"reflection_roughness", hs.reflectionMaxRoughness},
-                   {"reflection_metallic", hs.reflectionMinMetallic}};
+    j["hybrid"] = hybridSettingsJson(*h);
   }
   j["max_bounces"] = s.maxBounces;
   j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};
