@@ -121,53 +121,63 @@ void main() {
   const uint bounce = payload.bounce;
   const vec3 originOut = offsetRay(position, ng);
   if ((pc.flags & WB_FLAG_NO_NEE) == 0u) {
-    // Directional lights: delta distributions, so plain light sampling (no MIS).
-    for (uint i = 0u; i < WB_LIGHT_COUNT; ++i) {
-      const vec3 wi = -lights[i].direction;
-      if (dot(wi, ng) <= 0.0) continue;
-      const vec3 f = brdfEval(sm, ns, wo, wi);
-      if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
-      if (visible(originOut, wi, 1.0e30)) radiance += f * lights[i].radiance;
-    }
-    // One light sample for the environment and the area lights together: pick which with the environment's
-    // selection probability; each is MIS-weighted (power heuristic) against BRDF sampling with the pdf of this
-    // combined strategy.
+    // Light samples: one per directional light (delta distributions: plain light sampling, no MIS), then one
+    // sample of the environment or the area lights together: pick which with the environment's selection
+    // probability; that one is MIS-weighted (power heuristic) against BRDF sampling with the pdf of this combined
+    // strategy. Every sample goes through the same loop body: one BRDF evaluation and one shadow-ray call site.
+    // (lavapipe compiles the whole pipeline as one function and inlines a traversal per traceRayEXT call site:
+    // three call sites cost ~180 ms more JIT time per pipeline than one.)
     const float uChoice = pathSampleBounce(bounce, WB_DIM_LIGHT_CHOICE);
     const vec3 ul = vec3(pathSampleBounce(bounce, WB_DIM_LIGHT), pathSampleBounce(bounce, WB_DIM_LIGHT + 1u),
                          pathSampleBounce(bounce, WB_DIM_LIGHT + 2u));
     const bool noMis = (pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u;
-    if (uChoice < frame.envSelectProbability) {
+    for (uint i = 0u; i <= WB_LIGHT_COUNT; ++i) {
+      vec3 wi = vec3(0.0);        // direction to the light, for the BRDF
+      vec3 shadowDir = vec3(0.0); // direction of the shadow ray (differs for area lights: offset end point)
+      float tMax = 1.0e30;
+      vec3 le = vec3(0.0);        // radiance arriving along wi
+      float lightPdf = -1.0;      // solid-angle pdf of the strategy; 0 = delta light (no MIS); < 0: no sample
+      if (i < WB_LIGHT_COUNT) {
+        wi = -lights[i].direction;
+        shadowDir = wi;
+        le = lights[i].radiance;
+        lightPdf = 0.0;
+      } else if (uChoice < frame.envSelectProbability) {
 #if WB_ENV_MODE != WB_ENV_NONE
-      // Environment: importance sampled by its alias table.
-      vec3 wi;
-      float envPdfValue;
-      const vec3 le = envSample(ul, wi, envPdfValue);
-      const float lightPdf = frame.envSelectProbability * envPdfValue;
-      if (lightPdf > 0.0 && dot(wi, ng) > 0.0) {
-        const vec3 f = brdfEval(sm, ns, wo, wi);
-        if (max(f.x, max(f.y, f.z)) > 0.0 && visible(originOut, wi, 1.0e30)) {
-          const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
-          radiance += f * le * (w / lightPdf);
-        }
-      }
+        // Environment: importance sampled by its alias table.
+        float envPdfValue;
+        le = envSample(ul, wi, envPdfValue);
+        shadowDir = wi;
+        lightPdf = frame.envSelectProbability * envPdfValue;
+        if (!(lightPdf > 0.0)) lightPdf = -1.0;
 #endif
-    } else {
+      } else {
 #if WB_HAS_EMISSIVE
-      // Area lights: a point on an emissive triangle.
-      const float uRemapped = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
-      const EmitterSample es = sampleEmitter(position, ul.x, ul.y, ul.z, min(uRemapped, 0.99999994));
-      const float lightPdf = (1.0 - frame.envSelectProbability) * es.pdf;
-      if (lightPdf > 0.0 && dot(es.wi, ng) > 0.0) {
-        const vec3 f = brdfEval(sm, ns, wo, es.wi);
-        // The shadow ray stops short of the light by leaving from an origin offset off the light's surface.
-        const vec3 lightPoint = offsetRay(es.position, dot(es.normal, es.wi) < 0.0 ? es.normal : -es.normal);
-        const float tMax = length(lightPoint - originOut);
-        if (max(f.x, max(f.y, f.z)) > 0.0 && visible(originOut, normalize(lightPoint - originOut), tMax)) {
-          const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, es.wi));
-          radiance += f * es.radiance * (w / lightPdf);
+        // Area lights: a point on an emissive triangle.
+        const float uRemapped = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
+        const EmitterSample es = sampleEmitter(position, ul.x, ul.y, ul.z, min(uRemapped, 0.99999994));
+        lightPdf = (1.0 - frame.envSelectProbability) * es.pdf;
+        if (lightPdf > 0.0) {
+          wi = es.wi;
+          le = es.radiance;
+          // The shadow ray stops short of the light by leaving from an origin offset off the light's surface.
+          const vec3 lightPoint = offsetRay(es.position, dot(es.normal, es.wi) < 0.0 ? es.normal : -es.normal);
+          tMax = length(lightPoint - originOut);
+          shadowDir = normalize(lightPoint - originOut);
+        } else {
+          lightPdf = -1.0;
         }
-      }
 #endif
+      }
+      if (lightPdf < 0.0 || dot(wi, ng) <= 0.0) continue;
+      const vec3 f = brdfEval(sm, ns, wo, wi);
+      if (max(f.x, max(f.y, f.z)) <= 0.0 || !visible(originOut, shadowDir, tMax)) continue;
+      if (lightPdf == 0.0) {
+        radiance += f * le;
+      } else {
+        const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
+        radiance += f * le * (w / lightPdf);
+      }
     }
   }
   payload.radiance = radiance;
