@@ -207,7 +207,8 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
   const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
   const std::string original = readText(chit);
   const std::string needle = "const float minCos = 1e-3;";
-  std::vector<double> toPipeline, toFrame, frameBefore, frameDuring, firstFrame;
+  std::vector<double> toPipeline, toFrame, frameBefore, frameDuring, firstFrame, compileMs, pipelineMs,
+      slowest;
   for (int i = 0; i < edits; ++i) {
     std::string text = original;
     // A real code change (a different constant), so the driver really recompiles the pipeline.
@@ -225,6 +226,12 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
     frameBefore.push_back(e["frame_ms_median_before"].get<double>());
     frameDuring.push_back(e["frame_ms_max_during_rebuild"].get<double>());
     firstFrame.push_back(e["first_new_frame_ms"].get<double>());
+    compileMs.push_back(e["compile_ms"].get<double>());
+    pipelineMs.push_back(e["pipeline_ms"].get<double>());
+    // The slowest frame from the edit to the first frame with the new pipeline (included: it carries any
+    // compile the driver left for the first dispatch), relative to the frames before the edit.
+    if (frameBefore.back() > 0)
+      slowest.push_back(std::max(frameDuring.back(), firstFrame.back()) / frameBefore.back());
     std::this_thread::sleep_for(std::chrono::milliseconds(400));
   }
   child.terminate();
@@ -236,7 +243,13 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
           {"edit_to_first_frame_ms_p95", percentile(toFrame, 0.95)},
           {"frame_ms_median_before_edit", median(frameBefore)},
           {"frame_ms_max_during_rebuild_median", median(frameDuring)},
-          {"first_new_frame_ms_median", median(firstFrame)}};
+          {"first_new_frame_ms_median", median(firstFrame)},
+          {"first_new_frame_ms_p95", percentile(firstFrame, 0.95)},
+          {"compile_ms_median", median(compileMs)},
+          {"pipeline_ms_median", median(pipelineMs)},
+          {"slowest_frame_vs_before_p50", percentile(slowest, 0.5)},
+          {"slowest_frame_vs_before_max", percentile(slowest, 1.0)},
+          {"jit_warmup", std::getenv("WB_JIT_WARMUP") ? std::getenv("WB_JIT_WARMUP") : "default"}};
 }
 
 // Speed against error of the three modes: time per frame, and the error against a converged path-traced
@@ -339,6 +352,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
   cli.add_option("--size", size, "trace size WxH (default 512x512, 128x128 with --quick)");
   cli.add_option("--repeats", repeats, "repeats per measurement (median reported)");
   std::vector<std::string> sections = {"pathtracer", "startup", "reload", "modes"};
+  int edits = 0;
+  cli.add_option("--edits", edits, "reload: number of closest-hit edits (default 20, 4 with --quick)");
   cli.add_option("--only", sections, "sections to run: pathtracer startup reload modes");
   try {
     std::vector<std::string> reversed(args.rbegin(), args.rend());
@@ -406,7 +421,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
     }
     if (has("reload")) {
       std::fprintf(stderr, "bench: hot reload ...\n");
-      result["hot_reload"] = benchHotReload(quick ? 4 : 20, quick ? "64x64" : "128x128", work);
+      result["hot_reload"] = benchHotReload(edits > 0 ? edits
+                                            : quick   ? 4
+                                                      : 20,
+                                            quick ? "64x64" : "128x128", work);
     }
     if (has("modes")) {
       std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};

@@ -5,7 +5,9 @@
 #include <deque>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <thread>
 
 #include "app/reload_log.h"
 #include "app/render_options.h"
@@ -111,6 +113,12 @@ int runWatchCommand(const std::vector<std::string>& args) {
         log.flush();
       }
     };
+    // While a rebuild compiles on a CPU device, sleep after each frame so that the frames keep
+    // kCpuRenderShareWhileCompiling of the time (render/hot_reload.h).
+    double yieldRatio = session.context().cpuDevice() ? (1.0 - render::kCpuRenderShareWhileCompiling) /
+                                                            render::kCpuRenderShareWhileCompiling
+                                                      : 0.0;
+    if (const char* y = std::getenv("WB_REBUILD_YIELD")) yieldRatio = std::atof(y);
     uint64_t frame = 0;
     while (!gInterrupted) {
       if (frames && frame >= frames) break;
@@ -136,6 +144,11 @@ int runWatchCommand(const std::vector<std::string>& args) {
         tracer.advanceSample();
       }
       frameTimes.push_back({frameBegin, std::chrono::steady_clock::now()});
+      if (yieldRatio > 0 && hot.compiling()) {
+        const auto until = frameTimes.back().end + (frameTimes.back().end - frameBegin) * yieldRatio;
+        while (hot.compiling() && std::chrono::steady_clock::now() < until)
+          std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      }
       // Keep ten seconds of frames (a rebuild on a fast GPU spans thousands of sub-millisecond frames).
       while (frameTimes.size() > 2 && ms(frameTimes.front().end, frameTimes.back().end) > 10000.0)
         frameTimes.pop_front();

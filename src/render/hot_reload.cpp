@@ -55,6 +55,7 @@ void HotReload::run() {
     // With auto-reload off, file changes are noticed (the UI shows them) but only a manual reload applies.
     if (!autoReload_ && !manualRequest_.exchange(false)) continue;
     manualRequest_ = false;
+    preparing_ = true;
     Pending p;
     p.editTime = result->editTime;
     p.event.editSeen = result->editTime;
@@ -95,6 +96,7 @@ void HotReload::run() {
       for (const auto& [id, ptr] : p.prepared) errors_.erase(id);
       for (const auto& [id, message] : pipelineErrors) errors_[id] = message;
       pending_.push_back(std::move(p));
+      preparing_ = false;
     }
   }
 }

@@ -18,6 +18,13 @@
 
 namespace wb::render {
 
+// On a CPU device (lavapipe) the frames and a rebuild's compiles share the cores: while a rebuild compiles,
+// the render loops keep this share of the CPU for their frames (watch sleeps between frames, the window
+// traces with a smaller budget) so the edit reaches the screen sooner. The frames drawn meanwhile are thrown
+// away at the swap anyway (accumulation restarts). GPUs render beside the CPU's compile: they keep
+// everything.
+inline constexpr double kCpuRenderShareWhileCompiling = 0.25;
+
 // One reload as the UI history and the `watch` log show it.
 struct ReloadEvent {
   std::vector<std::string> filesChanged;
@@ -61,6 +68,10 @@ class HotReload {
   bool autoReload() const { return autoReload_; }
   void reloadAll();  // rebuild every program now (the UI's reload button)
 
+  // While a change is being compiled or its pipelines built (not yet waiting for the commit): on a CPU device
+  // the render loop yields part of the cores to it (its frames are thrown away at the swap anyway).
+  bool compiling() const { return reloader_.rebuilding() || preparing_; }
+
   std::vector<ReloadEvent> history() const;
   std::string currentError() const;  // empty when the last reload of every program succeeded
 
@@ -79,6 +90,7 @@ class HotReload {
   std::atomic<bool> running_{false};
   std::atomic<bool> autoReload_{true};
   std::atomic<bool> manualRequest_{false};
+  std::atomic<bool> preparing_{false};
   mutable std::mutex mutex_;
   std::deque<Pending> pending_;
   std::vector<ReloadEvent> history_;

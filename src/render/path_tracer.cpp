@@ -2,10 +2,13 @@
 
 #include <cstdlib>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <future>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/paths.h"
+#include "render/jit_warmup.h"
 #include "render/sample_tables.h"
 
 namespace wb::render {
@@ -69,6 +72,7 @@ PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const G
   sobol_ = vk::makeBuffer(ctx, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
   setFeatures(features);
+  warmupEnabled_ = jitWarmupWanted(ctx);
 }
 
 bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
@@ -94,6 +98,22 @@ bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
 
 PathTracer::~PathTracer() {
   vkDeviceWaitIdle(ctx_.device());
+}
+
+uint32_t PathTracer::jitWarmups() const {
+  return warmup_ ? warmup_->warmups() : 0u;
+}
+
+void PathTracer::warmUp(const shader::ShaderLibrary::ProgramBuild& build,
+                        const scene::SceneFeatures& features) {
+  try {
+    if (!warmup_) warmup_ = std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features);
+    warmup_->warm(build);
+  } catch (const std::exception& e) {
+    // Not an error of the reload: the first frame with the new pipeline compiles it, as without the warm-up.
+    std::fprintf(stderr, "warning: JIT warm-up off after a failure (%s)\n", e.what());
+    warmupEnabled_ = false;
+  }
 }
 
 void PathTracer::createImages() {
@@ -165,14 +185,27 @@ void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
 }
 
 void PathTracer::addHotReloadTarget(HotReload& hot) {
-  hot.addTarget(program_, {"pathtracer",
-                           [this](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-                             return std::shared_ptr<PreparedPipeline>(preparePipeline(b));
-                           },
-                           [this](std::shared_ptr<void> p) {
-                             auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
-                             commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
-                           }});
+  hot.addTarget(
+      program_,
+      {"pathtracer",
+       [this, features = features_](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
+         // The driver's compile on the warm-up device runs beside this device's pipeline
+         // creation; the commit waits for both.
+         std::future<void> warmed;
+         if (warmupEnabled_) {
+           warmed = std::async(std::launch::async, [this, &b, &features] {
+             shader::lowerThreadPriority();
+             warmUp(b, features);
+           });
+         }
+         auto prepared = std::shared_ptr<PreparedPipeline>(preparePipeline(b));
+         if (warmed.valid()) warmed.get();
+         return prepared;
+       },
+       [this](std::shared_ptr<void> p) {
+         auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
+         commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
+       }});
 }
 
 void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {

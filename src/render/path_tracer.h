@@ -1,6 +1,7 @@
 // The progressive path tracer pass: the ray tracing pipeline (raygen path loop, closest-hit shading, any-hit
 // alpha, environment and shadow miss), its accumulation and AOV images, and hot-swappable pipelines.
 #pragma once
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -16,6 +17,8 @@
 #include "vk/rt_pipeline.h"
 
 namespace wb::render {
+
+class PathTracerJitWarmup;
 
 struct CameraState {
   glm::mat4 view{1.0f};  // world to camera
@@ -77,6 +80,10 @@ class PathTracer {
   // Registers the current program with a HotReload ("pathtracer"): prepare on its worker, commit at poll().
   void addHotReloadTarget(HotReload& hot);
   double lastPipelineMs() const { return pipelineMs_; }
+  // Hot reloads on a lazily compiling driver (lavapipe) also have the driver compile the new pipeline on a
+  // second device before the commit, so the first frame with it does not stall (render/jit_warmup.h).
+  bool jitWarmupEnabled() const { return warmupEnabled_; }
+  uint32_t jitWarmups() const;
   // On GPUs with VK_KHR_pipeline_library (not lavapipe; WB_PIPELINE_LIBRARY=0/1 forces it) pipelines are
   // linked from per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.
   const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
@@ -98,6 +105,7 @@ class PathTracer {
   void createImages();
   void writeDescriptors();
   void updateFrameUniforms();
+  void warmUp(const shader::ShaderLibrary::ProgramBuild& build, const scene::SceneFeatures& features);
 
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
@@ -118,6 +126,8 @@ class PathTracer {
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   uint32_t sampleIndex_ = 0;
   double pipelineMs_ = 0;
+  std::atomic<bool> warmupEnabled_{false};
+  std::unique_ptr<PathTracerJitWarmup> warmup_;  // created by the first hot reload (on its worker thread)
 };
 
 }  // namespace wb::render

@@ -24,6 +24,7 @@ class ShaderLibrary {
     bool printWarnings = true;  // cache warnings also go to stderr
   };
   explicit ShaderLibrary(Options);
+  const Options& options() const { return options_; }
   ~ShaderLibrary();
 
   // Throws CompileError; thread-safe. Unchanged inputs return the same shared object as last time.

@@ -105,6 +105,7 @@ void Reloader::snapshot() {
 void Reloader::rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::ProgramId> programs,
                        Clock::time_point editTime) {
   const auto t0 = Clock::now();
+  rebuilding_ = true;
   lib_.invalidateFiles(files);
   ReloadResult r;
   r.filesChanged = std::move(files);
@@ -131,6 +132,7 @@ void Reloader::rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::P
   ++reloads_;
   std::lock_guard lock(mutex_);
   results_.push_back(std::move(r));
+  rebuilding_ = false;
 }
 
 void Reloader::run() {

@@ -47,6 +47,7 @@ class Reloader {
   std::optional<ReloadResult> poll();  // non-blocking; one result per coalesced change
   void requestReloadAll();
   uint64_t reloadCount() const { return reloads_; }
+  bool rebuilding() const { return rebuilding_; }  // a coalesced change is being compiled right now
 
  private:
   void run();
@@ -63,6 +64,7 @@ class Reloader {
   std::atomic<bool> running_{false};
   std::atomic<bool> reloadAll_{false};
   std::atomic<uint64_t> reloads_{0};
+  std::atomic<bool> rebuilding_{false};
   std::mutex mutex_;
   std::deque<ReloadResult> results_;
   std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> last_;

@@ -46,7 +46,10 @@ void expectSameImage(const eval::ImageRGBA& a, const eval::ImageRGBA& b) {
   EXPECT_LT(maxRel, 1e-2) << "per-pixel difference beyond floating-point noise";
 }
 
-const std::string kHelmet = (sharedDir() / "assets/gltf/DamagedHelmet/DamagedHelmet.gltf").string();
+// A function, not a global: paths resolve when a test runs (tests may point WB_ROOT elsewhere first).
+std::string helmetPath() {
+  return (sharedDir() / "assets/gltf/DamagedHelmet/DamagedHelmet.gltf").string();
+}
 
 }  // namespace
 
@@ -86,7 +89,7 @@ TEST(Specialization, SpecialisedAndGenericRenderTheSameImage) {
 // An opaque scene without KHR_materials_specular and without directional lights: the specialised build has no
 // any-hit stage, no specular-extension code and no light loop, and still renders the generic build's image.
 TEST(Specialization, OpaqueTexturedModelRendersTheSameImageSpecialised) {
-  const auto scene = scene::loadGltf(kHelmet);
+  const auto scene = scene::loadGltf(helmetPath());
   const auto f = scene::analyzeFeatures(scene, scene::EnvironmentKind::Constant);
   EXPECT_FALSE(f.anyAlpha());
   EXPECT_FALSE(f.specular);
@@ -96,7 +99,7 @@ TEST(Specialization, OpaqueTexturedModelRendersTheSameImageSpecialised) {
   EXPECT_EQ(render::PathTracer::stageKeys(f).size(), 4u);
   const auto defines = scene::featureDefines(f);
   EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_HAS_SPECULAR", "0"}), defines.end());
-  expectSameImage(renderScene(kHelmet, false), renderScene(kHelmet, true));
+  expectSameImage(renderScene(helmetPath(), false), renderScene(helmetPath(), true));
 }
 
 TEST(Specialization, SwitchingVariantsReusesCompiledShaders) {

@@ -488,6 +488,9 @@ void WorkbenchWindow::applyState() {
   opts.paused = st.paused;
   opts.preview = st.preview;
   opts.budgetMs = st.budgetMs;
+  // A rebuild compiling on a CPU device gets most of the cores (render/hot_reload.h).
+  if (session_->context().cpuDevice() && hot_ && hot_->compiling())
+    opts.budgetMs = st.budgetMs * render::kCpuRenderShareWhileCompiling;
   if (restart) {
     progressive_->invalidate();
     if (auto* h = activeHybrid()) {
