@@ -7,13 +7,16 @@
 #include <thread>
 
 #include "scene/procedural.h"
+#include "vk/check.h"
+#include "vk/pipeline_layout.h"
 
 namespace wb::render {
 namespace {
 
 constexpr int kCompiledMs = 50;  // a warm-up dispatch slower than this compiled the pipeline
 
-// One quad, one material, no lights: every buffer the path tracer binds exists and is valid.
+// One quad, one material, a sun: every buffer the path tracer and the hybrid renderer bind exists and is
+// valid.
 scene::Scene standInScene() {
   scene::Scene s;
   s.sourcePath = "generated:jit-warmup";
@@ -25,6 +28,11 @@ scene::Scene standInScene() {
   s.camera.target = glm::vec3(0.0f);
   s.camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
   s.bounds = {glm::vec3(-1.0f, 0.0f, -1.0f), glm::vec3(1.0f, 0.0f, 1.0f)};
+  gpu::DirectionalLight sun{};
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  sun.cosAngularRadius = 1.0f;
+  sun.radiance = glm::vec3(1.0f);
+  s.lights.push_back(sun);
   return s;
 }
 
@@ -37,6 +45,27 @@ EnvironmentData blackEnvironment() {
   return d;
 }
 
+std::unique_ptr<vk::Context> warmupContext(const vk::Context& main) {
+  vk::ContextOptions o;
+  o.deviceName = main.deviceName();
+  o.validation = main.validationEnabled();
+  return std::make_unique<vk::Context>(o);
+}
+
+std::unique_ptr<shader::ShaderLibrary> warmupLibrary(shader::ShaderLibrary::Options o) {
+  o.printWarnings = false;  // the main library already reports cache problems
+  return std::make_unique<shader::ShaderLibrary>(o);
+}
+
+// Waits (up to 2 s) until Mesa's writer thread stored what a dispatch that took `dispatch` compiled: a cache
+// load takes ~10 ms, a compile hundreds. The render device's first use then finds the entry.
+void awaitCacheWrite(std::chrono::steady_clock::duration dispatch, uint64_t bytesBefore) {
+  if (dispatch < std::chrono::milliseconds(kCompiledMs)) return;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (mesaShaderCacheBytes() == bytesBefore && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
 }  // namespace
 
 bool jitWarmupWanted(const vk::Context& ctx) {
@@ -44,6 +73,53 @@ bool jitWarmupWanted(const vk::Context& ctx) {
   if (v && std::string(v) == "0") return false;
   if (v && std::string(v) == "1") return true;
   return ctx.cpuDevice();
+}
+
+bool alignGroupHandles(vk::Context& ctx, const shader::ShaderLibrary::ProgramBuild& build, uint32_t last) {
+  const shader::CompiledShader* raygen = nullptr;
+  for (const auto& s : build.stages)
+    if (s->stage == shader::Stage::RayGen) raygen = s.get();
+  if (!raygen) return true;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const uint32_t now = ctx.lastGroupHandleWord();
+    if (now == last) return true;
+    if (now > last) return false;
+    const uint32_t count = last - now;
+    vk::PipelineLayout layout(ctx, build.layout);
+    VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    mci.codeSize = raygen->spirv.size() * sizeof(uint32_t);
+    mci.pCode = raygen->spirv.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    WB_VK(vkCreateShaderModule(ctx.device(), &mci, nullptr, &module));
+    VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    stage.stage = VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+    stage.module = module;
+    stage.pName = "main";
+    VkRayTracingShaderGroupCreateInfoKHR group{VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
+    group.type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
+    group.generalShader = 0;
+    group.closestHitShader = group.anyHitShader = group.intersectionShader = VK_SHADER_UNUSED_KHR;
+    const std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(count, group);
+    VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+    ci.stageCount = 1;
+    ci.pStages = &stage;
+    ci.groupCount = count;
+    ci.pGroups = groups.data();
+    ci.maxPipelineRayRecursionDepth = 1;
+    ci.layout = layout.handle();
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    const VkResult r = ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1,
+                                                          &ci, nullptr, &pipeline);
+    vkDestroyShaderModule(ctx.device(), module, nullptr);
+    WB_VK(r);
+    std::vector<uint8_t> handles(size_t(count) * ctx.rayTracing().handleSize);
+    const VkResult h = ctx.vkGetRayTracingShaderGroupHandlesKHR(ctx.device(), pipeline, 0, count,
+                                                                handles.size(), handles.data());
+    vkDestroyPipeline(ctx.device(), pipeline, nullptr);
+    WB_VK(h);
+    ctx.noteGroupHandles(handles);
+  }
+  return ctx.lastGroupHandleWord() == last;
 }
 
 uint64_t mesaShaderCacheBytes() {
@@ -61,13 +137,8 @@ uint64_t mesaShaderCacheBytes() {
 PathTracerJitWarmup::PathTracerJitWarmup(const vk::Context& main,
                                          const shader::ShaderLibrary::Options& libraryOptions,
                                          const scene::SceneFeatures& features) {
-  vk::ContextOptions o;
-  o.deviceName = main.deviceName();
-  o.validation = main.validationEnabled();
-  ctx_ = std::make_unique<vk::Context>(o);
-  auto lo = libraryOptions;
-  lo.printWarnings = false;  // the main library already reports cache problems
-  library_ = std::make_unique<shader::ShaderLibrary>(lo);
+  ctx_ = warmupContext(main);
+  library_ = warmupLibrary(libraryOptions);
   scene_ = standInScene();
   gpuScene_ = std::make_unique<GpuScene>(*ctx_, scene_);
   env_ = std::make_unique<GpuEnvironment>(*ctx_, blackEnvironment());
@@ -82,23 +153,54 @@ PathTracerJitWarmup::~PathTracerJitWarmup() {
   gpuScene_.reset();
 }
 
-double PathTracerJitWarmup::warm(const shader::ShaderLibrary::ProgramBuild& build) {
+bool PathTracerJitWarmup::warm(const shader::ShaderLibrary::ProgramBuild& build,
+                               uint32_t renderDeviceGroupHandle) {
   using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+  if (!alignGroupHandles(*ctx_, build, renderDeviceGroupHandle)) return false;
   tracer_->swapPipeline(build);
   const uint64_t before = mesaShaderCacheBytes();
   const auto t1 = Clock::now();
   // Zero rays: llvmpipe compiles the pipeline when it is dispatched, before it looks at the size.
   ctx_->submitAndWait([&](VkCommandBuffer cmd) { tracer_->record(cmd, PixelRegion{0, 0, 0, 0}); });
-  // Mesa writes cache entries on a thread of its own: when the dispatch compiled (a cache load takes ~10 ms,
-  // a compile hundreds), wait until the entry is on disk so that the render device's first trace finds it.
-  if (Clock::now() - t1 > std::chrono::milliseconds(kCompiledMs)) {
-    const auto deadline = Clock::now() + std::chrono::seconds(2);
-    while (mesaShaderCacheBytes() == before && Clock::now() < deadline)
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  awaitCacheWrite(Clock::now() - t1, before);
   ++warmups_;
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  return true;
+}
+
+HybridJitWarmup::HybridJitWarmup(const vk::Context& main,
+                                 const shader::ShaderLibrary::Options& libraryOptions, RenderMode mode,
+                                 const HybridSettings& hybrid, const std::filesystem::path& shaderRoot) {
+  ctx_ = warmupContext(main);
+  library_ = warmupLibrary(libraryOptions);
+  scene_ = standInScene();
+  gpuScene_ = std::make_unique<GpuScene>(*ctx_, scene_);
+  env_ = std::make_unique<GpuEnvironment>(*ctx_, blackEnvironment());
+  RenderSettings settings;
+  settings.width = settings.height = 1;
+  renderer_ = std::make_unique<HybridRenderer>(*ctx_, *library_, *gpuScene_, scene_, *env_, settings, mode,
+                                               hybrid, shaderRoot);
+}
+
+HybridJitWarmup::~HybridJitWarmup() {
+  renderer_.reset();
+  env_.reset();
+  gpuScene_.reset();
+}
+
+bool HybridJitWarmup::warm(HybridRenderer::Pass pass, const shader::ShaderLibrary::ProgramBuild& build,
+                           const HybridSettings& hybrid, uint32_t renderDeviceGroupHandle) {
+  using Clock = std::chrono::steady_clock;
+  // Settings first: a new reflection depth rebuilds the reflection pipeline (new group numbers).
+  if (hybrid.reflectionDepth != renderer_->hybridSettings().reflectionDepth)
+    renderer_->setHybridSettings(hybrid);
+  if (!alignGroupHandles(*ctx_, build, renderDeviceGroupHandle)) return false;
+  renderer_->commitPipeline(pass, renderer_->preparePipeline(pass, build));
+  const uint64_t before = mesaShaderCacheBytes();
+  const auto t1 = Clock::now();
+  renderer_->render(1);  // every pass at 1x1: llvmpipe compiles the new pipeline at its first use
+  awaitCacheWrite(Clock::now() - t1, before);
+  ++warmups_;
+  return true;
 }
 
 }  // namespace wb::render

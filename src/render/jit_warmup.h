@@ -11,11 +11,18 @@
 // Only where the device compiles lazily (Context::cpuDevice()); GPUs compile in vkCreate*Pipelines, which
 // already runs off the frame path. WB_JIT_WARMUP=0 turns it off (for measurements), =1 forces it on.
 #pragma once
+#include <atomic>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <future>
 #include <memory>
 
 #include "render/environment.h"
 #include "render/gpu_scene.h"
+#include "render/hybrid/hybrid_renderer.h"
 #include "render/path_tracer.h"
+#include "shader/reloader.h"
 #include "scene/features.h"
 #include "shader/library.h"
 #include "vk/context.h"
@@ -25,9 +32,40 @@ namespace wb::render {
 // Whether pipelines built for `ctx` should be compiled ahead (see above).
 bool jitWarmupWanted(const vk::Context& ctx);
 
+// lavapipe numbers ray tracing shader groups per device (a counter in the leading 32-bit word of each group
+// handle), and the machine code it compiles for a pipeline contains those numbers: a pipeline warmed on
+// another device is the render device's only if its groups got the same numbers. This creates throwaway
+// pipelines (general groups of the build's raygen stage) on `ctx` until its lastGroupHandleWord() is `last`.
+// False when the device is past `last` already (it cannot count back) or its numbers do not follow. Nothing
+// to do for builds without a raygen stage.
+bool alignGroupHandles(vk::Context& ctx, const shader::ShaderLibrary::ProgramBuild& build, uint32_t last);
+
 // Bytes of Mesa's shader disk cache (MESA_SHADER_CACHE_DIR; 0 when unset or missing). What a warm-up adds
 // there is the compiled pipeline; the tests use it to see who compiled.
 uint64_t mesaShaderCacheBytes();
+
+// Hot-reload targets: runs `warm()` on a low-priority thread of its own beside `prepare()` (this device's
+// pipeline creation, on the calling thread) and returns what prepare() returned once both are done. A warm-up
+// that throws is reported and turns `enabled` off: the first frame with a new pipeline then compiles it, as
+// without warm-up.
+template <class Prepare, class Warm>
+auto prepareBesideWarmup(std::atomic<bool>& enabled, Prepare&& prepare, Warm&& warm) {
+  std::future<void> warmed;
+  if (enabled) {
+    warmed = std::async(std::launch::async, [&] {
+      shader::lowerThreadPriority();
+      try {
+        warm();
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "warning: JIT warm-up off after a failure (%s)\n", e.what());
+        enabled = false;
+      }
+    });
+  }
+  auto result = prepare();
+  if (warmed.valid()) warmed.get();
+  return result;
+}
 
 class PathTracerJitWarmup {
  public:
@@ -41,8 +79,13 @@ class PathTracerJitWarmup {
   PathTracerJitWarmup& operator=(const PathTracerJitWarmup&) = delete;
 
   // Creates the pipeline of `build` on the warm-up device and has the driver compile it (blocking; call it
-  // off the render thread). Returns the milliseconds it took. Throws what pipeline creation throws.
-  double warm(const shader::ShaderLibrary::ProgramBuild& build);
+  // off the render thread). `renderDeviceGroupHandle` is the render device's lastGroupHandleWord() from before
+  // it created its own pipeline of `build`: the warm-up's groups get the numbers that one's got (see
+  // alignGroupHandles). Returns false when that was not possible (this device numbered more groups already:
+  // make a new warm-up). Throws what pipeline creation throws.
+  bool warm(const shader::ShaderLibrary::ProgramBuild& build, uint32_t renderDeviceGroupHandle);
+  // The group handles of the last warmed pipeline: equal to the render device's pipeline's when it matched.
+  const std::vector<uint8_t>& groupHandles() const { return tracer_->groupHandles(); }
   uint32_t warmups() const { return warmups_; }
   const vk::Context& context() const { return *ctx_; }
 
@@ -53,6 +96,35 @@ class PathTracerJitWarmup {
   std::unique_ptr<GpuScene> gpuScene_;
   std::unique_ptr<GpuEnvironment> env_;
   std::unique_ptr<PathTracer> tracer_;
+  uint32_t warmups_ = 0;
+};
+
+// The same for the hybrid renderer's passes: a hybrid renderer of the same mode on the stand-in scene, 1x1,
+// whose frame runs every pass (the hybrid shaders are not specialised per scene, so they run safely on any
+// scene).
+class HybridJitWarmup {
+ public:
+  HybridJitWarmup(const vk::Context& main, const shader::ShaderLibrary::Options& libraryOptions,
+                  RenderMode mode, const HybridSettings& hybrid, const std::filesystem::path& shaderRoot);
+  ~HybridJitWarmup();
+  HybridJitWarmup(const HybridJitWarmup&) = delete;
+  HybridJitWarmup& operator=(const HybridJitWarmup&) = delete;
+
+  // Builds `pass` from `build` on the warm-up device and renders one 1x1 frame there. `hybrid` are the render
+  // device's current settings (the reflection depth is a specialisation constant of the compiled code);
+  // `renderDeviceGroupHandle` and the result as for the path tracer's.
+  bool warm(HybridRenderer::Pass pass, const shader::ShaderLibrary::ProgramBuild& build,
+            const HybridSettings& hybrid, uint32_t renderDeviceGroupHandle);
+  std::vector<uint8_t> groupHandles(HybridRenderer::Pass pass) const { return renderer_->groupHandles(pass); }
+  uint32_t warmups() const { return warmups_; }
+
+ private:
+  std::unique_ptr<vk::Context> ctx_;
+  std::unique_ptr<shader::ShaderLibrary> library_;
+  scene::Scene scene_;
+  std::unique_ptr<GpuScene> gpuScene_;
+  std::unique_ptr<GpuEnvironment> env_;
+  std::unique_ptr<HybridRenderer> renderer_;
   uint32_t warmups_ = 0;
 };
 

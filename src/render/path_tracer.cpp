@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <future>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/paths.h"
@@ -104,18 +103,6 @@ uint32_t PathTracer::jitWarmups() const {
   return warmup_ ? warmup_->warmups() : 0u;
 }
 
-void PathTracer::warmUp(const shader::ShaderLibrary::ProgramBuild& build,
-                        const scene::SceneFeatures& features) {
-  try {
-    if (!warmup_) warmup_ = std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features);
-    warmup_->warm(build);
-  } catch (const std::exception& e) {
-    // Not an error of the reload: the first frame with the new pipeline compiles it, as without the warm-up.
-    std::fprintf(stderr, "warning: JIT warm-up off after a failure (%s)\n", e.what());
-    warmupEnabled_ = false;
-  }
-}
-
 void PathTracer::createImages() {
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                   VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -189,17 +176,19 @@ void PathTracer::addHotReloadTarget(HotReload& hot) {
       program_,
       {"pathtracer",
        [this, features = features_](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-         // The driver's compile on the warm-up device runs beside this device's pipeline
-         // creation; the commit waits for both.
-         std::future<void> warmed;
-         if (warmupEnabled_) {
-           warmed = std::async(std::launch::async, [this, &b, &features] {
-             shader::lowerThreadPriority();
-             warmUp(b, features);
-           });
-         }
-         auto prepared = std::shared_ptr<PreparedPipeline>(preparePipeline(b));
-         if (warmed.valid()) warmed.get();
+         // The driver's compile on the warm-up device runs beside this device's pipeline creation.
+         const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
+         bool warmed = false;
+         auto prepared = prepareBesideWarmup(
+             warmupEnabled_, [&] { return std::shared_ptr<PreparedPipeline>(preparePipeline(b)); },
+             [&] {
+               if (!warmup_ || !(warmed = warmup_->warm(b, handlesBefore))) {
+                 warmup_ = std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features);
+                 warmed = warmup_->warm(b, handlesBefore);
+               }
+             });
+         if (warmed && warmup_->groupHandles() != prepared->pipeline->sbt().groupHandles())
+           ++warmupMismatches_;
          return prepared;
        },
        [this](std::shared_ptr<void> p) {

@@ -84,10 +84,14 @@ class PathTracer {
   // second device before the commit, so the first frame with it does not stall (render/jit_warmup.h).
   bool jitWarmupEnabled() const { return warmupEnabled_; }
   uint32_t jitWarmups() const;
+  // Warm-ups whose pipeline came out different from this device's (other group handles): wasted, the first
+  // frame compiled after all.
+  uint32_t jitWarmupMismatches() const { return warmupMismatches_; }
   // On GPUs with VK_KHR_pipeline_library (not lavapipe; WB_PIPELINE_LIBRARY=0/1 forces it) pipelines are
   // linked from per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.
   const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
   bool pipelineLinked() const { return pipeline_ && pipeline_->linked(); }
+  const std::vector<uint8_t>& groupHandles() const { return pipeline_->sbt().groupHandles(); }
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
@@ -105,7 +109,6 @@ class PathTracer {
   void createImages();
   void writeDescriptors();
   void updateFrameUniforms();
-  void warmUp(const shader::ShaderLibrary::ProgramBuild& build, const scene::SceneFeatures& features);
 
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
@@ -127,6 +130,7 @@ class PathTracer {
   uint32_t sampleIndex_ = 0;
   double pipelineMs_ = 0;
   std::atomic<bool> warmupEnabled_{false};
+  std::atomic<uint32_t> warmupMismatches_{0};
   std::unique_ptr<PathTracerJitWarmup> warmup_;  // created by the first hot reload (on its worker thread)
 };
 

@@ -147,6 +147,17 @@ void Context::onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severit
   if (error) messages_.emplace_back(message);
 }
 
+void Context::noteGroupHandles(const std::vector<uint8_t>& handles) {
+  const size_t size = std::max<size_t>(rt_.handleSize, sizeof(uint32_t));
+  for (size_t at = 0; at + sizeof(uint32_t) <= handles.size(); at += size) {
+    uint32_t word;
+    std::memcpy(&word, handles.data() + at, sizeof word);
+    uint32_t seen = lastGroupHandleWord_.load();
+    while (word > seen && !lastGroupHandleWord_.compare_exchange_weak(seen, word)) {
+    }
+  }
+}
+
 std::vector<std::string> Context::validationMessages() const {
   std::lock_guard lock(messagesMutex_);
   return messages_;

@@ -77,6 +77,13 @@ class Context {
   PFN_vkGetRayTracingShaderGroupHandlesKHR vkGetRayTracingShaderGroupHandlesKHR = nullptr;
   PFN_vkCmdTraceRaysKHR vkCmdTraceRaysKHR = nullptr;
 
+  // Ray tracing group handles returned by this device (ShaderBindingTable reports them): the largest leading
+  // 32-bit word seen. lavapipe numbers every group it creates in that word with a per-device counter, and the
+  // machine code it compiles for a pipeline contains the numbers (render/jit_warmup.h keeps two devices in
+  // step).
+  void noteGroupHandles(const std::vector<uint8_t>& handles);
+  uint32_t lastGroupHandleWord() const { return lastGroupHandleWord_.load(); }
+
   // Called from the debug messenger.
   void onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, const char* message);
 
@@ -103,6 +110,7 @@ class Context {
   bool cpuDevice_ = false;
   float timestampPeriod_ = 1.0f;
   std::atomic<uint32_t> validationErrors_{0};
+  std::atomic<uint32_t> lastGroupHandleWord_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;
   std::mutex queueMutex_;

@@ -32,9 +32,12 @@ class ShaderBindingTable {
                      uint32_t callableCount = 0);
   void trace(Context& ctx, VkCommandBuffer cmd, uint32_t width, uint32_t height) const;
   const SbtLayout& layout() const { return layout_; }
+  // The pipeline's group handles as the device returned them (groupCount * handleSize bytes, in group order).
+  const std::vector<uint8_t>& groupHandles() const { return handles_; }
 
  private:
   Buffer buffer_;
+  std::vector<uint8_t> handles_;
   SbtLayout layout_;
   VkStridedDeviceAddressRegionKHR raygen_{}, miss_{}, hit_{}, callable_{};
 };

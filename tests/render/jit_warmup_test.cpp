@@ -1,7 +1,9 @@
 // The JIT warm-up of hot reloads on a lazily compiling driver (lavapipe): the new pipeline is compiled on a
-// second device into Mesa's shader disk cache, so the render device's first trace with it loads the machine
-// code instead of compiling it. Observed without timings: what that first trace adds to the disk cache. A
-// compile stores the pipeline's machine code there (tens of KiB); a cache load adds nothing.
+// second device into Mesa's shader disk cache, so the render device's first frame with it loads the machine
+// code instead of compiling it. Observed without timings: what that first frame adds to the disk cache. A
+// compile stores the pipeline's machine code there (tens of KiB); a cache load adds nothing. The render
+// device makes extra ray tracing pipelines first, so the warm-up must bring its group numbering in step
+// (alignGroupHandles).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -41,65 +43,89 @@ uint64_t settledCacheBytes() {
   return last;
 }
 
-void setMinCos(const fs::path& chit, const std::string& value) {
-  std::ifstream in(chit);
+// Replaces the first `from` in the file by `to` (a real code change: the driver has to compile anew).
+void edit(const fs::path& file, const std::string& from, const std::string& to) {
+  std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string needle = "const float minCos = ";
-  const auto pos = text.find(needle);
-  ASSERT_NE(pos, std::string::npos);
-  text.replace(pos, text.find(';', pos) - pos, needle + value);
-  std::ofstream(chit, std::ios::trunc) << text;
+  const auto pos = text.find(from);
+  ASSERT_NE(pos, std::string::npos) << file << " has no '" << from << "'";
+  text.replace(pos, from.size(), to);
+  std::ofstream(file, std::ios::trunc) << text;
 }
+
+// A private project root (shaders to edit) and private caches, set before the first device of this process.
+class JitWarmup : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("wb_jit_warmup_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root_ / "shaders", fs::copy_options::recursive);
+    fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root_ / "assets", fs::copy_options::recursive);
+    ::setenv("WB_ROOT", root_.c_str(), 1);
+    ::setenv("MESA_SHADER_CACHE_DIR", (root_ / "mesa").c_str(), 1);
+    ASSERT_EQ(wb::shaderDir(), root_ / "shaders") << "run this test in a process of its own (as ctest does)";
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  std::unique_ptr<wb::app::RenderSession> session(wb::render::RenderMode mode) {
+    wb::app::SessionOptions o;
+    o.settings.width = o.settings.height = 16;
+    o.cacheDir = root_ / "shader_cache";
+    o.quiet = true;
+    o.mode = mode;
+    return wb::testing::makeSession(o);
+  }
+
+  // Waits for the hot reload of one edit and commits it (poll() at a frame boundary, as the render loops do).
+  static void reload(wb::render::HotReload& hot) {
+    std::optional<wb::render::ReloadEvent> e;
+    for (auto deadline = std::chrono::steady_clock::now() + 60s;
+         !e && std::chrono::steady_clock::now() < deadline;)
+      if (!(e = hot.poll())) std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(e) << "no reload after the edit";
+    ASSERT_TRUE(e->ok) << e->error;
+  }
+
+  fs::path root_;
+};
 
 }  // namespace
 
-TEST(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
-  // A private project root (shaders to edit) and private caches, set before the first device of this process.
-  const fs::path root = fs::temp_directory_path() / ("wb_jit_warmup_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
-  ::setenv("WB_ROOT", root.c_str(), 1);
-  ::setenv("MESA_SHADER_CACHE_DIR", (root / "mesa").c_str(), 1);
-  ASSERT_EQ(wb::shaderDir(), root / "shaders") << "run this test in a process of its own (as ctest does)";
-  wb::app::SessionOptions o;
-  o.settings.width = o.settings.height = 16;
-  o.cacheDir = root / "shader_cache";
-  o.quiet = true;
-  auto session = wb::testing::makeSession(o);
-  auto& tracer = session->pathTracer();
+TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
+  auto s = session(wb::render::RenderMode::PathTrace);
+  auto& tracer = s->pathTracer();
   if (!tracer.jitWarmupEnabled())
-    GTEST_SKIP() << session->context().deviceName() << " compiles pipelines when they are created";
-  session->render(1);  // the first pipeline, compiled at its first trace
+    GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
+  s->render(1);  // the first pipeline, compiled at its first trace
+  // Two more ray tracing pipelines on the render device: its group numbers run ahead of a new device's.
+  for (int i = 0; i < 2; ++i) tracer.swapPipeline(s->library().buildProgram(tracer.program()));
 
   // A hot reload of the closest-hit shader through the production path: HotReload's worker prepares the
   // pipeline and warms it up; poll() commits it.
-  const fs::path chit = fs::canonical(root / "shaders/pathtracer/closesthit.rchit");
-  wb::render::HotReload hot(session->library(), {wb::shaderDir()});
-  tracer.addHotReloadTarget(hot);
-  hot.start();
-  std::this_thread::sleep_for(200ms);
-  setMinCos(chit, "1.5e-3");
-  std::optional<wb::render::ReloadEvent> e;
-  for (auto deadline = std::chrono::steady_clock::now() + 60s;
-       !e && std::chrono::steady_clock::now() < deadline;)
-    if (!(e = hot.poll())) std::this_thread::sleep_for(10ms);
-  hot.stop();
-  ASSERT_TRUE(e) << "no reload after the edit";
-  ASSERT_TRUE(e->ok) << e->error;
+  const fs::path chit = fs::canonical(root_ / "shaders/pathtracer/closesthit.rchit");
+  {
+    wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    tracer.addHotReloadTarget(hot);
+    hot.start();
+    std::this_thread::sleep_for(200ms);
+    edit(chit, "const float minCos = 1e-3;", "const float minCos = 1.5e-3;");
+    reload(hot);
+    hot.stop();
+  }
   EXPECT_EQ(tracer.jitWarmups(), 1u);
+  EXPECT_EQ(tracer.jitWarmupMismatches(), 0u) << "the warm-up's pipeline has other group handles";
   const uint64_t beforeWarmed = settledCacheBytes();
-  session->render(1);
+  s->render(1);
   const uint64_t warmedTrace = settledCacheBytes() - beforeWarmed;
-  const auto warmedImage = wb::testing::imageStats(session->image());
+  const auto warmedImage = wb::testing::imageStats(s->image());
 
   // The same kind of edit without the warm-up (as a pipeline swapped on the render thread).
-  setMinCos(chit, "2.5e-3");
-  session->library().invalidateFiles({chit});
-  tracer.swapPipeline(session->library().buildProgram(tracer.program()));
+  edit(chit, "const float minCos = 1.5e-3;", "const float minCos = 2.5e-3;");
+  s->library().invalidateFiles({chit});
+  tracer.swapPipeline(s->library().buildProgram(tracer.program()));
   const uint64_t beforeCold = settledCacheBytes();
-  session->render(1);
+  s->render(1);
   const uint64_t coldTrace = settledCacheBytes() - beforeCold;
 
   EXPECT_GT(coldTrace, 8u * 1024u) << "without the warm-up the first trace compiles and stores the pipeline";
@@ -109,8 +135,47 @@ TEST(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   EXPECT_EQ(warmedImage.nonFinite, 0u);
   EXPECT_GT(warmedImage.mean[0] + warmedImage.mean[1] + warmedImage.mean[2], 0.0)
       << "the warmed pipeline renders";
-  wb::testing::expectNoValidationErrors(*session);
+  wb::testing::expectNoValidationErrors(*s);
   EXPECT_EQ(wb::vk::Context::processValidationErrors(), 0u) << "the warm-up device too";
-  session.reset();
-  fs::remove_all(root);
+}
+
+TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
+  using Pass = wb::render::HybridRenderer::Pass;
+  auto s = session(wb::render::RenderMode::Reflections);
+  auto* hybrid = s->hybrid();
+  ASSERT_NE(hybrid, nullptr);
+  if (!hybrid->jitWarmupEnabled())
+    GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
+  s->render(1);  // every pass compiled at its first use (the path tracer's pipeline exists too: more groups)
+
+  const fs::path rgen = fs::canonical(root_ / "shaders/hybrid/shadow_ao.rgen");
+  const std::string original = "const float phi = 2.0 * kPi * u.y;";
+  {
+    wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    hybrid->addHotReloadTargets(hot);
+    hot.start();
+    std::this_thread::sleep_for(200ms);
+    edit(rgen, original, "const float phi = 2.0 * kPi * u.y * 0.9999;");
+    reload(hot);
+    hot.stop();
+  }
+  EXPECT_EQ(hybrid->jitWarmups(), 1u);
+  EXPECT_EQ(hybrid->jitWarmupMismatches(), 0u);
+  const uint64_t beforeWarmed = settledCacheBytes();
+  s->render(1);
+  const uint64_t warmedFrame = settledCacheBytes() - beforeWarmed;
+
+  edit(rgen, "u.y * 0.9999;", "u.y * 0.9998;");
+  s->library().invalidateFiles({rgen});
+  hybrid->commitPipeline(
+      Pass::ShadowAo,
+      hybrid->preparePipeline(Pass::ShadowAo, s->library().buildProgram(hybrid->program(Pass::ShadowAo))));
+  const uint64_t beforeCold = settledCacheBytes();
+  s->render(1);
+  const uint64_t coldFrame = settledCacheBytes() - beforeCold;
+
+  EXPECT_GT(coldFrame, 4u * 1024u) << "without the warm-up the first frame compiles and stores the pipeline";
+  EXPECT_LT(warmedFrame, coldFrame / 4) << warmedFrame << " bytes stored after the warm-up vs " << coldFrame;
+  wb::testing::expectNoValidationErrors(*s);
+  EXPECT_EQ(wb::vk::Context::processValidationErrors(), 0u) << "the warm-up device too";
 }

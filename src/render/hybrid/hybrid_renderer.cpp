@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/paths.h"
+#include "render/jit_warmup.h"
 
 namespace wb::render {
 namespace {
@@ -160,6 +161,16 @@ HybridRenderer::HybridRenderer(vk::Context& ctx, shader::ShaderLibrary& library,
     programs_[i] = library_.registerProgram(programNames[i], stageKeys(pass, shaderRoot_));
     commitPipeline(pass, preparePipeline(pass, library_.buildProgram(programs_[i])));
   }
+  warmupEnabled_ = jitWarmupWanted(ctx);
+}
+
+std::vector<uint8_t> HybridRenderer::groupHandles(Pass p) const {
+  const auto& pl = pipelines_[size_t(p)];
+  return pl && pl->rayTracing ? pl->rayTracing->sbt().groupHandles() : std::vector<uint8_t>{};
+}
+
+uint32_t HybridRenderer::jitWarmups() const {
+  return warmup_ ? warmup_->warmups() : 0u;
 }
 
 HybridRenderer::~HybridRenderer() {
@@ -306,7 +317,24 @@ void HybridRenderer::addHotReloadTargets(HotReload& hot) {
     hot.addTarget(
         programs_[i],
         {passName(pass),
-         [this, pass](const shader::ShaderLibrary::ProgramBuild& b) { return preparePipeline(pass, b); },
+         [this, pass](const shader::ShaderLibrary::ProgramBuild& b) {
+           // As the path tracer's: the warm-up device compiles the pipeline beside this one's creation.
+           const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
+           bool warmed = false;
+           auto prepared = prepareBesideWarmup(
+               warmupEnabled_, [&] { return preparePipeline(pass, b); },
+               [&] {
+                 if (!warmup_ || !(warmed = warmup_->warm(pass, b, hybrid_, handlesBefore))) {
+                   warmup_ = std::make_unique<HybridJitWarmup>(ctx_, library_.options(), mode_, hybrid_,
+                                                               shaderRoot_);
+                   warmed = warmup_->warm(pass, b, hybrid_, handlesBefore);
+                 }
+               });
+           const auto* p = static_cast<const Prepared*>(prepared.get());
+           if (warmed && p->rayTracing && warmup_->groupHandles(pass) != p->rayTracing->sbt().groupHandles())
+             ++warmupMismatches_;
+           return prepared;
+         },
          [this, pass](std::shared_ptr<void> p) { commitPipeline(pass, std::move(p)); }});
   }
 }

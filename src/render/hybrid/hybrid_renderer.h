@@ -4,6 +4,7 @@
 // (compiled, cached, reflected into its layout) and is hot reloadable through render::HotReload.
 #pragma once
 #include <array>
+#include <atomic>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -21,6 +22,8 @@
 #include "vk/rt_pipeline.h"
 
 namespace wb::render {
+
+class HybridJitWarmup;
 
 class HybridRenderer {
  public:
@@ -72,6 +75,13 @@ class HybridRenderer {
   // Pipelines committed per pass since construction (the initial build counts as 1).
   uint32_t pipelineBuilds(Pass p) const { return builds_[size_t(p)]; }
   VkPipeline pipelineHandle(Pass p) const;
+  // As the path tracer's: hot reloads on a lazily compiling driver compile the new pipeline ahead on a second
+  // device (render/jit_warmup.h).
+  bool jitWarmupEnabled() const { return warmupEnabled_; }
+  uint32_t jitWarmups() const;
+  uint32_t jitWarmupMismatches() const { return warmupMismatches_; }
+  // The ray tracing passes' group handles (empty for the raster and compute passes).
+  std::vector<uint8_t> groupHandles(Pass p) const;
 
   // The composited linear radiance (RGBA32F storage image, GENERAL layout), e.g. for a display pass.
   const vk::Image& outputImage() const { return output_; }
@@ -119,6 +129,9 @@ class HybridRenderer {
   VkSampler nearest_ = VK_NULL_HANDLE;
   vk::Buffer uniforms_;
   uint32_t frameIndex_ = 0;
+  std::atomic<bool> warmupEnabled_{false};
+  std::atomic<uint32_t> warmupMismatches_{0};
+  std::unique_ptr<HybridJitWarmup> warmup_;  // created by the first hot reload (on its worker thread)
 };
 
 }  // namespace wb::render
