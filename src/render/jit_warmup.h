@@ -3,11 +3,11 @@
 // function) takes ~0.8 s to JIT, so the first frame after a hot reload would stall the render loop by that
 // much. The warm-up creates the new pipeline on a second VkDevice of the same driver and records a trace of
 // zero rays there, which makes llvmpipe compile it (no shader invocation runs, so a stand-in scene and 1x1
-// images are enough: the compiled code depends on the SPIR-V, the pipeline layout and the groups' numbers (see
-// alignGroupHandles), not on the data bound) and store the result in Mesa's shader disk cache
+// images are enough: the compiled code depends on the SPIR-V, the pipeline layout and the groups' numbers
+// (see alignGroupHandles), not on the data bound) and store the result in Mesa's shader disk cache
 // (MESA_SHADER_CACHE_DIR). The render device's first trace with its own copy of the pipeline then loads the
-// machine code from the cache (~10 ms) instead of compiling it. The hybrid renderer's passes are warmed the same
-// way, by a 1x1 frame of a hybrid renderer on the stand-in scene.
+// machine code from the cache (~10 ms) instead of compiling it. The hybrid renderer's passes are warmed the
+// same way, by a 1x1 frame of a hybrid renderer on the stand-in scene.
 //
 // Only where the device compiles lazily (Context::cpuDevice()); GPUs compile in vkCreate*Pipelines, which
 // already runs off the frame path. WB_JIT_WARMUP=0 turns it off (for measurements), =1 forces it on.
@@ -80,8 +80,8 @@ class PathTracerJitWarmup {
   PathTracerJitWarmup& operator=(const PathTracerJitWarmup&) = delete;
 
   // Creates the pipeline of `build` on the warm-up device and has the driver compile it (blocking; call it
-  // off the render thread). `renderDeviceGroupHandle` is the render device's lastGroupHandleWord() from before
-  // it created its own pipeline of `build`: the warm-up's groups get the numbers that one's got (see
+  // off the render thread). `renderDeviceGroupHandle` is the render device's lastGroupHandleWord() from
+  // before it created its own pipeline of `build`: the warm-up's groups get the numbers that one's got (see
   // alignGroupHandles). Returns false when that was not possible (this device numbered more groups already:
   // make a new warm-up). Throws what pipeline creation throws.
   bool warm(const shader::ShaderLibrary::ProgramBuild& build, uint32_t renderDeviceGroupHandle);
