@@ -90,10 +90,14 @@ int runWatchCommand(const std::vector<std::string>& args) {
     auto writeEvent = [&](const render::ReloadEvent& e) {
       auto j = reloadEventJson(e);
       std::vector<double> before;
-      double duringMax = 0, firstNew = -1;
+      double duringMax = 0, firstNew = -1, controlMax = 0;
+      // The control: the slowest frame in as long a span right before the edit (what a rebuild's frames are
+      // compared with: frame times vary without any rebuild too).
+      const double span = frameTimes.empty() ? 0.0 : ms(e.editSeen, frameTimes.back().end);
       for (const auto& f : frameTimes) {
         if (f.end <= e.editSeen) {
           before.push_back(ms(f.begin, f.end));
+          if (ms(f.end, e.editSeen) <= span) controlMax = std::max(controlMax, ms(f.begin, f.end));
         } else if (&f == &frameTimes.back() && !e.pipelinesRebuilt.empty()) {
           firstNew = ms(f.begin, f.end);  // includes the driver's compile of the new pipeline
         } else {
@@ -104,6 +108,7 @@ int runWatchCommand(const std::vector<std::string>& args) {
       std::sort(before.begin(), before.end());
       j["frame_ms_median_before"] = before.empty() ? 0.0 : before[before.size() / 2];
       j["frame_ms_max_during_rebuild"] = duringMax;
+      j["frame_ms_max_before_same_span"] = controlMax;
       j["first_new_frame_ms"] = firstNew;
       const std::string line = j.dump();
       std::printf("%s\n", line.c_str());
