@@ -156,21 +156,26 @@ void Reloader::run() {
       [[maybe_unused]] auto n = ::read(wakeFd_, &v, sizeof v);
     }
     if (reloadAll_.exchange(false)) rebuild({}, lib_.programs(), Clock::now());
-    for (auto& e : watcher_->read()) {
-      const auto now = Clock::now();
-      if (pending.empty() && !overflow) first = now;
-      last = now;
-      if (e.overflow()) {
-        overflow = true;
-        continue;
+    // Folds newly read events into the burst; false when there were none.
+    auto absorb = [&](const std::vector<DirWatcher::Event>& events) {
+      for (const auto& e : events) {
+        const auto now = Clock::now();
+        if (pending.empty() && !overflow) first = now;
+        last = now;
+        if (e.overflow()) {
+          overflow = true;
+          continue;
+        }
+        if (e.isDir()) continue;
+        // A file just created or modified is being written until its IN_CLOSE_WRITE (a writer descheduled
+        // between open() and write() must not get its empty file compiled).
+        if (e.mask & (IN_MODIFY | IN_CREATE)) writing.insert(e.path);
+        if (e.mask & (IN_CLOSE_WRITE | IN_DELETE | IN_MOVED_FROM)) writing.erase(e.path);
+        pending.insert(e.path);
       }
-      if (e.isDir()) continue;
-      // A file just created or modified is being written until its IN_CLOSE_WRITE (a writer descheduled
-      // between open() and write() must not get its empty file compiled).
-      if (e.mask & (IN_MODIFY | IN_CREATE)) writing.insert(e.path);
-      if (e.mask & (IN_CLOSE_WRITE | IN_DELETE | IN_MOVED_FROM)) writing.erase(e.path);
-      pending.insert(e.path);
-    }
+      return !events.empty();
+    };
+    absorb(watcher_->read());
     if (pending.empty() && !overflow) continue;
     const auto quietFor = Clock::now() - last;
     if (quietFor < timing_.quiet) continue;
@@ -193,6 +198,11 @@ void Reloader::run() {
           if (lib_.programOk(id) == false) programs.insert(id);
     }
     if (missingDependency && quietFor < timing_.recreateGrace) continue;  // delete + recreate
+    // What the checks above saw on disk may be newer than the events read so far (a file recreated and
+    // written just after the read, seen by exists()): the kernel queued its events before that, so read
+    // again, and if there are any, wait for quiet again -- compiling now would reload this save a second time
+    // once they come.
+    if (absorb(watcher_->read())) continue;
     if (overflow)
       for (auto id : lib_.programs()) programs.insert(id);
     pending.clear();

@@ -85,8 +85,14 @@ struct ReloaderFixture : ::testing::Test {
     if (!r) return {};
     std::this_thread::sleep_for(600ms);
     auto extra = reloader->poll();
-    EXPECT_FALSE(extra.has_value()) << "a second reload for one save";
+    EXPECT_FALSE(extra.has_value()) << "a second reload for one save: "
+                                    << (extra ? describeResult(*extra) + " after " + describeResult(*r) : "");
     return *r;
+  }
+  static std::string describeResult(const ReloadResult& r) {
+    std::string files;
+    for (const auto& f : r.filesChanged) files += (files.empty() ? "" : ", ") + f.filename().string();
+    return std::string(r.ok ? "ok" : "failed") + " reload of [" + files + "]" + (r.ok ? "" : ": " + r.error);
   }
   static bool has(const std::vector<std::string>& v, const fs::path& p) {
     return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.rfind(p.string(), 0) == 0; });
@@ -140,9 +146,22 @@ TEST_F(ReloaderFixture, WriteTempThenRenameOver) {
 }
 
 TEST_F(ReloaderFixture, DeleteThenRecreate) {
+  const auto t0 = std::chrono::steady_clock::now();
   fs::remove(dir / "common.glsl");
   std::this_thread::sleep_for(100ms);  // longer than the quiet period
   writeFile(dir / "common.glsl", "#define TINT vec3(0.0, 1.0, 0.0)\n");
+  const auto gap = std::chrono::steady_clock::now() - t0;
+  if (gap > Reloader::Timing{}.recreateGrace - 50ms) {
+    // The machine held this thread past the recreate grace: the reloader rightly gave up waiting, so a failed
+    // reload (the include is missing) may come first; the recreated file must still recover.
+    auto r = waitResult();
+    ASSERT_TRUE(r.has_value());
+    if (!r->ok) r = waitResult();
+    ASSERT_TRUE(r.has_value());
+    EXPECT_TRUE(r->ok) << r->error;
+    GTEST_SKIP() << "recreated " << std::chrono::duration_cast<std::chrono::milliseconds>(gap).count()
+                 << " ms after the delete, past the grace: the one-reload case was not exercised";
+  }
   auto r = expectOne();
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(has(r.programs, graphics));
