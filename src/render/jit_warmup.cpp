@@ -134,34 +134,37 @@ uint64_t mesaShaderCacheBytes() {
   return bytes;
 }
 
-PathTracerJitWarmup::PathTracerJitWarmup(const vk::Context& main,
-                                         const shader::ShaderLibrary::Options& libraryOptions,
-                                         const scene::SceneFeatures& features) {
-  ctx_ = warmupContext(main);
-  library_ = warmupLibrary(libraryOptions);
-  scene_ = standInScene();
-  gpuScene_ = std::make_unique<GpuScene>(*ctx_, scene_);
-  env_ = std::make_unique<GpuEnvironment>(*ctx_, blackEnvironment());
-  RenderSettings settings;
+WarmupDevice::WarmupDevice(const vk::Context& main, const shader::ShaderLibrary::Options& libraryOptions)
+    : ctx(warmupContext(main)), library(warmupLibrary(libraryOptions)), scene(standInScene()) {
+  gpuScene = std::make_unique<GpuScene>(*ctx, scene);
+  env = std::make_unique<GpuEnvironment>(*ctx, blackEnvironment());
   settings.width = settings.height = 1;
-  tracer_ = std::make_unique<PathTracer>(*ctx_, *library_, *gpuScene_, *env_, settings, features);
 }
 
-PathTracerJitWarmup::~PathTracerJitWarmup() {
-  tracer_.reset();
-  env_.reset();
-  gpuScene_.reset();
+WarmupDevice::~WarmupDevice() {
+  env.reset();
+  gpuScene.reset();
 }
+
+PathTracerJitWarmup::PathTracerJitWarmup(const vk::Context& main,
+                                         const shader::ShaderLibrary::Options& libraryOptions,
+                                         const scene::SceneFeatures& features)
+    : device_(main, libraryOptions) {
+  tracer_ = std::make_unique<PathTracer>(*device_.ctx, *device_.library, *device_.gpuScene, *device_.env,
+                                         device_.settings, features);
+}
+
+PathTracerJitWarmup::~PathTracerJitWarmup() = default;
 
 bool PathTracerJitWarmup::warm(const shader::ShaderLibrary::ProgramBuild& build,
                                uint32_t renderDeviceGroupHandle) {
   using Clock = std::chrono::steady_clock;
-  if (!alignGroupHandles(*ctx_, build, renderDeviceGroupHandle)) return false;
+  if (!alignGroupHandles(*device_.ctx, build, renderDeviceGroupHandle)) return false;
   tracer_->swapPipeline(build);
   const uint64_t before = mesaShaderCacheBytes();
   const auto t1 = Clock::now();
   // Zero rays: llvmpipe compiles the pipeline when it is dispatched, before it looks at the size.
-  ctx_->submitAndWait([&](VkCommandBuffer cmd) { tracer_->record(cmd, PixelRegion{0, 0, 0, 0}); });
+  device_.ctx->submitAndWait([&](VkCommandBuffer cmd) { tracer_->record(cmd, PixelRegion{0, 0, 0, 0}); });
   awaitCacheWrite(Clock::now() - t1, before);
   ++warmups_;
   return true;
@@ -169,23 +172,14 @@ bool PathTracerJitWarmup::warm(const shader::ShaderLibrary::ProgramBuild& build,
 
 HybridJitWarmup::HybridJitWarmup(const vk::Context& main,
                                  const shader::ShaderLibrary::Options& libraryOptions, RenderMode mode,
-                                 const HybridSettings& hybrid, const std::filesystem::path& shaderRoot) {
-  ctx_ = warmupContext(main);
-  library_ = warmupLibrary(libraryOptions);
-  scene_ = standInScene();
-  gpuScene_ = std::make_unique<GpuScene>(*ctx_, scene_);
-  env_ = std::make_unique<GpuEnvironment>(*ctx_, blackEnvironment());
-  RenderSettings settings;
-  settings.width = settings.height = 1;
-  renderer_ = std::make_unique<HybridRenderer>(*ctx_, *library_, *gpuScene_, scene_, *env_, settings, mode,
-                                               hybrid, shaderRoot);
+                                 const HybridSettings& hybrid, const std::filesystem::path& shaderRoot)
+    : device_(main, libraryOptions) {
+  renderer_ =
+      std::make_unique<HybridRenderer>(*device_.ctx, *device_.library, *device_.gpuScene, device_.scene,
+                                       *device_.env, device_.settings, mode, hybrid, shaderRoot);
 }
 
-HybridJitWarmup::~HybridJitWarmup() {
-  renderer_.reset();
-  env_.reset();
-  gpuScene_.reset();
-}
+HybridJitWarmup::~HybridJitWarmup() = default;
 
 bool HybridJitWarmup::warm(HybridRenderer::Pass pass, const shader::ShaderLibrary::ProgramBuild& build,
                            const HybridSettings& hybrid, uint32_t renderDeviceGroupHandle) {
@@ -193,7 +187,7 @@ bool HybridJitWarmup::warm(HybridRenderer::Pass pass, const shader::ShaderLibrar
   // Settings first: a new reflection depth rebuilds the reflection pipeline (new group numbers).
   if (hybrid.reflectionDepth != renderer_->hybridSettings().reflectionDepth)
     renderer_->setHybridSettings(hybrid);
-  if (!alignGroupHandles(*ctx_, build, renderDeviceGroupHandle)) return false;
+  if (!alignGroupHandles(*device_.ctx, build, renderDeviceGroupHandle)) return false;
   renderer_->commitPipeline(pass, renderer_->preparePipeline(pass, build));
   const uint64_t before = mesaShaderCacheBytes();
   const auto t1 = Clock::now();

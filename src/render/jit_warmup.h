@@ -68,6 +68,23 @@ auto prepareBesideWarmup(std::atomic<bool>& enabled, Prepare&& prepare, Warm&& w
   return result;
 }
 
+// The warm-up device and what every warm-up renders with there: a device like `main` (same physical device,
+// same validation setting), a shader library with the render side's options (the same SPIR-V cache: first
+// builds are cache hits), a stand-in scene (one quad, one material, a sun) and a black environment.
+struct WarmupDevice {
+  WarmupDevice(const vk::Context& main, const shader::ShaderLibrary::Options& libraryOptions);
+  ~WarmupDevice();
+  WarmupDevice(const WarmupDevice&) = delete;
+  WarmupDevice& operator=(const WarmupDevice&) = delete;
+
+  std::unique_ptr<vk::Context> ctx;
+  std::unique_ptr<shader::ShaderLibrary> library;
+  scene::Scene scene;
+  std::unique_ptr<GpuScene> gpuScene;
+  std::unique_ptr<GpuEnvironment> env;
+  RenderSettings settings;  // 1x1
+};
+
 class PathTracerJitWarmup {
  public:
   // A device like `main` (same physical device, same validation setting), a shader library with
@@ -88,15 +105,11 @@ class PathTracerJitWarmup {
   // The group handles of the last warmed pipeline: equal to the render device's pipeline's when it matched.
   const std::vector<uint8_t>& groupHandles() const { return tracer_->groupHandles(); }
   uint32_t warmups() const { return warmups_; }
-  const vk::Context& context() const { return *ctx_; }
+  const vk::Context& context() const { return *device_.ctx; }
 
  private:
-  std::unique_ptr<vk::Context> ctx_;
-  std::unique_ptr<shader::ShaderLibrary> library_;
-  scene::Scene scene_;
-  std::unique_ptr<GpuScene> gpuScene_;
-  std::unique_ptr<GpuEnvironment> env_;
-  std::unique_ptr<PathTracer> tracer_;
+  WarmupDevice device_;
+  std::unique_ptr<PathTracer> tracer_;  // after device_: destroyed first
   uint32_t warmups_ = 0;
 };
 
@@ -120,12 +133,8 @@ class HybridJitWarmup {
   uint32_t warmups() const { return warmups_; }
 
  private:
-  std::unique_ptr<vk::Context> ctx_;
-  std::unique_ptr<shader::ShaderLibrary> library_;
-  scene::Scene scene_;
-  std::unique_ptr<GpuScene> gpuScene_;
-  std::unique_ptr<GpuEnvironment> env_;
-  std::unique_ptr<HybridRenderer> renderer_;
+  WarmupDevice device_;
+  std::unique_ptr<HybridRenderer> renderer_;  // after device_: destroyed first
   uint32_t warmups_ = 0;
 };
 
