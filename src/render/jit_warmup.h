@@ -85,6 +85,15 @@ struct WarmupDevice {
   RenderSettings settings;  // 1x1
 };
 
+// Warms with `warmup`, made anew by `make` when there is none or when it cannot match the render device any
+// more (its device numbered more groups already: warm() returned false). True when a warm-up ran.
+template <class Warmup, class Make, class Warm>
+bool warmOrRenew(std::unique_ptr<Warmup>& warmup, Make&& make, Warm&& warm) {
+  if (warmup && warm(*warmup)) return true;
+  warmup = make();
+  return warm(*warmup);
+}
+
 class PathTracerJitWarmup {
  public:
   // A device like `main` (same physical device, same validation setting), a shader library with
@@ -105,7 +114,6 @@ class PathTracerJitWarmup {
   // The group handles of the last warmed pipeline: equal to the render device's pipeline's when it matched.
   const std::vector<uint8_t>& groupHandles() const { return tracer_->groupHandles(); }
   uint32_t warmups() const { return warmups_; }
-  const vk::Context& context() const { return *device_.ctx; }
 
  private:
   WarmupDevice device_;

@@ -182,10 +182,10 @@ void PathTracer::addHotReloadTarget(HotReload& hot) {
          auto prepared = prepareBesideWarmup(
              warmupEnabled_, [&] { return std::shared_ptr<PreparedPipeline>(preparePipeline(b)); },
              [&] {
-               if (!warmup_ || !(warmed = warmup_->warm(b, handlesBefore))) {
-                 warmup_ = std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features);
-                 warmed = warmup_->warm(b, handlesBefore);
-               }
+               warmed = warmOrRenew(
+                   warmup_,
+                   [&] { return std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features); },
+                   [&](PathTracerJitWarmup& w) { return w.warm(b, handlesBefore); });
              });
          if (warmed && warmup_->groupHandles() != prepared->pipeline->sbt().groupHandles())
            ++warmupMismatches_;

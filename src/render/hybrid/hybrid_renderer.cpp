@@ -324,11 +324,13 @@ void HybridRenderer::addHotReloadTargets(HotReload& hot) {
            auto prepared = prepareBesideWarmup(
                warmupEnabled_, [&] { return preparePipeline(pass, b); },
                [&] {
-                 if (!warmup_ || !(warmed = warmup_->warm(pass, b, hybrid_, handlesBefore))) {
-                   warmup_ = std::make_unique<HybridJitWarmup>(ctx_, library_.options(), mode_, hybrid_,
-                                                               shaderRoot_);
-                   warmed = warmup_->warm(pass, b, hybrid_, handlesBefore);
-                 }
+                 warmed = warmOrRenew(
+                     warmup_,
+                     [&] {
+                       return std::make_unique<HybridJitWarmup>(ctx_, library_.options(), mode_, hybrid_,
+                                                                shaderRoot_);
+                     },
+                     [&](HybridJitWarmup& w) { return w.warm(pass, b, hybrid_, handlesBefore); });
                });
            const auto* p = static_cast<const Prepared*>(prepared.get());
            if (warmed && p->rayTracing && warmup_->groupHandles(pass) != p->rayTracing->sbt().groupHandles())
