@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// All surface shading: material evaluation, next-event estimation (directional lights; environment with MIS),
-// BRDF sampling of the continuation ray, handed back to raygen through the payload.
+// All surface shading: material evaluation, next-event estimation (directional lights; environment and area lights
+// with MIS), BRDF sampling of the continuation ray, handed back to raygen through the payload together with the
+// shadow rays that decide the light samples (raygen traces them: see ShadowRequest in payload.glsl).
 #include "common.glsl"
 #include "payload.glsl"
 #include "hit_data.glsl"
@@ -11,17 +12,8 @@
 #include "../shared/brdf.h"
 
 layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
-layout(location = SHADOW_PAYLOAD_LOCATION) rayPayloadEXT ShadowPayload shadow;
 
 hitAttributeEXT vec2 attribs;
-
-bool visible(vec3 origin, vec3 dir, float tMax) {
-  shadow.visible = 0u;
-  payload.shadowRays++;
-  traceRayEXT(tlas, gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT, 0xFF, 0, 0,
-              MISS_SHADOW, origin, 0.0, dir, tMax, SHADOW_PAYLOAD_LOCATION);
-  return shadow.visible != 0u;
-}
 
 void main() {
   initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, pc.sampleIndex);
@@ -120,13 +112,14 @@ void main() {
 
   const uint bounce = payload.bounce;
   const vec3 originOut = offsetRay(position, ng);
+  payload.origin = originOut;
+  uint shadowRequests = 0u;
   if ((pc.flags & WB_FLAG_NO_NEE) == 0u) {
     // Light samples: one per directional light (delta distributions: plain light sampling, no MIS), then one
     // sample of the environment or the area lights together: pick which with the environment's selection
     // probability; that one is MIS-weighted (power heuristic) against BRDF sampling with the pdf of this combined
-    // strategy. Every sample goes through the same loop body: one BRDF evaluation and one shadow-ray call site.
-    // (lavapipe compiles the whole pipeline as one function and inlines a traversal per traceRayEXT call site:
-    // three call sites cost ~180 ms more JIT time per pipeline than one.)
+    // strategy. Every sample goes through the same loop body (one BRDF evaluation: lavapipe's JIT time grows with
+    // every inlined copy) and becomes a shadow request for raygen.
     const float uChoice = pathSampleBounce(bounce, WB_DIM_LIGHT_CHOICE);
     const vec3 ul = vec3(pathSampleBounce(bounce, WB_DIM_LIGHT), pathSampleBounce(bounce, WB_DIM_LIGHT + 1u),
                          pathSampleBounce(bounce, WB_DIM_LIGHT + 2u));
@@ -171,16 +164,20 @@ void main() {
       }
       if (lightPdf < 0.0 || dot(wi, ng) <= 0.0) continue;
       const vec3 f = brdfEval(sm, ns, wo, wi);
-      if (max(f.x, max(f.y, f.z)) <= 0.0 || !visible(originOut, shadowDir, tMax)) continue;
-      if (lightPdf == 0.0) {
-        radiance += f * le;
-      } else {
+      if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
+      vec3 contribution = f * le;
+      if (lightPdf != 0.0) {
         const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
-        radiance += f * le * (w / lightPdf);
+        contribution *= w / lightPdf;
       }
+      payload.shadowRequests[shadowRequests].direction = shadowDir;
+      payload.shadowRequests[shadowRequests].tMax = tMax;
+      payload.shadowRequests[shadowRequests].radiance = contribution;
+      ++shadowRequests;
     }
   }
   payload.radiance = radiance;
+  payload.shadowRequestCount = shadowRequests;
 
   // Continuation ray by BRDF sampling.
   const BrdfSample s = brdfSample(sm, ns, wo,
@@ -193,6 +190,5 @@ void main() {
   payload.status = PAYLOAD_CONTINUE;
   payload.weight = s.weight;
   payload.pdf = s.pdf;
-  payload.origin = originOut;
   payload.direction = s.wi;
 }

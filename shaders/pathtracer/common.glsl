@@ -21,8 +21,11 @@
 #define WB_HAS_EMISSIVE 1
 #define WB_HAS_TEXTURES 1
 #define WB_HAS_SPECULAR 1
-#define WB_LIGHT_COUNT frame.lightCount
+#define WB_LIGHT_COUNT min(frame.lightCount, WB_GENERIC_MAX_LIGHTS)
 #define WB_ENV_MODE 2
+#endif
+#ifndef WB_GENERIC_MAX_LIGHTS
+#define WB_GENERIC_MAX_LIGHTS 8u  // directional lights the generic build shades (src/scene/features.h)
 #endif
 #define WB_ENV_NONE 0
 #define WB_ENV_CONSTANT 1
@@ -50,7 +53,6 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Ind
 #define WB_SOBOL_DIR(dim, bit) sobolBuffer.dirs[(dim) * 32u + (bit)]
 #define WB_BLUE_NOISE(x, y) wbUnpackBlueNoise(blueNoiseBuffer.texels[(y) * 128u + (x)])
 
-#define SHADOW_PAYLOAD_LOCATION 1
 #define PATH_PAYLOAD_LOCATION 0
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u

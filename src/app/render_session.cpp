@@ -33,7 +33,7 @@ scene::SceneFeatures featuresFor(const scene::Scene& scene, const render::Render
   std::vector<shader::Define> extra;
   for (const auto& [k, v] : settings.defines) extra.push_back({k, v});
   if (settings.generic) {
-    auto f = scene::genericFeatures();
+    auto f = scene::genericFeatures(static_cast<uint32_t>(scene.lights.size()));
     f.extraDefines = extra;
     return f;
   }

@@ -14,7 +14,7 @@ namespace wb::render {
 namespace {
 
 constexpr uint32_t kMissCount = 2;     // environment, shadow
-constexpr uint32_t kMaxRecursion = 2;  // raygen -> closest-hit -> shadow ray
+constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
 
 float halfToFloat(uint16_t h) {
   const uint32_t sign = (h >> 15) & 1u, exp = (h >> 10) & 0x1Fu, mant = h & 0x3FFu;

@@ -2,8 +2,10 @@
 
 namespace wb::scene {
 
-SceneFeatures genericFeatures() {
-  return SceneFeatures{};
+SceneFeatures genericFeatures(uint32_t directionalLights) {
+  SceneFeatures f;
+  f.directionalLights = directionalLights;
+  return f;
 }
 
 SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
@@ -38,6 +40,9 @@ std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
   std::vector<shader::Define> out;
   if (f.generic) {
     out = {{"WB_GENERIC", "1"}};
+    if (f.directionalLights > kGenericMaxLights) {
+      out.push_back({"WB_GENERIC_MAX_LIGHTS", std::to_string(f.directionalLights) + "u"});
+    }
     out.insert(out.end(), f.extraDefines.begin(), f.extraDefines.end());
     return out;
   }

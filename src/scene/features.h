@@ -18,6 +18,8 @@ struct SceneFeatures {
   bool textures = true;
   bool specular =
       true;  // some material sets KHR_materials_specular values other than the defaults (1, white)
+  // The generic build reads the light count at run time: there it only sizes the shadow requests of the path
+  // payload (capacity kGenericMaxLights, or this when more).
   uint32_t directionalLights = 0;
   EnvironmentKind environment = EnvironmentKind::Map;
   bool generic = true;  // the all-features build: every branch compiled in, light count read at run time
@@ -30,8 +32,12 @@ struct SceneFeatures {
   bool operator==(const SceneFeatures&) const = default;
 };
 
-// The all-features build (`--generic`), for comparison and as a fallback.
-SceneFeatures genericFeatures();
+// Directional lights the generic build shades without a define (WB_GENERIC_MAX_LIGHTS in the shaders).
+inline constexpr uint32_t kGenericMaxLights = 8;
+
+// The all-features build (`--generic`), for comparison and as a fallback; pass the scene's directional light
+// count so a scene with more than kGenericMaxLights gets room for all of them.
+SceneFeatures genericFeatures(uint32_t directionalLights = 0);
 // Analyses the scene (materials, textures, lights) and the environment the render will use.
 SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment);
 // Shader defines for a feature set: part of every stage's variant key, so variants are cached like any other.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/paths.h"
 #include "gpu_fixture.h"
@@ -19,6 +20,20 @@ eval::ImageRGBA renderScene(const std::string& path, bool generic) {
   o.scenePath = path;
   o.settings.width = 32;
   o.settings.height = 32;
+  o.settings.generic = generic;
+  auto session = makeSession(o);
+  EXPECT_EQ(session->pathTracer().features().generic, generic);
+  session->render(4);
+  expectNoValidationErrors(*session);
+  return session->image();
+}
+
+eval::ImageRGBA renderSceneData(const scene::Scene& scene, bool generic) {
+  app::SessionOptions o;
+  o.sceneData = scene;
+  o.settings.width = 32;
+  o.settings.height = 32;
+  o.settings.envColor = glm::vec3(0.0f);
   o.settings.generic = generic;
   auto session = makeSession(o);
   EXPECT_EQ(session->pathTracer().features().generic, generic);
@@ -100,6 +115,24 @@ TEST(Specialization, OpaqueTexturedModelRendersTheSameImageSpecialised) {
   const auto defines = scene::featureDefines(f);
   EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_HAS_SPECULAR", "0"}), defines.end());
   expectSameImage(renderScene(helmetPath(), false), renderScene(helmetPath(), true));
+}
+
+// The generic build sizes its payload's shadow requests for kGenericMaxLights directional lights; a scene
+// with more gets room for all of them (a define), so every light still shades, as in the specialised build.
+TEST(Specialization, GenericBuildShadesMoreDirectionalLightsThanItsDefaultCapacity) {
+  auto scene = makeShadowScene().scene;
+  for (uint32_t i = 0; i < scene::kGenericMaxLights + 1; ++i) {
+    auto light = scene.lights[0];
+    const float a = 0.7f * float(i);
+    light.direction = glm::normalize(glm::vec3(std::cos(a), -1.5f, std::sin(a)));
+    light.radiance = glm::vec3(0.4f);
+    scene.lights.push_back(light);
+  }
+  const auto defines = scene::featureDefines(scene::genericFeatures(uint32_t(scene.lights.size())));
+  EXPECT_NE(std::find(defines.begin(), defines.end(),
+                      shader::Define{"WB_GENERIC_MAX_LIGHTS", std::to_string(scene.lights.size()) + "u"}),
+            defines.end());
+  expectSameImage(renderSceneData(scene, false), renderSceneData(scene, true));
 }
 
 TEST(Specialization, SwitchingVariantsReusesCompiledShaders) {
