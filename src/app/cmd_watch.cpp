@@ -81,36 +81,8 @@ int runWatchCommand(const std::vector<std::string>& args) {
 
     const auto start = std::chrono::steady_clock::now();
     std::optional<render::ReloadEvent> unlogged;
-    // Frame timings, to show what a rebuild costs the frames rendered meanwhile.
-    struct FrameTime {
-      std::chrono::steady_clock::time_point begin, end;
-    };
-    std::deque<FrameTime> frameTimes;
-    auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
     auto writeEvent = [&](const render::ReloadEvent& e) {
-      auto j = reloadEventJson(e);
-      std::vector<double> before;
-      double duringMax = 0, firstNew = -1, controlMax = 0;
-      // The control: the slowest frame in as long a span right before the edit (what a rebuild's frames are
-      // compared with: frame times vary without any rebuild too).
-      const double span = frameTimes.empty() ? 0.0 : ms(e.editSeen, frameTimes.back().end);
-      for (const auto& f : frameTimes) {
-        if (f.end <= e.editSeen) {
-          before.push_back(ms(f.begin, f.end));
-          if (ms(f.end, e.editSeen) <= span) controlMax = std::max(controlMax, ms(f.begin, f.end));
-        } else if (&f == &frameTimes.back() && !e.pipelinesRebuilt.empty()) {
-          firstNew = ms(f.begin, f.end);  // includes the driver's compile of the new pipeline
-        } else {
-          duringMax = std::max(duringMax, ms(f.begin, f.end));
-        }
-      }
-      if (before.size() > 20) before.erase(before.begin(), before.end() - 20);
-      std::sort(before.begin(), before.end());
-      j["frame_ms_median_before"] = before.empty() ? 0.0 : before[before.size() / 2];
-      j["frame_ms_max_during_rebuild"] = duringMax;
-      j["frame_ms_max_before_same_span"] = controlMax;
-      j["first_new_frame_ms"] = firstNew;
-      const std::string line = j.dump();
+      const std::string line = reloadEventJson(e).dump();
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
       if (log) {
@@ -148,17 +120,14 @@ int runWatchCommand(const std::vector<std::string>& args) {
         session.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.record(cmd); });
         tracer.advanceSample();
       }
-      frameTimes.push_back({frameBegin, std::chrono::steady_clock::now()});
+      hot.frameFinished(frameBegin);  // the frame's own time: the yield below is not part of it
+      const auto frameEnd = std::chrono::steady_clock::now();
       if (yieldRatio > 0 && hot.compiling()) {
-        const auto until = frameTimes.back().end + (frameTimes.back().end - frameBegin) * yieldRatio;
+        const auto until = frameEnd + (frameEnd - frameBegin) * yieldRatio;
         while (hot.compiling() && std::chrono::steady_clock::now() < until)
           std::this_thread::sleep_for(std::chrono::milliseconds(2));
       }
-      // Keep ten seconds of frames (a rebuild on a fast GPU spans thousands of sub-millisecond frames).
-      while (frameTimes.size() > 2 && ms(frameTimes.front().end, frameTimes.back().end) > 10000.0)
-        frameTimes.pop_front();
       ++frame;
-      hot.frameFinished();
       if (unlogged) {
         writeEvent(hot.history().back());
         unlogged.reset();

@@ -16,6 +16,11 @@ nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
   } else {
     j["edit_to_first_frame_ms"] = nullptr;
   }
+  // The frames around the reload (render/reload_frames.h).
+  j["frame_ms_median_before"] = e.frames.medianBefore;
+  j["frame_ms_max_during_rebuild"] = e.frames.maxDuringRebuild;
+  j["frame_ms_max_before_same_span"] = e.frames.maxBeforeSameSpan;
+  j["first_new_frame_ms"] = e.frames.firstNewFrame;
   j["ok"] = e.ok;
   j["error"] = e.error;
   return j;

@@ -119,16 +119,22 @@ std::optional<ReloadEvent> HotReload::poll() {
   }
   const auto now = std::chrono::steady_clock::now();
   p->event.editToNewPipelineMs = msBetween(p->editTime, now);
+  if (p->prepared.empty()) p->event.frames = frameTimeline_.stats(p->editTime, false);
   std::lock_guard lock(mutex_);
   history_.push_back(p->event);
   awaitingFrame_ = p->prepared.empty() ? std::nullopt : std::optional(p->editTime);
   return p->event;
 }
 
-void HotReload::frameFinished() {
+void HotReload::frameFinished(std::optional<std::chrono::steady_clock::time_point> frameBegin) {
+  const auto now = std::chrono::steady_clock::now();
+  const auto begin = frameBegin ? *frameBegin : lastFrameEnd_.value_or(now);
+  lastFrameEnd_ = now;
+  frameTimeline_.add(begin, now);
   std::lock_guard lock(mutex_);
   if (!awaitingFrame_ || history_.empty()) return;
-  history_.back().editToFirstFrameMs = msBetween(*awaitingFrame_, std::chrono::steady_clock::now());
+  history_.back().editToFirstFrameMs = msBetween(*awaitingFrame_, now);
+  history_.back().frames = frameTimeline_.stats(*awaitingFrame_, true);
   awaitingFrame_.reset();
 }
 

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "render/reload_frames.h"
 #include "shader/reloader.h"
 
 namespace wb::render {
@@ -39,6 +40,9 @@ struct ReloadEvent {
   std::string error;  // file:line: error: message lines
   std::chrono::system_clock::time_point when;
   std::chrono::steady_clock::time_point editSeen;  // when the watcher saw the change
+  // The render loop's frames around it (filled with the first new frame, or at once when nothing was
+  // rebuilt).
+  ReloadFrameStats frames;
 };
 
 class HotReload {
@@ -62,8 +66,10 @@ class HotReload {
 
   // Render thread, at a frame boundary: commits prepared pipelines. Returns the event it applied, if any.
   std::optional<ReloadEvent> poll();
-  // Render thread: a frame that used the committed pipelines finished (fills editToFirstFrameMs once).
-  void frameFinished();
+  // Render thread, once per frame: a frame finished; the first after a commit used the new pipelines (fills
+  // editToFirstFrameMs and the event's frame times). frameBegin: when the frame's work began (default: the
+  // previous call, for loops that draw back to back; pass it when the loop also waits between frames).
+  void frameFinished(std::optional<std::chrono::steady_clock::time_point> frameBegin = std::nullopt);
 
   void setAutoReload(bool on) { autoReload_ = on; }
   bool autoReload() const { return autoReload_; }
@@ -97,6 +103,8 @@ class HotReload {
   std::vector<ReloadEvent> history_;
   std::map<shader::ShaderLibrary::ProgramId, std::string> errors_;
   std::optional<std::chrono::steady_clock::time_point> awaitingFrame_;
+  ReloadFrameTimeline frameTimeline_;  // render thread only
+  std::optional<std::chrono::steady_clock::time_point> lastFrameEnd_;
 };
 
 }  // namespace wb::render

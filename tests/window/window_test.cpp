@@ -214,6 +214,13 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
   EXPECT_EQ(fixed["banner"], "");
   EXPECT_TRUE(fixed["reloads"].back()["ok"].get<bool>());
   EXPECT_GE(fixed["samples"].get<int>(), 1);
+  // The window's reload history measures its frames around each reload as watch's log does.
+  const auto& applied = fixed["reloads"].back();
+  EXPECT_GT(applied["first_new_frame_ms"].get<double>(), 0.0) << applied.dump();
+  EXPECT_GT(applied["frame_ms_median_before"].get<double>(), 0.0) << applied.dump();
+  EXPECT_TRUE(applied["edit_to_first_frame_ms"].is_number()) << applied.dump();
+  EXPECT_EQ(b1["reloads"].back()["first_new_frame_ms"].get<double>(), -1.0)
+      << "a failed build draws no new frame";
 }
 
 TEST(Window, NoDisplayFallsBackToHeadlessRender) {

@@ -1,0 +1,32 @@
+// Frame times around a hot reload: what a rebuild costs the frames the render loop draws meanwhile, against
+// the frames before the edit. Kept by HotReload for `watch` and the window alike.
+#pragma once
+#include <chrono>
+#include <deque>
+
+namespace wb::render {
+
+struct ReloadFrameStats {
+  double medianBefore = 0;       // median of the (up to 20) frames that ended before the edit was seen
+  double maxDuringRebuild = 0;   // slowest frame that ended after the edit, the first new frame excluded
+  double maxBeforeSameSpan = 0;  // slowest frame of as long a span just before the edit: the noise floor
+  double firstNewFrame = -1;     // the first frame with the new pipelines (-1: none, e.g. a failed build)
+};
+
+class ReloadFrameTimeline {
+ public:
+  using Clock = std::chrono::steady_clock;
+  // A finished frame; keeps ten seconds of them (a rebuild on a fast GPU spans thousands of short frames).
+  void add(Clock::time_point begin, Clock::time_point end);
+  // For an edit seen at editSeen; with lastIsFirstNew the last frame added is the first with the new
+  // pipelines.
+  ReloadFrameStats stats(Clock::time_point editSeen, bool lastIsFirstNew) const;
+
+ private:
+  struct Frame {
+    Clock::time_point begin, end;
+  };
+  std::deque<Frame> frames_;
+};
+
+}  // namespace wb::render
