@@ -92,10 +92,7 @@ int runWatchCommand(const std::vector<std::string>& args) {
     };
     // While a rebuild compiles on a CPU device, sleep after each frame so that the frames keep
     // kCpuRenderShareWhileCompiling of the time (render/hot_reload.h).
-    double yieldRatio = session.context().cpuDevice() ? (1.0 - render::kCpuRenderShareWhileCompiling) /
-                                                            render::kCpuRenderShareWhileCompiling
-                                                      : 0.0;
-    if (const char* y = std::getenv("WB_REBUILD_YIELD")) yieldRatio = std::atof(y);
+    const double yieldRatio = render::rebuildRestRatio(session.context().cpuDevice());
     uint64_t frame = 0;
     while (!gInterrupted) {
       if (frames && frame >= frames) break;

@@ -1,5 +1,7 @@
 #include "render/hot_reload.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <map>
 
 namespace wb::render {
@@ -10,6 +12,11 @@ double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_cl
 }
 
 }  // namespace
+
+double rebuildRestRatio(bool cpuDevice) {
+  if (const char* y = std::getenv("WB_REBUILD_YIELD")) return std::max(0.0, std::atof(y));
+  return cpuDevice ? (1.0 - kCpuRenderShareWhileCompiling) / kCpuRenderShareWhileCompiling : 0.0;
+}
 
 HotReload::HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs)
     : library_(library), reloader_(library, std::move(watchDirs)) {}

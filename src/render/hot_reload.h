@@ -26,6 +26,10 @@ namespace wb::render {
 // everything. Measured on lavapipe (bench --only reload, 2 x 8 edits, alternating): a 0.1 share reaches the
 // first new frame as soon as no warm-up at all (1321 vs 1324 ms mean of the p50s), 0.25 took 80 ms longer.
 inline constexpr double kCpuRenderShareWhileCompiling = 0.1;
+// After a frame that took frameMs, a render loop on a CPU device rests frameMs times this while a rebuild
+// compiles (its frames then keep kCpuRenderShareWhileCompiling of the time); 0 on GPUs. WB_REBUILD_YIELD=R
+// sets the ratio (0: never rest).
+double rebuildRestRatio(bool cpuDevice);
 
 // One reload as the UI history and the `watch` log show it.
 struct ReloadEvent {

@@ -754,6 +754,12 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
 int WorkbenchWindow::run() {
   auto& ctx = session_->context();
   auto last = Clock::now();
+  auto frameBegin = last;  // when the work of the frame in flight began (after any rest)
+  // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
+  // cores (render/hot_reload.h): the panel and the present cost tens of ms per frame on lavapipe, so a lower
+  // trace budget alone left the compile a sliver of the CPU (6.4 s from edit to first new frame, against 1
+  // s).
+  const double restRatio = render::rebuildRestRatio(ctx.cpuDevice());
   int exitCode = 0;
   while (!glfwWindowShouldClose(window_) && !state_.quit) {
     glfwPollEvents();
@@ -762,7 +768,14 @@ int WorkbenchWindow::run() {
       WB_VK(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
       frameInFlight_ = false;
       readTimestamps();
-      hot_->frameFinished();
+      hot_->frameFinished(frameBegin);
+      if (restRatio > 0 && hot_->compiling()) {
+        const auto end = Clock::now();
+        const auto until = end + std::chrono::duration_cast<Clock::duration>((end - frameBegin) * restRatio);
+        // Input still wakes the loop's event queue; it is handled with the next frame.
+        for (auto t = end; hot_->compiling() && t < until; t = Clock::now())
+          glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
+      }
       counters_ = session_->pathTracer().readCounters();
       updateLiveError();
       if (!captureTarget_.empty()) {
@@ -776,6 +789,7 @@ int WorkbenchWindow::run() {
     const float dt = std::chrono::duration<float>(now - last).count();
     if (frameCount_ > 0) frames_.add(dt * 1000.0f);
     last = now;
+    frameBegin = now;
 
     if (options_.frames && frameCount_ >= options_.frames) break;
     if (hasScript_) {
