@@ -15,9 +15,7 @@ using namespace wb::testing;
 
 namespace {
 
-eval::ImageRGBA renderScene(const std::string& path, bool generic) {
-  app::SessionOptions o;
-  o.scenePath = path;
+eval::ImageRGBA render(app::SessionOptions o, bool generic) {
   o.settings.width = 32;
   o.settings.height = 32;
   o.settings.generic = generic;
@@ -28,18 +26,18 @@ eval::ImageRGBA renderScene(const std::string& path, bool generic) {
   return session->image();
 }
 
+eval::ImageRGBA renderScene(const std::string& path, bool generic) {
+  app::SessionOptions o;
+  o.scenePath = path;
+  return render(o, generic);
+}
+
+// A scene built in code, lit by its lights alone.
 eval::ImageRGBA renderSceneData(const scene::Scene& scene, bool generic) {
   app::SessionOptions o;
   o.sceneData = scene;
-  o.settings.width = 32;
-  o.settings.height = 32;
   o.settings.envColor = glm::vec3(0.0f);
-  o.settings.generic = generic;
-  auto session = makeSession(o);
-  EXPECT_EQ(session->pathTracer().features().generic, generic);
-  session->render(4);
-  expectNoValidationErrors(*session);
-  return session->image();
+  return render(o, generic);
 }
 
 eval::ImageRGBA renderDefault(bool generic) {
