@@ -57,7 +57,7 @@ out = {
     "slowest_frame_vs_before_p50": pct(slow, 0.5), "slowest_frame_vs_before_max": pct(slow, 1.0),
     "slowest_frame_vs_before_per_edit": slow,
     "control_slowest_frame_vs_before_p50": pct(ctrl, 0.5), "control_slowest_frame_vs_before_max": pct(ctrl, 1.0),
-    "device": s.get("parameters", {}).get("device"),
+    "driver": "lavapipe unless VK_DRIVER_FILES says otherwise: " + __import__("os").environ.get("VK_DRIVER_FILES", "(unset)"),
     "validation_errors": s["validation_errors"],
 }
 print(json.dumps(out, indent=2))
