@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -73,4 +74,25 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
   EXPECT_EQ(hot.currentError(), "");
   hot.stop();
   fs::remove_all(dir);
+}
+
+// How long render loops rest after a frame while a rebuild compiles: most of the CPU goes to the compile on a
+// CPU device (the frames keep kCpuRenderShareWhileCompiling), nothing changes on a GPU; WB_REBUILD_YIELD
+// rules.
+TEST(HotReloadRest, CpuDevicesRestGpusDoNotAndTheEnvironmentOverrides) {
+  const char* saved = std::getenv("WB_REBUILD_YIELD");
+  const std::string keep = saved ? saved : "";
+  ::unsetenv("WB_REBUILD_YIELD");
+  const double share = wb::render::kCpuRenderShareWhileCompiling;
+  EXPECT_NEAR(1.0 / (1.0 + wb::render::rebuildRestRatio(true)), share, 1e-12);
+  EXPECT_EQ(wb::render::rebuildRestRatio(false), 0.0);
+  ::setenv("WB_REBUILD_YIELD", "3", 1);
+  EXPECT_EQ(wb::render::rebuildRestRatio(false), 3.0);
+  ::setenv("WB_REBUILD_YIELD", "-2", 1);
+  EXPECT_EQ(wb::render::rebuildRestRatio(true), 0.0);
+  if (saved) {
+    ::setenv("WB_REBUILD_YIELD", keep.c_str(), 1);
+  } else {
+    ::unsetenv("WB_REBUILD_YIELD");
+  }
 }
