@@ -54,6 +54,10 @@ out = {
     "frame_ms_median_before_edit": pct([r["frame_ms_median_before"] for r in ev], 0.5),
     "frame_ms_max_during_rebuild_median": pct([r["frame_ms_max_during_rebuild"] for r in ev], 0.5),
     "first_new_frame_ms_median": pct([r["first_new_frame_ms"] for r in ev], 0.5),
+    # Frames drawn from the edit to the first new frame, per second of that span: how often the window
+    # still updates while it rests for a rebuild.
+    "frames_per_second_during_rebuild_median": pct([r["frames_during_rebuild"] * 1000.0 / r["edit_to_first_frame_ms"]
+                                                    for r in ev if r["edit_to_first_frame_ms"]], 0.5),
     "slowest_frame_vs_before_p50": pct(slow, 0.5), "slowest_frame_vs_before_max": pct(slow, 1.0),
     "slowest_frame_vs_before_per_edit": slow,
     "control_slowest_frame_vs_before_p50": pct(ctrl, 0.5), "control_slowest_frame_vs_before_max": pct(ctrl, 1.0),

@@ -21,6 +21,7 @@ nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
   j["frame_ms_max_during_rebuild"] = e.frames.maxDuringRebuild;
   j["frame_ms_max_before_same_span"] = e.frames.maxBeforeSameSpan;
   j["first_new_frame_ms"] = e.frames.firstNewFrame;
+  j["frames_during_rebuild"] = e.frames.framesDuringRebuild;
   j["ok"] = e.ok;
   j["error"] = e.error;
   return j;

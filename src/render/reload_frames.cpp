@@ -33,6 +33,7 @@ ReloadFrameStats ReloadFrameTimeline::stats(Clock::time_point editSeen, bool las
       s.firstNewFrame = length;  // includes any compile the driver left for the first dispatch
     } else {
       s.maxDuringRebuild = std::max(s.maxDuringRebuild, length);
+      ++s.framesDuringRebuild;
     }
   }
   if (before.size() > 20) before.erase(before.begin(), before.end() - 20);

@@ -11,6 +11,7 @@ struct ReloadFrameStats {
   double maxDuringRebuild = 0;   // slowest frame that ended after the edit, the first new frame excluded
   double maxBeforeSameSpan = 0;  // slowest frame of as long a span just before the edit: the noise floor
   double firstNewFrame = -1;     // the first frame with the new pipelines (-1: none, e.g. a failed build)
+  int framesDuringRebuild = 0;   // frames that ended after the edit, the first new frame excluded
 };
 
 class ReloadFrameTimeline {

@@ -93,7 +93,7 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
   // Frame times around the rebuild (0 where there were no such frames: this edit may land during the very
   // first frame): the frames before, during, the first new one, and the control span before the edit.
   for (const char* key : {"frame_ms_median_before", "frame_ms_max_during_rebuild", "first_new_frame_ms",
-                          "frame_ms_max_before_same_span"})
+                          "frame_ms_max_before_same_span", "frames_during_rebuild"})
     EXPECT_TRUE(lines[0][key].is_number()) << key << ": " << lines[0].dump();
   EXPECT_GT(lines[0]["first_new_frame_ms"].get<double>(), 0.0) << lines[0].dump();
 

@@ -35,6 +35,7 @@ TEST(ReloadFrames, SplitsFramesAtTheEditAndTakesTheLastAsTheFirstNewOne) {
   EXPECT_DOUBLE_EQ(s.medianBefore, 10.0);
   EXPECT_DOUBLE_EQ(s.maxDuringRebuild, 16.0);
   EXPECT_DOUBLE_EQ(s.firstNewFrame, 40.0);
+  EXPECT_EQ(s.framesDuringRebuild, 3);
   // Control span: as long as edit -> last frame end (78 ms) before the edit: holds the 14 ms frame (it ended
   // 2 + 2 * 10 ms before the edit) but none of the 50 ms ones.
   EXPECT_DOUBLE_EQ(s.maxBeforeSameSpan, 14.0);
@@ -43,6 +44,7 @@ TEST(ReloadFrames, SplitsFramesAtTheEditAndTakesTheLastAsTheFirstNewOne) {
   const auto f = t.stats(edit, false);
   EXPECT_DOUBLE_EQ(f.firstNewFrame, -1.0);
   EXPECT_DOUBLE_EQ(f.maxDuringRebuild, 40.0);
+  EXPECT_EQ(f.framesDuringRebuild, 4);
 }
 
 TEST(ReloadFrames, KeepsTenSecondsOfFrames) {
