@@ -13,9 +13,10 @@ double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_cl
 
 }  // namespace
 
-double rebuildRestRatio(bool cpuDevice) {
-  if (const char* y = std::getenv("WB_REBUILD_YIELD")) return std::max(0.0, std::atof(y));
-  return cpuDevice ? (1.0 - kCpuRenderShareWhileCompiling) / kCpuRenderShareWhileCompiling : 0.0;
+double rebuildRestRatio(bool cpuDevice, double share) {
+  const char* y = std::getenv("WB_REBUILD_YIELD");
+  if (y && *y) return std::max(0.0, std::atof(y));  // empty: as if unset
+  return cpuDevice ? (1.0 - share) / share : 0.0;
 }
 
 HotReload::HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs)

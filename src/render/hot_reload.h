@@ -26,10 +26,14 @@ namespace wb::render {
 // everything. Measured on lavapipe (bench --only reload, 2 x 8 edits, alternating): a 0.1 share reaches the
 // first new frame as soon as no warm-up at all (1321 vs 1324 ms mean of the p50s), 0.25 took 80 ms longer.
 inline constexpr double kCpuRenderShareWhileCompiling = 0.1;
+// The live window keeps a larger share, so it still answers input (~10 frames/s) while a rebuild compiles.
+// Measured with bench/window_reload.sh (8 edits, 2 rounds, alternating; edit to first new frame p50): share
+// 0.25 1604 and 1268 ms at ~10 frames/s, share 0.1 2026 and 1367 ms at ~3 frames/s, no rest 2639 and 3048 ms.
+inline constexpr double kWindowShareWhileCompiling = 0.25;
 // After a frame that took frameMs, a render loop on a CPU device rests frameMs times this while a rebuild
-// compiles (its frames then keep kCpuRenderShareWhileCompiling of the time); 0 on GPUs. WB_REBUILD_YIELD=R
-// sets the ratio (0: never rest).
-double rebuildRestRatio(bool cpuDevice);
+// compiles (its frames then keep `share` of the time); 0 on GPUs. WB_REBUILD_YIELD=R sets the ratio (0: never
+// rest; empty: the default).
+double rebuildRestRatio(bool cpuDevice, double share = kCpuRenderShareWhileCompiling);
 
 // One reload as the UI history and the `watch` log show it.
 struct ReloadEvent {

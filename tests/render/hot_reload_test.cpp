@@ -86,10 +86,13 @@ TEST(HotReloadRest, CpuDevicesRestGpusDoNotAndTheEnvironmentOverrides) {
   const double share = wb::render::kCpuRenderShareWhileCompiling;
   EXPECT_NEAR(1.0 / (1.0 + wb::render::rebuildRestRatio(true)), share, 1e-12);
   EXPECT_EQ(wb::render::rebuildRestRatio(false), 0.0);
+  EXPECT_NEAR(wb::render::rebuildRestRatio(true, 0.25), 3.0, 1e-12);
   ::setenv("WB_REBUILD_YIELD", "3", 1);
   EXPECT_EQ(wb::render::rebuildRestRatio(false), 3.0);
   ::setenv("WB_REBUILD_YIELD", "-2", 1);
   EXPECT_EQ(wb::render::rebuildRestRatio(true), 0.0);
+  ::setenv("WB_REBUILD_YIELD", "", 1);  // empty: the default
+  EXPECT_NEAR(1.0 / (1.0 + wb::render::rebuildRestRatio(true)), share, 1e-12);
   if (saved) {
     ::setenv("WB_REBUILD_YIELD", keep.c_str(), 1);
   } else {

@@ -757,9 +757,8 @@ int WorkbenchWindow::run() {
   auto frameBegin = last;  // when the work of the frame in flight began (after any rest)
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
   // cores (render/hot_reload.h): the panel and the present cost ~20 ms per frame on lavapipe besides the
-  // trace budget. Alternating runs of bench/window_reload.sh (6 edits, 2 each): 2268 and 2412 ms edit to
-  // first new frame (p50) resting, 2697 and 2784 ms with WB_REBUILD_YIELD=0 (the lower trace budget alone).
-  const double restRatio = render::rebuildRestRatio(ctx.cpuDevice());
+  // trace budget, and without rests an edit took 2.6-3.0 s to reach the window instead of 1.3-1.6 s.
+  const double restRatio = render::rebuildRestRatio(ctx.cpuDevice(), render::kWindowShareWhileCompiling);
   int exitCode = 0;
   while (!glfwWindowShouldClose(window_) && !state_.quit) {
     glfwPollEvents();
