@@ -20,11 +20,12 @@
 namespace wb::render {
 
 // On a CPU device (lavapipe) the frames and a rebuild's compiles share the cores: while a rebuild compiles,
-// the render loops keep this share of the CPU for their frames (watch sleeps between frames, the window
-// traces with a smaller budget) so the edit reaches the screen sooner. The frames drawn meanwhile are thrown
-// away at the swap anyway (accumulation restarts). GPUs render beside the CPU's compile: they keep
-// everything. Measured on lavapipe (bench --only reload, 2 x 8 edits, alternating): a 0.1 share reaches the
-// first new frame as soon as no warm-up at all (1321 vs 1324 ms mean of the p50s), 0.25 took 80 ms longer.
+// `watch` keeps this share of the CPU for its frames (it rests between frames; the window traces with this
+// share of its budget and rests to kWindowShareWhileCompiling below) so the edit reaches the screen sooner.
+// The frames drawn meanwhile are thrown away at the swap anyway (accumulation restarts). GPUs render beside
+// the CPU's compile: they keep everything. Measured on lavapipe (bench --only reload, 2 x 8 edits,
+// alternating): a 0.1 share reaches the first new frame as soon as no warm-up at all (1321 vs 1324 ms mean of
+// the p50s), 0.25 took 80 ms longer.
 inline constexpr double kCpuRenderShareWhileCompiling = 0.1;
 // The live window keeps a larger share, so it still answers input (~10 frames/s) while a rebuild compiles.
 // Measured with bench/window_reload.sh (8 edits, 2 rounds, alternating; edit to first new frame p50): share
