@@ -208,7 +208,7 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
   const std::string original = readText(chit);
   const std::string needle = "const float minCos = 1e-3;";
   std::vector<double> toPipeline, toFrame, frameBefore, frameDuring, firstFrame, compileMs, pipelineMs,
-      slowest, control;
+      libraryMs, linkMs, librariesCompiled, slowest, control;
   for (int i = 0; i < edits; ++i) {
     std::string text = original;
     // A real code change (a different constant), so the driver really recompiles the pipeline.
@@ -228,6 +228,9 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
     firstFrame.push_back(e["first_new_frame_ms"].get<double>());
     compileMs.push_back(e["compile_ms"].get<double>());
     pipelineMs.push_back(e["pipeline_ms"].get<double>());
+    libraryMs.push_back(e["pipeline_library_ms"].get<double>());
+    linkMs.push_back(e["pipeline_link_ms"].get<double>());
+    librariesCompiled.push_back(e["pipeline_libraries_compiled"].get<double>());
     // The slowest frame from the edit to the first frame with the new pipeline (included: it carries any
     // compile the driver left for the first dispatch), relative to the frames before the edit.
     if (frameBefore.back() > 0) {
@@ -250,6 +253,10 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
           {"first_new_frame_ms_p95", percentile(firstFrame, 0.95)},
           {"compile_ms_median", median(compileMs)},
           {"pipeline_ms_median", median(pipelineMs)},
+          // Linked pipelines (GPUs; 0 when monolithic): libraries compiled per edit, the compile, the link.
+          {"pipeline_libraries_compiled_median", median(librariesCompiled)},
+          {"pipeline_library_ms_median", median(libraryMs)},
+          {"pipeline_link_ms_median", median(linkMs)},
           {"slowest_frame_vs_before_p50", percentile(slowest, 0.5)},
           {"slowest_frame_vs_before_max", percentile(slowest, 1.0)},
           {"slowest_frame_vs_before_per_edit", slowest},

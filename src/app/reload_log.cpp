@@ -10,6 +10,11 @@ nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
   j["pipelines_rebuilt"] = e.pipelinesRebuilt;
   j["compile_ms"] = e.compileMs;
   j["pipeline_ms"] = e.pipelineMs;
+  // Linked ray tracing pipelines (GPUs): per-group libraries compiled and reused, slowest compile, link.
+  j["pipeline_libraries_compiled"] = e.libraries.librariesCompiled;
+  j["pipeline_libraries_reused"] = e.libraries.librariesReused;
+  j["pipeline_library_ms"] = e.libraries.libraryMs;
+  j["pipeline_link_ms"] = e.libraries.linkMs;
   j["edit_to_new_pipeline_ms"] = e.editToNewPipelineMs;
   if (e.editToFirstFrameMs >= 0) {
     j["edit_to_first_frame_ms"] = e.editToFirstFrameMs;

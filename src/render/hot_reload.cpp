@@ -86,6 +86,13 @@ void HotReload::run() {
       try {
         p.prepared.emplace_back(result->programs[i], target.prepare(result->builds[i]));
         p.event.pipelinesRebuilt.push_back(target.name);
+        if (target.libraryStats) {
+          const vk::RtLibraryStats s = target.libraryStats(p.prepared.back().second);
+          p.event.libraries.librariesCompiled += s.librariesCompiled;
+          p.event.libraries.librariesReused += s.librariesReused;
+          p.event.libraries.libraryMs += s.libraryMs;
+          p.event.libraries.linkMs += s.linkMs;
+        }
       } catch (const std::exception& e) {
         // The program compiled but its pipeline did not build: the last good pipeline stays, and the error is
         // current (banner, Shaders panel) until a later build of this program succeeds.

@@ -16,6 +16,7 @@
 
 #include "render/reload_frames.h"
 #include "shader/reloader.h"
+#include "vk/rt_pipeline.h"
 
 namespace wb::render {
 
@@ -41,8 +42,11 @@ struct ReloadEvent {
   std::vector<std::string> filesChanged;
   std::vector<std::string> stagesRecompiled;
   std::vector<std::string> pipelinesRebuilt;
-  double compileMs = 0;            // glslang (+ cache) time of the rebuild
-  double pipelineMs = 0;           // Vulkan pipeline creation
+  double compileMs = 0;   // glslang (+ cache) time of the rebuild
+  double pipelineMs = 0;  // Vulkan pipeline creation
+  // Ray tracing pipelines linked from per-group libraries (GPUs; all zero when they are monolithic): how many
+  // libraries the rebuild compiled and reused, its slowest library compile and the link.
+  vk::RtLibraryStats libraries;
   double editToNewPipelineMs = 0;  // change seen on disk -> pipeline committed
   double editToFirstFrameMs = -1;  // change seen on disk -> first frame with the new pipeline finished
   bool ok = true;
@@ -62,6 +66,8 @@ class HotReload {
     std::string name;
     std::function<std::shared_ptr<void>(const shader::ShaderLibrary::ProgramBuild&)> prepare;
     std::function<void(std::shared_ptr<void>)> commit;
+    // Optional: what a prepared pipeline's library build took (summed into ReloadEvent::libraries).
+    std::function<vk::RtLibraryStats(const std::shared_ptr<void>&)> libraryStats;
   };
 
   HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs);

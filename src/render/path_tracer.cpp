@@ -194,6 +194,9 @@ void PathTracer::addHotReloadTarget(HotReload& hot) {
        [this](std::shared_ptr<void> p) {
          auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
          commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
+       },
+       [](const std::shared_ptr<void>& p) {
+         return std::static_pointer_cast<PreparedPipeline>(p)->pipeline->libraryStats();
        }});
 }
 

@@ -1,5 +1,8 @@
 #include "vk/context.h"
 
+#include <dlfcn.h>
+#include <link.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -91,6 +94,25 @@ bool envFlag(const char* name) {
   return v && *v && std::strcmp(v, "0") != 0;
 }
 
+// Keeps every shared library loaded now loaded until the process exits. vkDestroyInstance makes the loader
+// unload the driver, and the next instance loads it again: NVIDIA's libnvidia-tls takes static TLS each time
+// it is loaded, and after ~20 instances in one process (the hard-case suite, a test binary run whole)
+// vkCreateInstance fails with "cannot allocate memory in static TLS block" (seen on an H200, driver 580).
+// Called before an instance goes, so the driver and what it loaded lazily (ray tracing compiler, layers)
+// stay.
+void keepLoadedLibrariesResident() {
+  std::vector<std::string> names;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) {
+        if (info->dlpi_name && info->dlpi_name[0] == '/')
+          static_cast<std::vector<std::string>*>(out)->emplace_back(info->dlpi_name);
+        return 0;
+      },
+      &names);
+  // RTLD_NOLOAD: only what is loaded already; RTLD_NODELETE: never unloaded. The handles are kept on purpose.
+  for (const auto& n : names) dlopen(n.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
+}
+
 template <typename T>
 void load(VkDevice device, T& fn, const char* name) {
   fn = reinterpret_cast<T>(vkGetDeviceProcAddr(device, name));
@@ -130,6 +152,7 @@ void Context::destroy() {
     messenger_ = VK_NULL_HANDLE;
   }
   if (instance_) {
+    keepLoadedLibrariesResident();
     vkDestroyInstance(instance_, nullptr);
     instance_ = VK_NULL_HANDLE;
   }
@@ -348,6 +371,11 @@ void Context::createDevice(const ContextOptions& options) {
   load(device_, vkCreateRayTracingPipelinesKHR, "vkCreateRayTracingPipelinesKHR");
   load(device_, vkGetRayTracingShaderGroupHandlesKHR, "vkGetRayTracingShaderGroupHandlesKHR");
   load(device_, vkCmdTraceRaysKHR, "vkCmdTraceRaysKHR");
+  load(device_, vkCreateDeferredOperationKHR, "vkCreateDeferredOperationKHR");
+  load(device_, vkDestroyDeferredOperationKHR, "vkDestroyDeferredOperationKHR");
+  load(device_, vkDeferredOperationJoinKHR, "vkDeferredOperationJoinKHR");
+  load(device_, vkGetDeferredOperationResultKHR, "vkGetDeferredOperationResultKHR");
+  load(device_, vkGetDeferredOperationMaxConcurrencyKHR, "vkGetDeferredOperationMaxConcurrencyKHR");
 
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(physical_, &props);

@@ -76,6 +76,11 @@ class Context {
   PFN_vkCreateRayTracingPipelinesKHR vkCreateRayTracingPipelinesKHR = nullptr;
   PFN_vkGetRayTracingShaderGroupHandlesKHR vkGetRayTracingShaderGroupHandlesKHR = nullptr;
   PFN_vkCmdTraceRaysKHR vkCmdTraceRaysKHR = nullptr;
+  PFN_vkCreateDeferredOperationKHR vkCreateDeferredOperationKHR = nullptr;
+  PFN_vkDestroyDeferredOperationKHR vkDestroyDeferredOperationKHR = nullptr;
+  PFN_vkDeferredOperationJoinKHR vkDeferredOperationJoinKHR = nullptr;
+  PFN_vkGetDeferredOperationResultKHR vkGetDeferredOperationResultKHR = nullptr;
+  PFN_vkGetDeferredOperationMaxConcurrencyKHR vkGetDeferredOperationMaxConcurrencyKHR = nullptr;
 
   // Ray tracing group handles returned by this device (ShaderBindingTable reports them): the largest leading
   // 32-bit word seen. lavapipe numbers every group it creates in that word with a per-device counter, and the

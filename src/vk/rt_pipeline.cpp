@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
+#include <future>
 #include <sstream>
 
 #include "shader/hash.h"
+#include "vk/deferred.h"
 
 namespace wb::vk {
 
@@ -129,10 +132,15 @@ RayTracingPipeline::RayTracingPipeline(
       }
       iface.maxPipelineRayHitAttributeSize =
           std::min(std::max(iface.maxPipelineRayHitAttributeSize, 8u), ctx.rayTracing().maxHitAttributeSize);
-      std::vector<VkPipeline> libs;
+      // The groups' libraries, each made on a thread of its own when the cache lacks it (a cold start or an
+      // edit of a file several stages include compiles them side by side).
+      struct GroupLibrary {
+        std::vector<VkPipelineShaderStageCreateInfo> stages;
+        VkRayTracingShaderGroupCreateInfoKHR group{};
+      };
+      std::vector<GroupLibrary> local(groups.size());
       for (size_t g = 0; g < groups.size(); ++g) {
-        std::vector<VkPipelineShaderStageCreateInfo> localStages;
-        VkRayTracingShaderGroupCreateInfoKHR local = groupInfos[g];
+        local[g].group = groupInfos[g];
         std::ostringstream key;
         key << "group "
             << (g == 0           ? "raygen"
@@ -141,33 +149,68 @@ RayTracingPipeline::RayTracingPipeline(
             << " recursion " << maxRecursionDepth << " payload " << iface.maxPipelineRayPayloadSize
             << " attr " << iface.maxPipelineRayHitAttributeSize << " layout " << layoutId;
         for (const auto& c : constants) key << " spec " << c.id << '=' << c.value;
-        for (uint32_t* slot : {&local.generalShader, &local.closestHitShader, &local.anyHitShader,
-                               &local.intersectionShader}) {
+        for (uint32_t* slot : {&local[g].group.generalShader, &local[g].group.closestHitShader,
+                               &local[g].group.anyHitShader, &local[g].group.intersectionShader}) {
           if (*slot == VK_SHADER_UNUSED_KHR) continue;
           const uint32_t stage = *slot;
           key << " stage " << stageInfos[stage].stage << ':' << std::hex
               << shader::hash64(stages[stage]->spirv.data(), stages[stage]->spirv.size() * sizeof(uint32_t))
               << std::dec;
-          *slot = static_cast<uint32_t>(localStages.size());
-          localStages.push_back(stageInfos[stage]);
+          *slot = static_cast<uint32_t>(local[g].stages.size());
+          local[g].stages.push_back(stageInfos[stage]);
         }
         libraryKeys_.push_back(key.str());
-        libs.push_back(libraries->get(libraryKeys_.back(), [&] {
+      }
+      std::vector<VkPipeline> libs(groups.size(), VK_NULL_HANDLE);
+      std::vector<double> compiledMs(groups.size(), -1.0);  // < 0: the cache had it
+      auto makeLibrary = [&](size_t g) {
+        libs[g] = libraries->get(libraryKeys_[g], [&] {
+          const auto start = std::chrono::steady_clock::now();
           VkRayTracingPipelineCreateInfoKHR lci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
           lci.flags = VK_PIPELINE_CREATE_LIBRARY_BIT_KHR;
-          lci.stageCount = static_cast<uint32_t>(localStages.size());
-          lci.pStages = localStages.data();
+          lci.stageCount = static_cast<uint32_t>(local[g].stages.size());
+          lci.pStages = local[g].stages.data();
           lci.groupCount = 1;
-          lci.pGroups = &local;
+          lci.pGroups = &local[g].group;
           lci.maxPipelineRayRecursionDepth = maxRecursionDepth;
           lci.pLibraryInterface = &iface;
           lci.layout = layout;
           VkPipeline lib = VK_NULL_HANDLE;
+          // Not through a deferred operation: NVIDIA 580 crashes tracing with a pipeline linked from
+          // libraries made that way (seen on an H200); the libraries compile side by side instead.
           WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &lci,
                                                    nullptr, &lib));
+          compiledMs[g] =
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
           return lib;
-        }));
+        });
+      };
+      std::vector<std::future<void>> making;
+      for (size_t g = 1; g < groups.size(); ++g)
+        making.push_back(std::async(std::launch::async, makeLibrary, g));
+      std::exception_ptr failure;
+      try {
+        makeLibrary(0);
+      } catch (...) {
+        failure = std::current_exception();
       }
+      for (auto& f : making) {
+        try {
+          f.get();
+        } catch (...) {
+          if (!failure) failure = std::current_exception();
+        }
+      }
+      if (failure) std::rethrow_exception(failure);
+      for (double ms : compiledMs) {
+        if (ms < 0) {
+          ++stats_.librariesReused;
+        } else {
+          ++stats_.librariesCompiled;
+          stats_.libraryMs = std::max(stats_.libraryMs, ms);
+        }
+      }
+      const auto linkStart = std::chrono::steady_clock::now();
       VkPipelineLibraryCreateInfoKHR li{VK_STRUCTURE_TYPE_PIPELINE_LIBRARY_CREATE_INFO_KHR};
       li.libraryCount = static_cast<uint32_t>(libs.size());
       li.pLibraries = libs.data();
@@ -178,6 +221,8 @@ RayTracingPipeline::RayTracingPipeline(
       ci.layout = layout;
       WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci,
                                                nullptr, &pipeline_));
+      stats_.linkMs =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - linkStart).count();
     } else {
       VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
       ci.stageCount = static_cast<uint32_t>(stageInfos.size());
@@ -186,8 +231,10 @@ RayTracingPipeline::RayTracingPipeline(
       ci.pGroups = groupInfos.data();
       ci.maxPipelineRayRecursionDepth = maxRecursionDepth;
       ci.layout = layout;
-      WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &ci,
-                                               nullptr, &pipeline_));
+      WB_VK(runDeferred(ctx, [&](VkDeferredOperationKHR op) {
+        return ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), op, ctx.pipelineCache(), 1, &ci, nullptr,
+                                                  &pipeline_);
+      }));
     }
     const uint32_t hitCount = static_cast<uint32_t>(groups.size()) - 1 - missCount;
     sbt_ = ShaderBindingTable(ctx, pipeline_, missCount, hitCount);

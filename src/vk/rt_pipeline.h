@@ -62,6 +62,14 @@ class RtLibraryCache {
 // A key that identifies a reflected pipeline layout's contents (libraries need a compatible layout).
 std::string layoutKey(const shader::PipelineLayoutDesc& desc);
 
+// What building a linked pipeline took (all zero for a monolithic one).
+struct RtLibraryStats {
+  uint32_t librariesCompiled = 0;  // groups whose library the cache lacked
+  uint32_t librariesReused = 0;    // groups whose library came from the cache
+  double libraryMs = 0;            // the slowest library compile (they compile side by side)
+  double linkMs = 0;               // linking the libraries into the pipeline
+};
+
 class RayTracingPipeline {
  public:
   // Groups must come in SBT order: one raygen, then `missCount` miss groups, then the hit groups. With a
@@ -81,12 +89,14 @@ class RayTracingPipeline {
   VkPipeline handle() const { return pipeline_; }
   const ShaderBindingTable& sbt() const { return sbt_; }
   double createMs() const { return createMs_; }
+  const RtLibraryStats& libraryStats() const { return stats_; }
 
  private:
   Context& ctx_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   ShaderBindingTable sbt_;
   double createMs_ = 0;
+  RtLibraryStats stats_;
   std::vector<std::string> libraryKeys_;
 };
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -96,6 +97,14 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
                           "frame_ms_max_before_same_span", "frames_during_rebuild"})
     EXPECT_TRUE(lines[0][key].is_number()) << key << ": " << lines[0].dump();
   EXPECT_GT(lines[0]["first_new_frame_ms"].get<double>(), 0.0) << lines[0].dump();
+  // Linked pipelines' libraries: a GPU compiles only the hit group's; lavapipe builds monolithic pipelines.
+  for (const char* key : {"pipeline_libraries_compiled", "pipeline_libraries_reused", "pipeline_library_ms",
+                          "pipeline_link_ms"})
+    EXPECT_TRUE(lines[0][key].is_number()) << key << ": " << lines[0].dump();
+  const auto libraries = std::make_pair(lines[0]["pipeline_libraries_compiled"].get<int>(),
+                                        lines[0]["pipeline_libraries_reused"].get<int>());
+  EXPECT_TRUE(libraries == std::make_pair(0, 0) || libraries == std::make_pair(1, 3))
+      << "monolithic, or linked with only the edited hit group's library new: " << lines[0].dump();
 
   // A syntax error on line 3: reported with file:line, the old pipeline keeps rendering.
   std::string broken = good;

@@ -46,8 +46,15 @@ TEST(PipelineLibrary, AnEditOfOneStageCompilesOneLibrary) {
                                                std::vector<vk::SpecializationConstant>{}, &cache, layoutId);
   EXPECT_TRUE(first->linked());
   EXPECT_EQ(cache.librariesCreated(), 3u) << "one library per group";
+  EXPECT_EQ(first->libraryStats().librariesCompiled, 3u);
+  EXPECT_EQ(first->libraryStats().librariesReused, 0u);
+  EXPECT_GT(first->libraryStats().libraryMs, 0.0);
+  EXPECT_GT(first->libraryStats().linkMs, 0.0);
   vk::RayTracingPipeline again(ctx, stages, groups, 1, layout.handle(), 1, {}, &cache, layoutId);
   EXPECT_EQ(cache.librariesCreated(), 3u) << "unchanged stages reuse their libraries";
+  EXPECT_EQ(again.libraryStats().librariesCompiled, 0u);
+  EXPECT_EQ(again.libraryStats().librariesReused, 3u);
+  EXPECT_EQ(again.libraryStats().libraryMs, 0.0);
 
   // Edit the closest-hit shader: only the hit group's library is new.
   {
@@ -62,6 +69,8 @@ TEST(PipelineLibrary, AnEditOfOneStageCompilesOneLibrary) {
   ASSERT_EQ(edited[0].get(), stages[0].get());
   vk::RayTracingPipeline afterEdit(ctx, edited, groups, 1, layout.handle(), 1, {}, &cache, layoutId);
   EXPECT_EQ(cache.librariesCreated(), 4u);
+  EXPECT_EQ(afterEdit.libraryStats().librariesCompiled, 1u);
+  EXPECT_EQ(afterEdit.libraryStats().librariesReused, 2u);
   EXPECT_NE(afterEdit.libraryKeys()[2], first->libraryKeys()[2]);
   EXPECT_EQ(afterEdit.libraryKeys()[0], first->libraryKeys()[0]);
   EXPECT_EQ(afterEdit.sbt().layout().hit.size, first->sbt().layout().hit.size);
