@@ -396,8 +396,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
   result["command"] = cmdline;
   // Switches that change what is measured (WB_JIT_WARMUP, WB_PIPELINE_LIBRARY, GALLIVM_PERF, ...), as set.
   json environment = json::object();
-  for (const char* name : {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "GALLIVM_PERF",
-                           "LP_NUM_THREADS", "MESA_SHADER_CACHE_DIR", "VK_DRIVER_FILES"}) {
+  for (const char* name :
+       {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS", "GALLIVM_PERF",
+        "LP_NUM_THREADS", "MESA_SHADER_CACHE_DIR", "VK_DRIVER_FILES", "__GL_SHADER_DISK_CACHE"}) {
     if (const char* v = std::getenv(name)) environment[name] = v;
   }
   result["environment"] = environment;
