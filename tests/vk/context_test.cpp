@@ -1,7 +1,11 @@
 // The real device on this machine (lavapipe here, a GPU where there is one), under the validation layer.
 #include <gtest/gtest.h>
 
+#include <link.h>
+
 #include <cstring>
+#include <set>
+#include <string>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -81,4 +85,38 @@ TEST(PipelineCache, HeaderCheck) {
   other = h;
   other.pipelineCacheUUID[3] ^= 1;
   EXPECT_FALSE(PipelineCache::headerMatches(&other, sizeof(other), props)) << "another driver build";
+}
+
+namespace {
+std::set<std::string> loadedLibraries() {
+  std::set<std::string> names;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) {
+        if (info->dlpi_name && info->dlpi_name[0] == '/')
+          static_cast<std::set<std::string>*>(out)->insert(info->dlpi_name);
+        return 0;
+      },
+      &names);
+  return names;
+}
+}  // namespace
+
+// What an instance loaded (the driver, the layers, the other drivers the loader tried) stays loaded after the
+// instance is gone: NVIDIA's driver takes static TLS each time it is loaded and could not be loaded again
+// after ~20 instances in one process (vk/context.cpp). Without that, the loader unloads the validation layer
+// and the drivers it did not pick here (lavapipe itself stays either way).
+TEST(Context, WhatAnInstanceLoadedStaysLoadedAfterIt) {
+  const auto before = loadedLibraries();
+  std::set<std::string> loadedByContext;
+  {
+    ContextOptions o;
+    o.validation = true;
+    Context ctx(o);
+    for (const auto& n : loadedLibraries())
+      if (!before.count(n)) loadedByContext.insert(n);
+  }
+  // A process of its own (ctest): the first instance loads the driver.
+  ASSERT_FALSE(loadedByContext.empty()) << "the context loaded no library: the driver was loaded already";
+  const auto after = loadedLibraries();
+  for (const auto& n : loadedByContext) EXPECT_TRUE(after.count(n)) << n << " was unloaded";
 }
