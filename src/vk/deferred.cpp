@@ -36,8 +36,9 @@ VkResult runDeferred(const Context& ctx, const std::function<VkResult(VkDeferred
         return;  // VK_SUCCESS (complete), VK_THREAD_DONE_KHR (nothing left for this thread) or an error
       }
     };
+    // By default one core stays free for the render loop (a hot reload builds while frames are drawn).
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned limit = maxThreads ? maxThreads : cores;
+    const unsigned limit = maxThreads ? maxThreads : std::max(1u, cores - 1);
     const unsigned wanted = std::min(limit, ctx.vkGetDeferredOperationMaxConcurrencyKHR(ctx.device(), op));
     std::vector<std::thread> helpers;
     for (unsigned i = 1; i < wanted; ++i) helpers.emplace_back(join);

@@ -15,8 +15,8 @@ namespace wb::vk {
 bool deferredHostOpsWanted();
 
 // Calls `call` with a deferred operation (or VK_NULL_HANDLE when turned off), joins it from up to
-// `maxThreads` threads (the calling one included; 0 = the cores) when the driver deferred it, and returns the
-// call's result: VK_SUCCESS, or the error code the call or the operation ended with.
+// `maxThreads` threads (the calling one included; 0 = all cores but one) when the driver deferred it, and
+// returns the call's result: VK_SUCCESS, or the error code the call or the operation ended with.
 VkResult runDeferred(const Context& ctx, const std::function<VkResult(VkDeferredOperationKHR)>& call,
                      unsigned maxThreads = 0);
 
