@@ -51,6 +51,11 @@ void RtLibraryCache::trim(size_t maxLibraries, const std::vector<std::string>& i
   }
 }
 
+bool RtLibraryCache::contains(const std::string& key) const {
+  std::lock_guard lock(mutex_);
+  return libraries_.count(key) != 0;
+}
+
 size_t RtLibraryCache::size() const {
   std::lock_guard lock(mutex_);
   return libraries_.size();
@@ -176,8 +181,8 @@ RayTracingPipeline::RayTracingPipeline(
           lci.pLibraryInterface = &iface;
           lci.layout = layout;
           VkPipeline lib = VK_NULL_HANDLE;
-          // Not through a deferred operation: NVIDIA 580 crashes tracing with a pipeline linked from
-          // libraries made that way (seen on an H200); the libraries compile side by side instead.
+          // Not through a deferred operation: for these one- or two-stage libraries it gained nothing on an
+          // H200 (docs/bench/h200_pipeline_creation.md); they compile side by side instead.
           WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, ctx.pipelineCache(), 1, &lci,
                                                    nullptr, &lib));
           compiledMs[g] =
@@ -185,12 +190,22 @@ RayTracingPipeline::RayTracingPipeline(
           return lib;
         });
       };
+      // Cached libraries come back at once; of the missing ones the first compiles on this thread, the others
+      // on threads of their own (a closest-hit edit misses one: no thread is started).
+      std::vector<size_t> missing;
+      for (size_t g = 0; g < groups.size(); ++g) {
+        if (libraries->contains(libraryKeys_[g])) {
+          makeLibrary(g);
+        } else {
+          missing.push_back(g);
+        }
+      }
       std::vector<std::future<void>> making;
-      for (size_t g = 1; g < groups.size(); ++g)
-        making.push_back(std::async(std::launch::async, makeLibrary, g));
+      for (size_t i = 1; i < missing.size(); ++i)
+        making.push_back(std::async(std::launch::async, makeLibrary, missing[i]));
       std::exception_ptr failure;
       try {
-        makeLibrary(0);
+        if (!missing.empty()) makeLibrary(missing[0]);
       } catch (...) {
         failure = std::current_exception();
       }
@@ -210,6 +225,7 @@ RayTracingPipeline::RayTracingPipeline(
           stats_.libraryMs = std::max(stats_.libraryMs, ms);
         }
       }
+      // Linked plainly too: through a deferred operation the H200's driver crashed at the first trace.
       const auto linkStart = std::chrono::steady_clock::now();
       VkPipelineLibraryCreateInfoKHR li{VK_STRUCTURE_TYPE_PIPELINE_LIBRARY_CREATE_INFO_KHR};
       li.libraryCount = static_cast<uint32_t>(libs.size());

@@ -44,6 +44,7 @@ class RtLibraryCache {
   // outlive the pipelines linked from it; the most recent builds' stay, so a prepared but not yet committed
   // pipeline keeps its libraries).
   void trim(size_t maxLibraries, const std::vector<std::string>& inUse);
+  bool contains(const std::string& key) const;
   uint64_t librariesCreated() const { return created_; }
   size_t size() const;
 
