@@ -20,6 +20,7 @@
 #include "eval/metrics.h"
 #include "scene/procedural.h"
 #include "shader/hash.h"
+#include "vk/driver_env.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -394,11 +395,13 @@ int runBenchCommand(const std::vector<std::string>& args) {
 
   json result;
   result["command"] = cmdline;
-  // Switches that change what is measured (WB_JIT_WARMUP, WB_PIPELINE_LIBRARY, GALLIVM_PERF, ...), as set.
+  // Switches that change what is measured (WB_JIT_WARMUP, WB_PIPELINE_LIBRARY, GALLIVM_PERF, ...), as set by
+  // the user or, for the driver defaults, by the workbench.
+  vk::applyDriverDefaults(shaderCacheDir());
   json environment = json::object();
-  for (const char* name :
-       {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS", "GALLIVM_PERF",
-        "LP_NUM_THREADS", "MESA_SHADER_CACHE_DIR", "VK_DRIVER_FILES", "__GL_SHADER_DISK_CACHE"}) {
+  for (const char* name : {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",
+                           "GALLIVM_PERF", "LP_NUM_THREADS", "LP_NATIVE_VECTOR_WIDTH",
+                           "MESA_SHADER_CACHE_DIR", "VK_DRIVER_FILES", "__GL_SHADER_DISK_CACHE"}) {
     if (const char* v = std::getenv(name)) environment[name] = v;
   }
   result["environment"] = environment;

@@ -6,6 +6,7 @@
 #include "common/paths.h"
 #include "shader/hash.h"
 #include "sampling/environment.h"
+#include "vk/driver_env.h"
 
 namespace wb::app {
 namespace {
@@ -71,7 +72,7 @@ RenderSession::RenderSession(const SessionOptions& options) {
   const auto envData = loadEnvironmentData(options.settings);
 
   const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;
-  shader::setMesaShaderCacheDirDefault(cacheDir);
+  vk::applyDriverDefaults(cacheDir);  // Mesa's shader cache under ours, llvmpipe's vector width
   vk::ContextOptions contextOptions = options.context;
   if (contextOptions.pipelineCacheDir.empty()) contextOptions.pipelineCacheDir = cacheDir.string();
   ctx_ = std::make_unique<vk::Context>(contextOptions);

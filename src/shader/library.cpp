@@ -365,9 +365,4 @@ void ShaderLibrary::invalidateFiles(const std::vector<fs::path>& files) {
   for (const auto& f : files) hashes_.invalidate(f);
 }
 
-void setMesaShaderCacheDirDefault(const fs::path& cacheDir) {
-  if (const char* v = std::getenv("MESA_SHADER_CACHE_DIR"); v && *v) return;
-  ::setenv("MESA_SHADER_CACHE_DIR", (cacheDir / "mesa").c_str(), 0);
-}
-
 }  // namespace wb::shader

@@ -105,7 +105,4 @@ class ShaderLibrary {
   std::map<fs::path, FileStatus> statuses_;
 };
 
-// Sets MESA_SHADER_CACHE_DIR=<cacheDir>/mesa unless the user already set it.
-void setMesaShaderCacheDirDefault(const fs::path& cacheDir);
-
 }  // namespace wb::shader

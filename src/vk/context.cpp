@@ -8,7 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "common/paths.h"
 #include "vk/device_select.h"
+#include "vk/driver_env.h"
 
 namespace wb::vk {
 namespace {
@@ -187,6 +189,7 @@ std::vector<std::string> Context::validationMessages() const {
 }
 
 void Context::createInstance(const ContextOptions& options) {
+  applyDriverDefaults(shaderCacheDir());
   const char* kValidation = "VK_LAYER_KHRONOS_validation";
   bool wantValidation = options.validation || envFlag("WB_VALIDATION");
   validation_ = wantValidation && layerAvailable(kValidation);

@@ -167,6 +167,35 @@ TEST(Cli, WarmStartOfTheDefaultSceneCompilesNothing) {
   EXPECT_EQ(filesUnder(dir / "cache2" / "mesa"), 0u);
 }
 
+// llvmpipe compiles 4 lanes wide unless the user chose a width or a Mesa cache of their own
+// (vk/driver_env.h), and Mesa's cache goes to a folder per width (its key leaves the width out: code of one
+// width loaded by a process of the other corrupts the heap). The stats' device name carries llvmpipe's width.
+TEST(Cli, LavapipeVectorWidthAndAMesaCacheFolderPerWidth) {
+  const auto dir = tempDir() / "vector_width";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string cache = " WB_SHADER_CACHE_DIR=" + (dir / "cache").string();
+  auto device = [&](const std::string& env, const std::string& name) {
+    const fs::path stats = dir / (name + ".json");
+    auto r = shell("env " + env + " " + WB_WORKBENCH_BIN + " render --size 8x8 --spp 1 --out " +
+                   (dir / (name + ".png")).string() + " --stats " + stats.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return r.code == 0 ? readJsonFile(stats)["device"].get<std::string>() : std::string();
+  };
+  const std::string ours = device("-u LP_NATIVE_VECTOR_WIDTH -u MESA_SHADER_CACHE_DIR" + cache, "ours");
+  if (ours.find("llvmpipe") == std::string::npos) GTEST_SKIP() << "not lavapipe: " << ours;
+  EXPECT_NE(ours.find("128 bits"), std::string::npos) << ours;
+  EXPECT_GT(filesUnder(dir / "cache" / "mesa" / "lp128"), 0u);
+  const std::string users = device("-u MESA_SHADER_CACHE_DIR LP_NATIVE_VECTOR_WIDTH=256" + cache, "users");
+  EXPECT_NE(users.find("256 bits"), std::string::npos) << users;
+  EXPECT_GT(filesUnder(dir / "cache" / "mesa" / "lp256"), 0u);
+  // A Mesa cache of the user's own may hold code of Mesa's default width: the width is left alone.
+  const std::string own =
+      device("-u LP_NATIVE_VECTOR_WIDTH MESA_SHADER_CACHE_DIR=" + (dir / "own").string() + cache, "own");
+  EXPECT_EQ(own.find("128 bits"), std::string::npos) << own;
+  EXPECT_GT(filesUnder(dir / "own"), 0u);
+}
+
 // `shaders --json`: per file the stage, status, compile ms, cache hit or miss and the reflected bindings; a
 // define is a separate cache entry; a broken file is status "error" with file:line and a non-zero exit.
 TEST(Cli, ShadersJsonReportsEachFile) {

@@ -3,6 +3,8 @@
 
 #include <link.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <string>
@@ -10,7 +12,9 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "common/paths.h"
 #include "vk/context.h"
+#include "vk/driver_env.h"
 
 using namespace wb::vk;
 
@@ -119,4 +123,20 @@ TEST(Context, WhatAnInstanceLoadedStaysLoadedAfterIt) {
   if (loadedByContext.empty()) GTEST_SKIP() << "an earlier test of this process loaded (and kept) the driver";
   const auto after = loadedLibraries();
   for (const auto& n : loadedByContext) EXPECT_TRUE(after.count(n)) << n << " was unloaded";
+}
+
+// The workbench's llvmpipe default (vk/driver_env.h) reaches the driver: set before the driver reads it, at
+// the process's first instance, with a Mesa cache folder of its own width.
+TEST(Context, LlvmpipeCompilesFourLanesWideUnlessTheUserChoseAWidth) {
+  const auto applied = applyDriverDefaults(wb::shaderCacheDir());
+  const bool ours = std::find(applied.begin(), applied.end(), "LP_NATIVE_VECTOR_WIDTH=128") != applied.end();
+  Context ctx;
+  if (!ctx.cpuDevice()) GTEST_SKIP() << "not lavapipe: " << ctx.deviceName();
+  if (!ours) {
+    GTEST_SKIP() << "LP_NATIVE_VECTOR_WIDTH or MESA_SHADER_CACHE_DIR set by the user";
+  }
+  EXPECT_STREQ(std::getenv("LP_NATIVE_VECTOR_WIDTH"), "128");
+  EXPECT_NE(ctx.deviceName().find("128 bits"), std::string::npos) << ctx.deviceName();
+  EXPECT_EQ(std::string(std::getenv("MESA_SHADER_CACHE_DIR")),
+            (wb::shaderCacheDir() / "mesa" / "lp128").string());
 }

@@ -1,0 +1,40 @@
+#include "vk/driver_env.h"
+
+#include <cctype>
+#include <cstdlib>
+
+namespace wb::vk {
+namespace {
+
+bool isSet(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v;
+}
+
+}  // namespace
+
+std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheDir) {
+  static const std::vector<std::string> applied = [&] {
+    std::vector<std::string> set;
+    auto setDefault = [&](const char* name, const std::string& value) {
+      ::setenv(name, value.c_str(), 0);
+      set.push_back(std::string(name) + "=" + value);
+    };
+    const bool usersCache = isSet("MESA_SHADER_CACHE_DIR");
+    if (!std::getenv("LP_NATIVE_VECTOR_WIDTH") && !usersCache) setDefault("LP_NATIVE_VECTOR_WIDTH", "128");
+    if (!usersCache) {
+      std::string folder = "lp";
+      if (const char* width = std::getenv("LP_NATIVE_VECTOR_WIDTH"); width && *width) {
+        for (const char* c = width; *c; ++c)
+          folder += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
+      } else {
+        folder += "-default";
+      }
+      setDefault("MESA_SHADER_CACHE_DIR", (cacheDir / "mesa" / folder).string());
+    }
+    return set;
+  }();
+  return applied;
+}
+
+}  // namespace wb::vk
