@@ -171,7 +171,15 @@ json benchStartup(int repeats, const fs::path& work) {
 }
 
 // Edits of the closest-hit shader while `watch` renders: edit-to-new-pipeline and edit-to-first-frame.
-json benchHotReload(int edits, const std::string& size, const fs::path& work) {
+std::string envOr(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? v : "";
+}
+
+// ownMesaCache: the bench process's MESA_SHADER_CACHE_DIR is the workbench's (not the user's): the child then
+// gets its own under its fresh shader cache, or the deterministic edits would hit the pipelines of earlier
+// runs.
+json benchHotReload(int edits, const std::string& size, const fs::path& work, bool ownMesaCache) {
   const fs::path root = work / "root";
   fs::remove_all(root);
   fs::create_directories(root / "shader_cache");
@@ -181,7 +189,10 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work) {
   fs::remove(log);
   auto child = ChildProcess::spawn(
       selfExecutable(), {"watch", "--headless", "--size", size, "--seconds", "600", "--log", log.string()},
-      {{"WB_ROOT", root.string()}, {"WB_SHADER_CACHE_DIR", (root / "shader_cache").string()}}, out.string());
+      {{"WB_ROOT", root.string()},
+       {"WB_SHADER_CACHE_DIR", (root / "shader_cache").string()},
+       {"MESA_SHADER_CACHE_DIR", ownMesaCache ? "" : envOr("MESA_SHADER_CACHE_DIR")}},
+      out.string());
   auto waitFor = [&](auto pred, double seconds) {
     auto start = std::chrono::steady_clock::now();
     while (!pred()) {
@@ -397,7 +408,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
   result["command"] = cmdline;
   // Switches that change what is measured (WB_JIT_WARMUP, WB_PIPELINE_LIBRARY, GALLIVM_PERF, ...), as set by
   // the user or, for the driver defaults, by the workbench.
-  vk::applyDriverDefaults(shaderCacheDir());
+  const auto driverDefaults = vk::applyDriverDefaults(shaderCacheDir());
+  const bool ownMesaCache =
+      std::any_of(driverDefaults.begin(), driverDefaults.end(),
+                  [](const std::string& d) { return d.rfind("MESA_SHADER_CACHE_DIR=", 0) == 0; });
   json environment = json::object();
   for (const char* name : {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",
                            "GALLIVM_PERF", "LP_NUM_THREADS", "LP_NATIVE_VECTOR_WIDTH",
@@ -448,7 +462,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
       result["hot_reload"] = benchHotReload(edits > 0 ? edits
                                             : quick   ? 4
                                                       : 20,
-                                            quick ? "64x64" : "128x128", work);
+                                            quick ? "64x64" : "128x128", work, ownMesaCache);
     }
     if (has("modes")) {
       std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};

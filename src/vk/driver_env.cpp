@@ -17,15 +17,15 @@ std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheD
   static const std::vector<std::string> applied = [&] {
     std::vector<std::string> set;
     auto setDefault = [&](const char* name, const std::string& value) {
-      ::setenv(name, value.c_str(), 0);
+      ::setenv(name, value.c_str(), 1);  // unset or empty: ours to set
       set.push_back(std::string(name) + "=" + value);
     };
     const bool usersCache = isSet("MESA_SHADER_CACHE_DIR");
-    if (!std::getenv("LP_NATIVE_VECTOR_WIDTH") && !usersCache) setDefault("LP_NATIVE_VECTOR_WIDTH", "128");
+    if (!isSet("LP_NATIVE_VECTOR_WIDTH") && !usersCache) setDefault("LP_NATIVE_VECTOR_WIDTH", "128");
     if (!usersCache) {
       std::string folder = "lp";
-      if (const char* width = std::getenv("LP_NATIVE_VECTOR_WIDTH"); width && *width) {
-        for (const char* c = width; *c; ++c)
+      if (isSet("LP_NATIVE_VECTOR_WIDTH")) {
+        for (const char* c = std::getenv("LP_NATIVE_VECTOR_WIDTH"); *c; ++c)
           folder += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
       } else {
         folder += "-default";

@@ -1,4 +1,5 @@
-// Environment variables the workbench sets for the Vulkan drivers unless the user set them. Drivers read them
+// Environment variables the workbench sets for the Vulkan drivers unless the user set them (an empty value
+// counts as unset: a parent process hands its children the choice back that way). Drivers read them
 // once, when they load, so this runs before the process's first instance (every Context calls it; the first
 // call decides, later ones return what it did).
 //
