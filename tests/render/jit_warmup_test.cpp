@@ -63,8 +63,8 @@ class JitWarmup : public ::testing::Test {
     fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root_ / "shaders", fs::copy_options::recursive);
     fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root_ / "assets", fs::copy_options::recursive);
     ::setenv("WB_ROOT", root_.c_str(), 1);
-    // Mesa's cache and llvmpipe's width as the workbench sets them (vk/driver_env.h): under the private shader
-    // cache of the first session.
+    // Mesa's cache and llvmpipe's width as the workbench sets them (vk/driver_env.h): under the private
+    // shader cache of the first session.
     ::unsetenv("MESA_SHADER_CACHE_DIR");
     ASSERT_EQ(wb::shaderDir(), root_ / "shaders") << "run this test in a process of its own (as ctest does)";
   }
