@@ -5,9 +5,10 @@
 //
 // - LP_NATIVE_VECTOR_WIDTH=128: llvmpipe (lavapipe) compiles shaders 4 lanes wide instead of its 8-lane AVX2
 //   default. Measured on this project's 2-core VM (docs/bench/lavapipe_vector_width.md): the path tracer's
-//   pipeline JITs in ~40% less time and edits reach the screen ~30% sooner, while the trace rate, the raster
-//   passes' speed and every image stay the same (rays diverge too much for 8 lanes to pay). GPU drivers
-//   ignore it. Left alone when the user set a MESA_SHADER_CACHE_DIR of their own (see below).
+//   pipeline JITs in ~40% less time and edits reach the screen 25-35% sooner, while the trace rate and every
+//   image stay the same (rays diverge too much for 8 lanes to pay); the window's raster work (panel, display
+//   pass) takes ~20% longer. GPU drivers ignore it. Left alone when the user set a MESA_SHADER_CACHE_DIR of
+//   their own (see below).
 // - MESA_SHADER_CACHE_DIR=<cacheDir>/mesa/lp<width> (lp-default when no width is set): Mesa's shader disk
 //   cache under the workbench's shader cache. One folder per width because llvmpipe's cache key leaves the
 //   width out: code compiled 8 lanes wide, loaded by a process running 4 lanes wide, writes past the end of
