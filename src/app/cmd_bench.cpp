@@ -408,10 +408,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
   result["command"] = cmdline;
   // Switches that change what is measured (WB_JIT_WARMUP, WB_PIPELINE_LIBRARY, GALLIVM_PERF, ...), as set by
   // the user or, for the driver defaults, by the workbench.
-  const auto driverDefaults = vk::applyDriverDefaults(shaderCacheDir());
-  const bool ownMesaCache =
-      std::any_of(driverDefaults.begin(), driverDefaults.end(),
-                  [](const std::string& d) { return d.rfind("MESA_SHADER_CACHE_DIR=", 0) == 0; });
+  const bool ownMesaCache = envOr("MESA_SHADER_CACHE_DIR").empty();  // before the defaults fill it in
+  vk::applyDriverDefaults(shaderCacheDir());
   json environment = json::object();
   for (const char* name : {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",
                            "GALLIVM_PERF", "LP_NUM_THREADS", "LP_NATIVE_VECTOR_WIDTH",

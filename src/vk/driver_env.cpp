@@ -22,14 +22,10 @@ std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheD
     };
     const bool usersCache = isSet("MESA_SHADER_CACHE_DIR");
     if (!isSet("LP_NATIVE_VECTOR_WIDTH") && !usersCache) setDefault("LP_NATIVE_VECTOR_WIDTH", "128");
-    if (!usersCache) {
+    if (!usersCache) {  // the width is set by now: the user's or ours
       std::string folder = "lp";
-      if (isSet("LP_NATIVE_VECTOR_WIDTH")) {
-        for (const char* c = std::getenv("LP_NATIVE_VECTOR_WIDTH"); *c; ++c)
-          folder += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
-      } else {
-        folder += "-default";
-      }
+      for (const char* c = std::getenv("LP_NATIVE_VECTOR_WIDTH"); *c; ++c)
+        folder += std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_';
       setDefault("MESA_SHADER_CACHE_DIR", (cacheDir / "mesa" / folder).string());
     }
     return set;

@@ -9,7 +9,7 @@
 //   image stay the same (rays diverge too much for 8 lanes to pay); the window's raster work (panel, display
 //   pass) takes ~20% longer. GPU drivers ignore it. Left alone when the user set a MESA_SHADER_CACHE_DIR of
 //   their own (see below).
-// - MESA_SHADER_CACHE_DIR=<cacheDir>/mesa/lp<width> (lp-default when no width is set): Mesa's shader disk
+// - MESA_SHADER_CACHE_DIR=<cacheDir>/mesa/lp<width> (the user's width or ours): Mesa's shader disk
 //   cache under the workbench's shader cache. One folder per width because llvmpipe's cache key leaves the
 //   width out: code compiled 8 lanes wide, loaded by a process running 4 lanes wide, writes past the end of
 //   the driver's vertex buffers (heap corruption in the window's hybrid mode with Mesa 25.0.7; a cache the
