@@ -1,0 +1,229 @@
+// The workbench window: set-up and tear-down, hot reload targets, access to the renderer of the current mode.
+#include "app/window/workbench_window.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "common/paths.h"
+
+namespace wb::app {
+
+float sceneRadius(const scene::Scene& s) {
+  return std::max(0.5f * glm::length(s.bounds.max - s.bounds.min), 1e-3f);
+}
+
+WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : window_(window), options_(o) {
+  state_.settings = o.render.settings;
+  state_.settings.aov = true;  // the debug views read the AOV images
+  state_.resolutionScale = o.scale;
+  state_.fixedSize = o.sizeGiven;
+  state_.fixedWidth = o.render.settings.width;
+  state_.fixedHeight = o.render.settings.height;
+  state_.vsync = !o.noVsync;
+  state_.targetSpp = 0;
+  state_.mode = o.render.mode;
+  state_.hybrid = o.render.hybrid;
+  state_.referencePath = o.reference;
+
+  uint32_t extCount = 0;
+  const char** exts = glfwGetRequiredInstanceExtensions(&extCount);
+  if (!exts) throw std::runtime_error("GLFW found no Vulkan surface support on this display");
+  SessionOptions so;
+  so.scenePath = o.render.scene;
+  so.settings = state_.settings;
+  so.settings.width = so.settings.height = 64;  // resized to the view once the window is laid out
+  so.context.deviceName = o.render.device;
+  so.context.instanceExtensions.assign(exts, exts + extCount);
+  so.context.presentation = true;
+  session_ = std::make_unique<RenderSession>(so);
+  auto& ctx = session_->context();
+
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  if (glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface) != VK_SUCCESS)
+    throw std::runtime_error("cannot create a Vulkan surface for the window");
+  swapchain_ = std::make_unique<vk::Swapchain>(ctx, surface);
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
+  display_ = std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass());
+  gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
+  progressive_ = std::make_unique<ProgressiveTracer>(ctx, session_->pathTracer());
+  capture_ = std::make_unique<SwapchainCapture>(ctx);
+
+  state_.materials = session_->scene().materials;
+  state_.lights = session_->scene().lights;
+  applied_ = state_;
+  camera_.reset(session_->scene().camera, sceneRadius(session_->scene()));
+
+  hot_ = std::make_unique<render::HotReload>(session_->library(),
+                                             std::vector<std::filesystem::path>{shaderDir()});
+  registerHotReload();
+  hot_->start();
+
+  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pi.queueFamilyIndex = ctx.queueFamily();
+  WB_VK(vkCreateCommandPool(ctx.device(), &pi, nullptr, &pool_));
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  WB_VK(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_));
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  WB_VK(vkCreateFence(ctx.device(), &fi, nullptr, &fence_));
+  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  WB_VK(vkCreateSemaphore(ctx.device(), &si, nullptr, &imageAvailable_));
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = 3;
+  WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &queries_));
+
+  for (const auto& s : o.sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--set: expected NAME=VALUE, got '" + s + "'");
+    applySetting(state_, s.substr(0, eq), s.substr(eq + 1));
+  }
+  if (!o.scriptPath.empty()) {
+    script_ = Script::fromFile(o.scriptPath);
+    hasScript_ = true;
+  }
+}
+
+WorkbenchWindow::~WorkbenchWindow() {
+  if (hot_) hot_->stop();
+  if (!session_) return;
+  VkDevice d = session_->context().device();
+  vkDeviceWaitIdle(d);
+  if (queries_) vkDestroyQueryPool(d, queries_, nullptr);
+  if (imageAvailable_) vkDestroySemaphore(d, imageAvailable_, nullptr);
+  if (fence_) vkDestroyFence(d, fence_, nullptr);
+  if (pool_) vkDestroyCommandPool(d, pool_, nullptr);
+  capture_.reset();
+  gui_.reset();
+  display_.reset();
+  swapchain_.reset();
+  progressive_.reset();
+  hot_.reset();
+  for (auto& h : hybrids_) h.reset();
+  auto& tracer = session_->pathTracer();
+  (void)tracer;
+  session_.reset();  // the tracer goes before environment_
+  environment_.reset();
+}
+
+void WorkbenchWindow::registerHotReload() {
+  auto& tracer = session_->pathTracer();
+  if (std::find(hotTargets_.begin(), hotTargets_.end(), tracer.program()) == hotTargets_.end()) {
+    tracer.addHotReloadTarget(*hot_);
+    hotTargets_.push_back(tracer.program());
+  }
+  DisplayPass* display = display_.get();
+  if (std::find(hotTargets_.begin(), hotTargets_.end(), display->program()) == hotTargets_.end()) {
+    hot_->addTarget(display->program(),
+                    {"display",
+                     [display](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
+                       return std::shared_ptr<PreparedDisplayPipeline>(display->prepare(b));
+                     },
+                     [display](std::shared_ptr<void> p) {
+                       auto prepared = std::static_pointer_cast<PreparedDisplayPipeline>(p);
+                       auto owned = std::make_unique<PreparedDisplayPipeline>();
+                       owned->layout = std::move(prepared->layout);
+                       owned->pipeline = prepared->pipeline;
+                       owned->device = prepared->device;
+                       prepared->pipeline = VK_NULL_HANDLE;
+                       display->commit(std::move(owned));
+                     }});
+    hotTargets_.push_back(display->program());
+  }
+}
+
+void WorkbenchWindow::scriptCommand(const std::string& name) {
+  if (name == "reset_camera") state_.resetCamera = true;
+  if (name == "reset") state_.resetAccumulation = true;
+  if (name == "reload") state_.reloadShaders = true;
+  if (name == "quit") state_.quit = true;
+}
+
+Rect WorkbenchWindow::imageRect(const Rect& view) const {
+  const auto& s = session_->pathTracer().settings();
+  const float tw = float(progressive_->targetWidth()), th = float(progressive_->targetHeight());
+  (void)s;
+  const float scale = std::min(view.w / tw, view.h / th);
+  const float w = std::max(1.0f, std::floor(tw * scale)), h = std::max(1.0f, std::floor(th * scale));
+  return {std::floor(view.x + (view.w - w) * 0.5f), std::floor(view.y + (view.h - h) * 0.5f), w, h};
+}
+
+render::HybridRenderer* WorkbenchWindow::activeHybrid() const {
+  switch (state_.mode) {
+    case render::RenderMode::Hybrid:
+      return hybrids_[0].get();
+    case render::RenderMode::Reflections:
+      return hybrids_[1].get();
+    default:
+      return nullptr;
+  }
+}
+
+const render::GpuEnvironment& WorkbenchWindow::currentEnvironment() const {
+  return environment_ ? *environment_ : session_->environment();
+}
+
+render::HybridRenderer* WorkbenchWindow::ensureHybrid() {
+  if (state_.mode == render::RenderMode::PathTrace) return nullptr;
+  auto& slot = hybrids_[state_.mode == render::RenderMode::Hybrid ? 0 : 1];
+  if (!slot) {
+    render::RenderSettings s = state_.settings;
+    s.width = progressive_->targetWidth();
+    s.height = progressive_->targetHeight();
+    slot = std::make_unique<render::HybridRenderer>(session_->context(), session_->library(),
+                                                    session_->gpuScene(), session_->scene(),
+                                                    currentEnvironment(), s, state_.mode, state_.hybrid);
+    slot->setCamera(camera_.state());
+    slot->setLights(state_.lights);
+    slot->addHotReloadTargets(*hot_);
+  }
+  return slot.get();
+}
+
+uint32_t WorkbenchWindow::currentSamples() const {
+  if (const auto* h = activeHybrid()) return h->framesAccumulated();
+  return progressive_->samples();
+}
+
+eval::ImageRGBA WorkbenchWindow::currentImage() {
+  if (auto* h = activeHybrid()) {
+    eval::ImageRGBA img;
+    img.width = h->settings().width;
+    img.height = h->settings().height;
+    img.pixels = h->readOutput();
+    for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+    return img;
+  }
+  eval::ImageRGBA img;
+  const auto& tracer = session_->pathTracer();
+  img.width = tracer.settings().width;
+  img.height = tracer.settings().height;
+  img.pixels = tracer.readAccumulation();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
+void WorkbenchWindow::updateLiveError() {
+  // Called when no frame is in flight. Only whole samples count: the path tracer's accumulation is read when
+  // a sample has just finished (the progressive tracer stops at sample ends when a checkpoint is due).
+  auto* h = activeHybrid();
+  if (!h && (progressive_->inPreview() || progressive_->cursorRow() != 0)) return;
+  if (h && h->framesAccumulated() < hybridFramesSeen_) ++hybridGeneration_;  // reset by a pipeline commit
+  if (h) hybridFramesSeen_ = h->framesAccumulated();
+  const uint64_t generation = h ? hybridGeneration_ * 2 + 1 : progressive_->generation() * 2;
+  if (generation != errorGeneration_) {
+    liveError_.restart();
+    errorGeneration_ = generation;
+  }
+  const uint32_t n = currentSamples();
+  const double seconds = h ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
+                           : progressive_->secondsSinceReset();
+  if (liveError_.wants(n, seconds)) liveError_.add(currentImage(), n, seconds);
+}
+
+}  // namespace wb::app

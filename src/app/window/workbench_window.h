@@ -1,0 +1,153 @@
+// The live workbench window's application object (internal to src/app/window): owns the render session, the
+// swapchain, the display pass, the panel and the hot reload, and runs the frame loop. Its parts:
+// workbench_window.cpp (set-up, renderer access), workbench_window_state.cpp (panel state -> renderers,
+// input), workbench_window_frame.cpp (the frame loop and its command buffer), workbench_window_report.cpp
+// (stats JSON, saved renders). window_command.cpp parses the command line and opens the window.
+#pragma once
+#include <array>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <nlohmann/json.hpp>
+
+#include "app/render_options.h"
+#include "app/render_session.h"
+#include "app/window/camera_controller.h"
+#include "app/window/capture.h"
+#include "app/window/display_pass.h"
+#include "app/window/frame_stats.h"
+#include "app/window/gui_layer.h"
+#include "app/window/panels.h"
+#include "app/window/pixel_picker.h"
+#include "app/window/progressive.h"
+#include "app/window/script.h"
+#include "app/window/workbench_state.h"
+#include "eval/live_error.h"
+#include "render/hot_reload.h"
+#include "vk/swapchain.h"
+
+namespace wb::app {
+
+struct WindowOptions {
+  RenderOptions render;
+  bool sizeGiven = false;
+  std::string windowSize = "1280x720";
+  uint32_t windowWidth = 1280, windowHeight = 720;
+  uint64_t frames = 0;
+  std::string screenshot, statsPath, scriptPath, reference, imguiIni;
+  std::vector<std::string> sets;
+  float scale = 0.5f;
+  bool noVsync = false;
+};
+
+// Half the diagonal of the scene's bounds (at least 1e-3): the orbit camera's radius, the depth view's scale.
+float sceneRadius(const scene::Scene& s);
+
+class WorkbenchWindow : public ScriptHost {
+  using Clock = std::chrono::steady_clock;
+
+ public:
+  WorkbenchWindow(GLFWwindow* window, const WindowOptions& o);
+  ~WorkbenchWindow() override;
+  int run();
+
+  // ScriptHost
+  void scriptSet(const std::string& name, const std::string& value) override {
+    applySetting(state_, name, value);
+    applyState();  // at a frame boundary: what the next script line sees is the new state
+  }
+  void scriptScreenshot(const std::string& path) override { screenshotPath_ = path; }
+  void scriptSave(const std::string& base) override { state_.saveRequest = base; }
+  void scriptStats(const std::string& path) override { writeStats(path); }
+  void scriptOrbit(float dx, float dy) override {
+    CameraInput in;
+    in.dragRotate = {dx, dy};
+    if (camera_.update(in)) cameraChanged_ = true;
+  }
+  void scriptCommand(const std::string& name) override;
+  void scriptResize(int width, int height) override { glfwSetWindowSize(window_, width, height); }
+  size_t reloadCount() const override { return hot_->history().size(); }
+  uint32_t samples() const override {
+    if (activeHybrid()) return activeHybrid()->framesAccumulated();
+    return progressive_->inPreview() ? 0 : progressive_->samples();
+  }
+
+ private:
+  void registerHotReload();
+  void applyState();
+  void handleInput(const Rect& view, float dt);
+  void saveRender(std::string base);
+  void writeStats(const std::string& path);
+  nlohmann::json statsJson();
+  nlohmann::json parametersJson();
+  Rect imageRect(const Rect& view) const;
+  void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const Rect& image);
+  void readTimestamps();
+  // The hybrid renderer of the current mode (nullptr when path tracing); made on first use.
+  render::HybridRenderer* activeHybrid() const;
+  render::HybridRenderer* ensureHybrid();
+  const render::GpuEnvironment& currentEnvironment() const;
+  uint32_t currentSamples() const;  // finished samples (path tracer) or frames (hybrid modes)
+  eval::ImageRGBA currentImage();   // linear radiance of what is shown (waits for the device)
+  void updateLiveError();
+
+  GLFWwindow* window_;
+  WindowOptions options_;
+  WorkbenchState state_;
+  WorkbenchState applied_;  // what the renderer has
+  std::unique_ptr<RenderSession> session_;
+  std::unique_ptr<vk::Swapchain> swapchain_;
+  std::unique_ptr<DisplayPass> display_;
+  std::unique_ptr<GuiLayer> gui_;
+  std::unique_ptr<render::HotReload> hot_;
+  std::unique_ptr<ProgressiveTracer> progressive_;
+  std::unique_ptr<render::GpuEnvironment> environment_;  // replaces the session's after an env change
+  std::unique_ptr<SwapchainCapture> capture_;
+  // [0] hybrid, [1] reflections; kept once made (their hot reload targets point at them).
+  std::array<std::unique_ptr<render::HybridRenderer>, 2> hybrids_;
+  uint64_t hybridGeneration_ = 0;
+  uint64_t hybridResets_ = 0;  // accumulation restarts while a hybrid mode was shown
+  uint32_t hybridFramesSeen_ = 0;
+  Clock::time_point hybridReset_ = Clock::now();
+  bool lastFrameHybrid_ = false;
+  eval::LiveError liveError_;
+  std::string referenceTried_;
+  uint64_t errorGeneration_ = ~0ull;
+  std::vector<shader::ShaderLibrary::ProgramId> hotTargets_;
+  CameraController camera_;
+  bool cameraChanged_ = true;
+  std::optional<PickResult> pick_;
+  bool pickPinned_ = false;
+  glm::vec2 lastMouse_{-1.0f};
+  glm::vec2 pressMouse_{0.0f};
+  bool dragging_ = false;
+  Script script_;
+  bool hasScript_ = false;
+  std::string screenshotPath_;
+  bool captureThisFrame_ = false;
+  std::string captureTarget_;
+  std::string lastSaved_;
+  std::string fatalScriptError_;
+
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkSemaphore imageAvailable_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  bool frameInFlight_ = false;
+  uint64_t tracedPixels_ = 0;
+  double traceMs_ = 0, displayMs_ = 0, traceSeconds_ = 0;
+  uint64_t traceGeneration_ = 0;
+  gpu::Counters counters_{};
+  FrameStats frames_;
+  uint64_t frameCount_ = 0;
+  bool f12Down_ = false, f5Down_ = false, tabDown_ = false;
+  float panelWidth_ = 0;
+};
+
+}  // namespace wb::app
