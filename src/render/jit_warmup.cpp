@@ -9,6 +9,7 @@
 #include "scene/procedural.h"
 #include "vk/check.h"
 #include "vk/pipeline_layout.h"
+#include "vk/shader_module.h"
 
 namespace wb::render {
 namespace {
@@ -86,15 +87,8 @@ bool alignGroupHandles(vk::Context& ctx, const shader::ShaderLibrary::ProgramBui
     if (now > last) return false;
     const uint32_t count = last - now;
     vk::PipelineLayout layout(ctx, build.layout);
-    VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mci.codeSize = raygen->spirv.size() * sizeof(uint32_t);
-    mci.pCode = raygen->spirv.data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    WB_VK(vkCreateShaderModule(ctx.device(), &mci, nullptr, &module));
-    VkPipelineShaderStageCreateInfo stage{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    stage.stage = VK_SHADER_STAGE_RAYGEN_BIT_KHR;
-    stage.module = module;
-    stage.pName = "main";
+    const vk::ShaderModule module(ctx.device(), *raygen);
+    const VkPipelineShaderStageCreateInfo stage = module.stageInfo();
     VkRayTracingShaderGroupCreateInfoKHR group{VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
     group.type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
     group.generalShader = 0;
@@ -108,10 +102,8 @@ bool alignGroupHandles(vk::Context& ctx, const shader::ShaderLibrary::ProgramBui
     ci.maxPipelineRayRecursionDepth = 1;
     ci.layout = layout.handle();
     VkPipeline pipeline = VK_NULL_HANDLE;
-    const VkResult r = ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1,
-                                                          &ci, nullptr, &pipeline);
-    vkDestroyShaderModule(ctx.device(), module, nullptr);
-    WB_VK(r);
+    WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &ci, nullptr,
+                                             &pipeline));
     std::vector<uint8_t> handles(size_t(count) * ctx.rayTracing().handleSize);
     const VkResult h = ctx.vkGetRayTracingShaderGroupHandlesKHR(ctx.device(), pipeline, 0, count,
                                                                 handles.size(), handles.data());

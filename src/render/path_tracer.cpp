@@ -6,6 +6,7 @@
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "common/half.h"
 #include "common/paths.h"
 #include "render/jit_warmup.h"
 #include "render/sample_tables.h"
@@ -15,19 +16,6 @@ namespace {
 
 constexpr uint32_t kMissCount = 2;     // environment, shadow
 constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
-
-float halfToFloat(uint16_t h) {
-  const uint32_t sign = (h >> 15) & 1u, exp = (h >> 10) & 0x1Fu, mant = h & 0x3FFu;
-  float v;
-  if (exp == 0) {
-    v = std::ldexp(float(mant), -24);
-  } else if (exp == 31) {
-    v = mant ? NAN : INFINITY;
-  } else {
-    v = std::ldexp(float(mant | 0x400u), int(exp) - 25);
-  }
-  return sign ? -v : v;
-}
 
 }  // namespace
 
@@ -308,14 +296,7 @@ std::vector<float> PathTracer::readAccumulation() const {
 }
 
 std::vector<float> PathTracer::readAov(Aov aov) const {
-  auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
-  std::vector<float> out(bytes.size() / 2);
-  for (size_t i = 0; i < out.size(); ++i) {
-    uint16_t h;
-    std::memcpy(&h, bytes.data() + 2 * i, 2);
-    out[i] = halfToFloat(h);
-  }
-  return out;
+  return halvesToFloats(aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL));
 }
 
 gpu::Counters PathTracer::readCounters() const {

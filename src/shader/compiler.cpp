@@ -62,7 +62,8 @@ std::string compilerFingerprint() {
   static const std::string fp = [] {
     std::ostringstream os;
     os << "glslang " << GLSLANG_VERSION_MAJOR << '.' << GLSLANG_VERSION_MINOR << '.' << GLSLANG_VERSION_PATCH
-       << GLSLANG_VERSION_FLAVOR << "; vulkan1.2; spv1.4; " << spvSoftwareVersionDetailsString();
+       << GLSLANG_VERSION_FLAVOR << "; vulkan1.2; spv1.4; entry point from the key; "
+       << spvSoftwareVersionDetailsString();
     return os.str();
   }();
   return fp;
@@ -117,7 +118,10 @@ CompileOutput compileGlsl(const CompileInput& in) {
   const char* names[] = {mainName.c_str()};
   shader->setStringsWithLengthsAndNames(strings, lengths, names, 1);
   shader->setPreamble(preamble.c_str());
+  // The GLSL function is main; the SPIR-V entry point takes the key's name (setEntryPoint alone renames
+  // nothing).
   shader->setEntryPoint(in.entry.c_str());
+  shader->setSourceEntryPoint("main");
   shader->setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
   shader->setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
   shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_4);

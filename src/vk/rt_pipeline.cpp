@@ -83,33 +83,13 @@ RayTracingPipeline::RayTracingPipeline(
     throw VulkanError("ray recursion depth " + std::to_string(maxRecursionDepth) + " exceeds the device's " +
                       std::to_string(ctx.rayTracing().maxRecursionDepth));
   }
-  std::vector<VkShaderModule> modules;
+  const Specialization spec(constants);
+  std::vector<ShaderModule> modules;  // only needed while the pipeline is created
   std::vector<VkPipelineShaderStageCreateInfo> stageInfos;
-  std::vector<VkSpecializationMapEntry> entries;
-  std::vector<uint32_t> values;
-  for (const auto& c : constants) {
-    entries.push_back({c.id, static_cast<uint32_t>(values.size() * sizeof(uint32_t)), sizeof(uint32_t)});
-    values.push_back(c.value);
-  }
-  VkSpecializationInfo spec{static_cast<uint32_t>(entries.size()), entries.data(),
-                            values.size() * sizeof(uint32_t), values.data()};
-  auto cleanup = [&] {
-    for (auto m : modules) vkDestroyShaderModule(ctx.device(), m, nullptr);
-  };
   try {
     for (const auto& s : stages) {
-      VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-      mci.codeSize = s->spirv.size() * sizeof(uint32_t);
-      mci.pCode = s->spirv.data();
-      VkShaderModule m;
-      WB_VK(vkCreateShaderModule(ctx.device(), &mci, nullptr, &m));
-      modules.push_back(m);
-      VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-      si.stage = shader::toVkStage(s->stage);
-      si.module = m;
-      si.pName = "main";
-      si.pSpecializationInfo = constants.empty() ? nullptr : &spec;
-      stageInfos.push_back(si);
+      modules.emplace_back(ctx.device(), *s);
+      stageInfos.push_back(modules.back().stageInfo(spec.info()));
     }
     std::vector<VkRayTracingShaderGroupCreateInfoKHR> groupInfos;
     for (const auto& g : groups) {
@@ -255,11 +235,9 @@ RayTracingPipeline::RayTracingPipeline(
     const uint32_t hitCount = static_cast<uint32_t>(groups.size()) - 1 - missCount;
     sbt_ = ShaderBindingTable(ctx, pipeline_, missCount, hitCount);
   } catch (...) {
-    cleanup();
     if (pipeline_) vkDestroyPipeline(ctx.device(), pipeline_, nullptr);
     throw;
   }
-  cleanup();
   createMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 

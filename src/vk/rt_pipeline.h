@@ -11,6 +11,7 @@
 
 #include "shader/types.h"
 #include "vk/sbt.h"
+#include "vk/shader_module.h"
 
 namespace wb::vk {
 
@@ -20,11 +21,6 @@ struct RtShaderGroup {
   int closestHit = -1;
   int anyHit = -1;
   int intersection = -1;
-};
-
-struct SpecializationConstant {
-  uint32_t id = 0;
-  uint32_t value = 0;
 };
 
 // Pipeline libraries (VK_KHR_pipeline_library), one per shader group, kept across rebuilds: a pipeline linked

@@ -111,6 +111,32 @@ TEST(ShaderCompile, WarningsAreKept) {
   EXPECT_EQ(s->warnings[0].line, 7);
 }
 
+// The names of the SPIR-V module's OpEntryPoint instructions.
+std::vector<std::string> entryPointNames(const std::vector<uint32_t>& spirv) {
+  std::vector<std::string> names;
+  for (size_t i = 5; i < spirv.size();) {
+    const uint32_t words = spirv[i] >> 16, opcode = spirv[i] & 0xFFFFu;
+    if (words == 0) break;
+    if (opcode == 15 && i + 3 < spirv.size())  // OpEntryPoint: model, id, then the name
+      names.emplace_back(reinterpret_cast<const char*>(&spirv[i + 3]));
+    i += words;
+  }
+  return names;
+}
+
+TEST(ShaderCompile, EntryPointIsNamedByTheKey) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  writeFile(t / "inc.glsl", "#define VALUE 1u\n");
+  ShaderLibrary lib({});
+  ShaderKey k{t / "a.comp"};
+  EXPECT_EQ(entryPointNames(lib.compile(k)->spirv), std::vector<std::string>{"main"});
+  k.entry = "fill";  // a variant of its own, its GLSL main exported under that name
+  const auto renamed = lib.compile(k);
+  EXPECT_EQ(entryPointNames(renamed->spirv), std::vector<std::string>{"fill"});
+  EXPECT_EQ(renamed->key.entry, "fill");
+}
+
 TEST(ShaderCompile, IncludeCycleIsAClearError) {
   TempDir t;
   writeFile(t / "a.comp", kComputeMain);

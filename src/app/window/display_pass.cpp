@@ -1,6 +1,7 @@
 #include "app/window/display_pass.h"
 
 #include "common/paths.h"
+#include "vk/shader_module.h"
 
 namespace wb::app {
 
@@ -31,20 +32,11 @@ std::unique_ptr<PreparedDisplayPipeline> DisplayPass::prepare(
   prepared->device = ctx_.device();
   prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
 
-  std::vector<VkShaderModule> modules;
+  std::vector<vk::ShaderModule> modules;  // only needed while the pipeline is created
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   for (const auto& s : build.stages) {
-    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mi.codeSize = s->spirv.size() * sizeof(uint32_t);
-    mi.pCode = s->spirv.data();
-    VkShaderModule m = VK_NULL_HANDLE;
-    WB_VK(vkCreateShaderModule(ctx_.device(), &mi, nullptr, &m));
-    modules.push_back(m);
-    VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    si.stage = shader::toVkStage(s->stage);
-    si.module = m;
-    si.pName = s->key.entry.c_str();
-    stages.push_back(si);
+    modules.emplace_back(ctx_.device(), *s);
+    stages.push_back(modules.back().stageInfo());
   }
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{
@@ -82,10 +74,7 @@ std::unique_ptr<PreparedDisplayPipeline> DisplayPass::prepare(
   ci.pDynamicState = &dyn;
   ci.layout = prepared->layout->handle();
   ci.renderPass = renderPass_;
-  VkResult r =
-      vkCreateGraphicsPipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &prepared->pipeline);
-  for (auto m : modules) vkDestroyShaderModule(ctx_.device(), m, nullptr);
-  WB_VK(r);
+  WB_VK(vkCreateGraphicsPipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &prepared->pipeline));
   return prepared;
 }
 

@@ -5,8 +5,10 @@
 #include <cstring>
 #include <utility>
 
+#include "common/half.h"
 #include "common/paths.h"
 #include "render/jit_warmup.h"
+#include "vk/shader_module.h"
 
 namespace wb::render {
 namespace {
@@ -16,19 +18,6 @@ constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 constexpr float kDefaultSunAngleDeg = 0.53f;
-
-float halfToFloat(uint16_t h) {
-  const uint32_t sign = (h >> 15) & 1u, exp = (h >> 10) & 0x1Fu, mant = h & 0x3FFu;
-  float v;
-  if (exp == 0) {
-    v = std::ldexp(float(mant), -24);
-  } else if (exp == 31) {
-    v = mant ? NAN : INFINITY;
-  } else {
-    v = std::ldexp(float(mant | 0x400u), int(exp) - 25);
-  }
-  return sign ? -v : v;
-}
 
 // Reversed-Z infinite perspective (depth = znear / distance), y flipped like the path tracer's projection so
 // both put image row 0 at the top and agree on every pixel's ray.
@@ -272,21 +261,11 @@ std::shared_ptr<void> HybridRenderer::preparePipeline(
     }
     case Pass::Composite: {
       const auto& s = build.stages.at(0);
-      VkShaderModuleCreateInfo mci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-      mci.codeSize = s->spirv.size() * sizeof(uint32_t);
-      mci.pCode = s->spirv.data();
-      VkShaderModule module;
-      WB_VK(vkCreateShaderModule(ctx_.device(), &mci, nullptr, &module));
+      const vk::ShaderModule module(ctx_.device(), *s);
       VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-      ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-      ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-      ci.stage.module = module;
-      ci.stage.pName = "main";
+      ci.stage = module.stageInfo();
       ci.layout = p->layout->handle();
-      const VkResult r =
-          vkCreateComputePipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &p->compute);
-      vkDestroyShaderModule(ctx_.device(), module, nullptr);
-      WB_VK(r);
+      WB_VK(vkCreateComputePipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &p->compute));
       break;
     }
   }
@@ -545,14 +524,7 @@ std::vector<uint8_t> HybridRenderer::readAoMask() const {
 }
 
 std::vector<float> HybridRenderer::readReflection() const {
-  auto bytes = reflection_.download(VK_IMAGE_LAYOUT_GENERAL);
-  std::vector<float> out(bytes.size() / 2);
-  for (size_t i = 0; i < out.size(); ++i) {
-    uint16_t v;
-    std::memcpy(&v, bytes.data() + 2 * i, 2);
-    out[i] = halfToFloat(v);
-  }
-  return out;
+  return halvesToFloats(reflection_.download(VK_IMAGE_LAYOUT_GENERAL));
 }
 
 }  // namespace wb::render
