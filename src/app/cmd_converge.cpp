@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/converge_report.h"
 #include "app/render_options.h"
 #include "app/render_session.h"
 #include "common/paths.h"
@@ -27,43 +28,6 @@ struct Config {
   std::vector<std::string> flags;
   RenderOptions options;
 };
-
-struct ConvergeOptions {
-  std::string reference;
-  uint32_t referenceSpp = 0;
-  double seconds = 10.0;
-  uint32_t runs = 3;
-  uint32_t maxSpp = 1u << 16;
-  double targetRelMse = 0;
-  std::vector<std::string> configs;
-  std::string out;
-  bool hardCases = false;
-};
-
-// One checkpoint of one configuration, over its independent runs.
-struct Checkpoint {
-  uint32_t spp = 0;
-  std::vector<double> seconds;  // per run
-  std::vector<double> mse, relMse;
-  std::vector<eval::Rgb> mean;
-  std::vector<eval::ImageRGBA> images;  // per run (kept for the run-to-run variance)
-  double variance = 0;                  // mean per-pixel variance of one run, from the runs
-};
-
-struct ConfigResult {
-  std::string name;
-  std::string flags;
-  std::vector<Checkpoint> checkpoints;
-  uint64_t dropped = 0;
-  eval::FireflyStats fireflies;
-  double setupSeconds = 0;
-};
-
-double mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? 0.0 : s / double(v.size());
-}
 
 std::vector<std::string> splitFlags(const std::string& text) {
   std::vector<std::string> out;
@@ -91,12 +55,6 @@ std::vector<std::string> splitFlags(const std::string& text) {
   if (quote) throw std::invalid_argument("--config: unbalanced quote in '" + text + "'");
   if (!cur.empty() || any) out.push_back(cur);
   return out;
-}
-
-std::string safeName(const std::string& name) {
-  std::string s;
-  for (char c : name) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_') ? c : '_';
-  return s.empty() ? "config" : s;
 }
 
 void addConvergeOptions(CLI::App& cli, ConvergeOptions& c) {
@@ -342,164 +300,6 @@ ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::
     }
   }
   return result;
-}
-
-// Seconds to reach `target` relMSE, interpolated in log-log between checkpoints; empty if never reached.
-std::optional<double> timeToReach(const ConfigResult& r, double target) {
-  for (size_t i = 0; i < r.checkpoints.size(); ++i) {
-    const double e = mean(r.checkpoints[i].relMse), t = mean(r.checkpoints[i].seconds);
-    if (e <= target) {
-      if (i == 0) return t;
-      const double e0 = mean(r.checkpoints[i - 1].relMse), t0 = mean(r.checkpoints[i - 1].seconds);
-      if (e0 <= 0 || e <= 0 || t0 <= 0 || e0 == e) return t;
-      const double f = std::log(target / e0) / std::log(e / e0);
-      return std::exp(std::log(t0) + f * (std::log(t) - std::log(t0)));
-    }
-  }
-  return std::nullopt;
-}
-
-void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, const eval::Rgb& refMean) {
-  std::ofstream f(path);
-  f << "config,flags,spp,seconds,seconds_min,seconds_max,runs,mse,rmse,relmse,variance,bias2,mean_r,mean_g,"
-       "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency\n";
-  for (const auto& r : results) {
-    for (const auto& cp : r.checkpoints) {
-      const double t = mean(cp.seconds), m = mean(cp.mse);
-      eval::Rgb mm{0, 0, 0};
-      for (const auto& v : cp.mean)
-        for (int c = 0; c < 3; ++c) mm[c] += v[c] / double(cp.mean.size());
-      char line[512];
-      std::snprintf(
-          line, sizeof line,
-          "%s,\"%s\",%u,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-          r.name.c_str(), r.flags.c_str(), cp.spp, t, *std::min_element(cp.seconds.begin(), cp.seconds.end()),
-          *std::max_element(cp.seconds.begin(), cp.seconds.end()), cp.seconds.size(), m, std::sqrt(m),
-          mean(cp.relMse), cp.variance, std::max(0.0, m - cp.variance), mm[0], mm[1], mm[2], refMean[0],
-          refMean[1], refMean[2], (m > 0 && t > 0) ? 1.0 / (m * t) : 0.0);
-      f << line;
-    }
-  }
-}
-
-// Writes the gnuplot script and runs gnuplot; returns an empty string or the reason the plot is missing.
-std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& results,
-                      const std::string& title) {
-  const fs::path script = dir / "converge.gp";
-  {
-    std::ofstream g(script);
-    g << "set terminal pngcairo size 1100,480 font 'sans,10' noenhanced\n";
-    g << "set output '" << (dir / "converge.png").string() << "'\n";
-    g << "set logscale xy\nset grid\nset key bottom left\nset xlabel 'time (s)'\n";
-    for (size_t i = 0; i < results.size(); ++i) {
-      g << "$d" << i << " << EOD\n";
-      for (const auto& cp : results[i].checkpoints) {
-        const double m = mean(cp.mse);
-        g << mean(cp.seconds) << " " << mean(cp.relMse) << " " << std::sqrt(m) << "\n";
-      }
-      g << "EOD\n";
-    }
-    g << "set multiplot layout 1,2 title '" << title << "'\n";
-    for (int panel = 0; panel < 2; ++panel) {
-      g << "set ylabel '" << (panel == 0 ? "relMSE" : "RMSE") << "'\nplot ";
-      for (size_t i = 0; i < results.size(); ++i) {
-        std::string name = results[i].name;
-        std::replace(name.begin(), name.end(), '_', '-');
-        g << (i ? ", " : "") << "$d" << i << " using 1:" << (panel == 0 ? 2 : 3)
-          << " with linespoints title '" << name << "'";
-      }
-      g << "\n";
-    }
-    g << "unset multiplot\n";
-  }
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
-    return "gnuplot is not installed (scripts/setup.sh installs gnuplot-nox): no plot; the script is " +
-           script.string();
-  }
-  const std::string cmd = "gnuplot '" + script.string() + "' 2>&1";
-  const int rc = std::system(cmd.c_str());
-  if (rc != 0) return "gnuplot failed (exit " + std::to_string(rc) + ") on " + script.string();
-  return "";
-}
-
-void writeErrorImages(const fs::path& dir, const std::vector<ConfigResult>& results,
-                      const eval::ImageRGBA& reference, std::ostream& md) {
-  double scale = 0;
-  md << "\n## Error images (final checkpoint of run 1)\n\n";
-  for (const auto& r : results) {
-    if (r.checkpoints.empty() || r.checkpoints.back().images.empty()) continue;
-    const auto& img = r.checkpoints.back().images.front();
-    const auto rgba = eval::errorHeatmap(img, reference, scale, &scale);  // the first sets the scale
-    const std::string file = "error_" + safeName(r.name) + ".png";
-    eval::writePng8(dir / file, img.width, img.height, rgba);
-    md << "- `" << file << "`: " << r.name << " at " << r.checkpoints.back().spp << " spp\n";
-  }
-  md << "\n|a - b| averaged over RGB, false colour black - blue - magenta - yellow - white, white = " << scale
-     << " (the 99th percentile of the first configuration's error; same scale for all).\n";
-}
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results, const ConvergeOptions& c,
-                  const RenderOptions& base, const std::string& refDescription, const eval::Rgb& refMean,
-                  const std::string& device, const std::string& plotNote, const eval::ImageRGBA& reference) {
-  std::ofstream md(dir / "converge.md");
-  md << "# Convergence: " << (base.scene.empty() ? defaultScenePath().string() : base.scene) << "\n\n";
-  md << "- Size " << base.settings.width << "x" << base.settings.height << ", " << c.seconds << " s per run, "
-     << c.runs << " independent run(s) (seeds) per configuration, device " << device << ".\n";
-  md << "- Reference: " << refDescription << "; mean RGB " << fmt("%.5f", refMean[0]) << " "
-     << fmt("%.5f", refMean[1]) << " " << fmt("%.5f", refMean[2]) << ".\n";
-  md << "- Errors are averaged over the runs; variance is the mean per-pixel variance between runs (the "
-        "noise "
-        "part of the MSE), bias^2 ~ MSE - variance (when the reference is itself a render, its own noise is "
-        "part of this bias^2 floor). Each run's seed gives every Sobol dimension its own random shift "
-        "(Cranley-Patterson rotation), so runs are independent randomisations for both samplers. Hybrid "
-        "modes (`--mode hybrid|reflections`) count frames as spp; their bias^2 is what the approximation "
-        "costs against the path-traced reference. Efficiency = 1 / (MSE x time).\n";
-  std::vector<double> finals;
-  for (const auto& r : results)
-    if (!r.checkpoints.empty()) finals.push_back(mean(r.checkpoints.back().relMse));
-  double target = c.targetRelMse;
-  if (target <= 0 && !finals.empty()) {
-    std::sort(finals.begin(), finals.end());
-    target = finals[finals.size() / 2];
-  }
-  md << "- Time to error: seconds to reach relMSE " << fmt("%.3g", target)
-     << (c.targetRelMse > 0 ? "" : " (the median of the final relMSEs)")
-     << ", log-log interpolated between checkpoints.\n";
-  if (!plotNote.empty()) {
-    md << "- **Plot missing:** " << plotNote << "\n";
-  } else {
-    md << "- Plot: `converge.png` (log relMSE and log RMSE against log time). Data: `converge.csv`.\n";
-  }
-  md << "\n| config | flags | spp | time (s) | RMSE | relMSE | variance | bias^2 | mean RGB vs ref (%) | "
-        "efficiency | time to relMSE "
-     << fmt("%.3g", target) << " | NaN/Inf dropped | max/mean | >10x mean |\n";
-  md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& r : results) {
-    if (r.checkpoints.empty()) continue;
-    const auto& cp = r.checkpoints.back();
-    const double t = mean(cp.seconds), m = mean(cp.mse);
-    eval::Rgb mm{0, 0, 0};
-    for (const auto& v : cp.mean)
-      for (int k = 0; k < 3; ++k) mm[k] += v[k] / double(cp.mean.size());
-    std::string bias;
-    for (int k = 0; k < 3; ++k)
-      bias += (k ? " " : "") + fmt("%+.2f", refMean[k] != 0 ? 100.0 * (mm[k] / refMean[k] - 1.0) : 0.0);
-    const auto ttr = timeToReach(r, target);
-    md << "| " << r.name << " | `" << (r.flags.empty() ? "(base)" : r.flags) << "` | " << cp.spp << " | "
-       << fmt("%.2f", t) << " | " << fmt("%.4g", std::sqrt(m)) << " | " << fmt("%.4g", mean(cp.relMse))
-       << " | " << fmt("%.3g", cp.variance) << " | " << fmt("%.3g", std::max(0.0, m - cp.variance)) << " | "
-       << bias << " | " << fmt("%.4g", m > 0 && t > 0 ? 1.0 / (m * t) : 0.0) << " | "
-       << (ttr ? fmt("%.2f", *ttr) : std::string("not reached")) << " | " << r.dropped << " | "
-       << fmt("%.1f", r.fireflies.maxOverMean) << " | " << fmt("%.2g", r.fireflies.fractionAbove10x)
-       << " |\n";
-  }
-  writeErrorImages(dir, results, reference, md);
 }
 
 int fail(const char* what, const std::string& msg, int code) {

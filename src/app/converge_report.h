@@ -1,0 +1,67 @@
+// `workbench converge`'s results and how they are written: per configuration and checkpoint the errors of its
+// independent runs, then converge.csv, the gnuplot plot, converge.md (with time to error) and the error
+// images.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/render_options.h"
+#include "eval/image.h"
+#include "eval/metrics.h"
+
+namespace wb::app {
+
+struct ConvergeOptions {
+  std::string reference;
+  uint32_t referenceSpp = 0;
+  double seconds = 10.0;
+  uint32_t runs = 3;
+  uint32_t maxSpp = 1u << 16;
+  double targetRelMse = 0;
+  std::vector<std::string> configs;
+  std::string out;
+  bool hardCases = false;
+};
+
+// One checkpoint of one configuration, over its independent runs.
+struct Checkpoint {
+  uint32_t spp = 0;
+  std::vector<double> seconds;  // per run
+  std::vector<double> mse, relMse;
+  std::vector<eval::Rgb> mean;
+  std::vector<eval::ImageRGBA> images;  // per run (kept for the run-to-run variance)
+  double variance = 0;                  // mean per-pixel variance of one run, from the runs
+};
+
+struct ConfigResult {
+  std::string name;
+  std::string flags;
+  std::vector<Checkpoint> checkpoints;
+  uint64_t dropped = 0;
+  eval::FireflyStats fireflies;
+  double setupSeconds = 0;
+};
+
+double mean(const std::vector<double>& v);  // 0 for none
+// A file-name-safe version of a configuration name (letters, digits, - and _; others become _).
+std::string safeName(const std::string& name);
+// printf-style formatting of one number.
+std::string fmt(const char* format, double v);
+
+// Seconds to reach `target` relMSE, interpolated in log-log between checkpoints; empty if never reached.
+std::optional<double> timeToReach(const ConfigResult& r, double target);
+void writeCsv(const std::filesystem::path& path, const std::vector<ConfigResult>& results,
+              const eval::Rgb& refMean);
+// Writes the gnuplot script and runs gnuplot; returns an empty string or the reason the plot is missing.
+std::string writePlot(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
+                      const std::string& title);
+// converge.md: the set-up, the table of final errors and time to error, and the error images.
+void writeSummary(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
+                  const ConvergeOptions& c, const RenderOptions& base, const std::string& refDescription,
+                  const eval::Rgb& refMean, const std::string& device, const std::string& plotNote,
+                  const eval::ImageRGBA& reference);
+
+}  // namespace wb::app
