@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../common/run_command.h"
 #include "common/paths.h"
 
 namespace fs = std::filesystem;
@@ -63,7 +64,7 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
   fs::copy(wb::projectRoot() / "shaders", root / "shaders", fs::copy_options::recursive);
   fs::copy(wb::projectRoot() / "assets", root / "assets", fs::copy_options::recursive);
   const fs::path log = root / "reloads.jsonl", out = root / "watch.out";
-  const std::string cmd = "WB_ROOT=" + root.string() + " " + WB_WORKBENCH_BIN +
+  const std::string cmd = "WB_ROOT=" + root.string() + " " + wb::testing::kOwnSession + WB_WORKBENCH_BIN +
                           " watch --headless --seconds 20 --size 32x32 --log " + log.string() + " > " +
                           out.string() + " 2>&1";
   FILE* proc = popen(cmd.c_str(), "r");

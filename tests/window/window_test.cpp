@@ -34,8 +34,9 @@ bool haveXvfb() {
 // The workbench in a 320x240 window on a virtual display, under the validation layer (ctest sets
 // WB_VALIDATION=1): a validation error makes the workbench exit with status 3.
 CommandResult runWindow(const std::string& args, const std::string& env = "") {
-  return runShell("env WB_VALIDATION=1 " + env + " " + std::string(WB_XVFB_RUN) +
-                  " -a -s '-screen 0 1024x768x24' " + WB_WORKBENCH_BIN + " --window 320x240 " + args);
+  return runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + env + " " +
+                  std::string(WB_XVFB_RUN) + " -a -s '-screen 0 1024x768x24' " + WB_WORKBENCH_BIN +
+                  " --window 320x240 " + args);
 }
 
 // Mean brightness of the image area (right of the panel, above the status line) of a window screenshot.
