@@ -15,11 +15,11 @@ namespace wb::shader {
 
 // Lowers the calling thread's scheduling priority (nice +10, Linux threads have their own): background
 // compiles and pipeline builds then take the CPU only when the render loop and lavapipe's threads leave it.
-// Measured on lavapipe (`bench --only reload --edits 10`, alternating): frames during a rebuild 1.18-1.27x the
-// frame before (p50) at nice 10, 2.0x at nice 0, for edits 12-17% slower. It cannot be undone (raising a
+// Measured on lavapipe (`bench --only reload --edits 10`, alternating): frames during a rebuild 1.18-1.27x
+// the frame before (p50) at nice 10, 2.0x at nice 0, for edits 12-17% slower. It cannot be undone (raising a
 // priority needs privileges). The kernel's autogroups confine nice to a session: busy programs started from
-// another terminal share the CPU with the whole workbench; ones started from the same session outweigh its
-// rebuild threads tenfold (see README, "Hot reload").
+// another terminal share the CPU with the whole workbench; ones started from the same session starve its
+// rebuild threads (two busy loops: 12.9 s per edit instead of ~1.1 s; README, "Speed and error").
 void lowerThreadPriority();
 
 struct ReloadResult {

@@ -40,7 +40,6 @@ class ShaderModule {
   ShaderModule(const ShaderModule&) = delete;
   ShaderModule& operator=(const ShaderModule&) = delete;
 
-  VkShaderModule handle() const { return module_; }
   VkPipelineShaderStageCreateInfo stageInfo(const VkSpecializationInfo* specialization = nullptr) const;
 
  private:
