@@ -111,10 +111,16 @@ void main() {
 #endif
 
   const uint bounce = payload.bounce;
-  // The vertex's sample dimensions WB_DIM_LOBE .. WB_DIM_LIGHT + 2, drawn in one loop: one inlined copy of the
-  // sampler instead of seven (lavapipe JITs each copy; the seven cost ~15% of the pipeline's compile).
+  // The vertex's sample dimensions (WB_DIM_LOBE .. WB_DIM_LIGHT + 2). A CPU device JIT-compiles every inlined copy
+  // of the sampler: there they come from one loop up front (lavapipe's JIT of the pipeline ~15% shorter); GPUs
+  // draw each where it is used (the loop cost the H200 6% of its trace rate).
+#if WB_CPU_DEVICE
   float u[WB_DIM_LIGHT + 3u];
   for (uint k = 0u; k < WB_DIM_LIGHT + 3u; ++k) u[k] = pathSampleBounce(bounce, k);
+#define VERTEX_SAMPLE(k) u[k]
+#else
+#define VERTEX_SAMPLE(k) pathSampleBounce(bounce, k)
+#endif
   const vec3 originOut = offsetRay(position, ng);
   payload.origin = originOut;
   uint shadowRequests = 0u;
@@ -124,8 +130,9 @@ void main() {
     // probability; that one is MIS-weighted (power heuristic) against BRDF sampling with the pdf of this combined
     // strategy. Every sample goes through the same loop body (one BRDF evaluation: lavapipe's JIT time grows with
     // every inlined copy) and becomes a shadow request for raygen.
-    const float uChoice = u[WB_DIM_LIGHT_CHOICE];
-    const vec3 ul = vec3(u[WB_DIM_LIGHT], u[WB_DIM_LIGHT + 1u], u[WB_DIM_LIGHT + 2u]);
+    const float uChoice = VERTEX_SAMPLE(WB_DIM_LIGHT_CHOICE);
+    const vec3 ul =
+        vec3(VERTEX_SAMPLE(WB_DIM_LIGHT), VERTEX_SAMPLE(WB_DIM_LIGHT + 1u), VERTEX_SAMPLE(WB_DIM_LIGHT + 2u));
     const bool noMis = (pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u;
     for (uint i = 0u; i <= WB_LIGHT_COUNT; ++i) {
       vec3 wi = vec3(0.0);        // direction to the light, for the BRDF
@@ -183,7 +190,8 @@ void main() {
   payload.shadowRequestCount = shadowRequests;
 
   // Continuation ray by BRDF sampling.
-  const BrdfSample s = brdfSample(sm, ns, wo, vec3(u[WB_DIM_LOBE], u[WB_DIM_BRDF], u[WB_DIM_BRDF + 1u]));
+  const vec3 uBrdf = vec3(VERTEX_SAMPLE(WB_DIM_LOBE), VERTEX_SAMPLE(WB_DIM_BRDF), VERTEX_SAMPLE(WB_DIM_BRDF + 1u));
+  const BrdfSample s = brdfSample(sm, ns, wo, uBrdf);
   if (s.pdf <= 0.0 || dot(s.wi, ng) <= 0.0) {
     payload.status = PAYLOAD_ABSORBED;  // below the geometric surface: would leak light through it
     return;

@@ -27,6 +27,12 @@
 #ifndef WB_GENERIC_MAX_LIGHTS
 #define WB_GENERIC_MAX_LIGHTS 8u  // directional lights the generic build shades (src/scene/features.h)
 #endif
+// WB_CPU_DEVICE=1 (the host sets it for CPU devices, lavapipe): code shaped for a driver that JIT-compiles the
+// whole pipeline at its first trace after every change, every inlined copy of a function included: repeated calls
+// become loops there. GPUs get the straight-line code they run faster.
+#ifndef WB_CPU_DEVICE
+#define WB_CPU_DEVICE 0
+#endif
 #define WB_ENV_NONE 0
 #define WB_ENV_CONSTANT 1
 #define WB_ENV_MAP 2

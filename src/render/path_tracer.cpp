@@ -1,5 +1,6 @@
 #include "render/path_tracer.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cmath>
 #include <cstdio>
@@ -27,9 +28,13 @@ CameraState cameraFromScene(const scene::Camera& camera) {
   return c;
 }
 
-std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features) {
+std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features,
+                                                     bool cpuDeviceCode) {
   const auto dir = shaderDir() / "pathtracer";
-  const auto defines = scene::featureDefines(features);
+  auto defines = scene::featureDefines(features);
+  const bool userChose = std::any_of(features.extraDefines.begin(), features.extraDefines.end(),
+                                     [](const shader::Define& d) { return d.name == "WB_CPU_DEVICE"; });
+  if (cpuDeviceCode && !userChose) defines.insert(defines.begin(), {"WB_CPU_DEVICE", "1"});
   std::vector<shader::ShaderKey> keys = {
       {dir / "raygen.rgen", std::nullopt, defines},
       {dir / "miss.rmiss", std::nullopt, defines},
@@ -58,6 +63,8 @@ PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const G
   blueNoise_ = vk::makeBuffer(ctx, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
+  const char* code = std::getenv("WB_CPU_DEVICE_CODE");
+  cpuDeviceCode_ = code && *code ? std::string(code) == "1" : ctx.cpuDevice();
   setFeatures(features);
   warmupEnabled_ = jitWarmupWanted(ctx);
 }
@@ -74,7 +81,7 @@ bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
   }
   if (!found) {
     id = library_.registerProgram(features.generic ? "pathtracer" : "pathtracer (specialised)",
-                                  stageKeys(features));
+                                  stageKeys(features, cpuDeviceCode_));
     variants_.emplace_back(features, id);
   }
   swapPipeline(library_.buildProgram(id));

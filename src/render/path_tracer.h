@@ -48,7 +48,11 @@ class PathTracer {
   ~PathTracer();
 
   // Shader stages of the path tracer for a feature set: no any-hit stage when every material is opaque.
-  static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features);
+  // cpuDeviceCode defines WB_CPU_DEVICE=1: code shaped for a driver that JIT-compiles every inlined copy of a
+  // function at the first trace (shaders/pathtracer/common.glsl).
+  static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode);
+  // Whether this tracer's shaders are shaped for a CPU device: on lavapipe; WB_CPU_DEVICE_CODE=0/1 forces it.
+  bool cpuDeviceCode() const { return cpuDeviceCode_; }
   shader::ShaderLibrary::ProgramId program() const { return program_; }
   const scene::SceneFeatures& features() const { return features_; }
   // Switches to the variant for `features` (registering it once; compiled variants come from the cache) and
@@ -118,6 +122,7 @@ class PathTracer {
   CameraState camera_;
   shader::ShaderLibrary::ProgramId program_ = 0;
   scene::SceneFeatures features_;
+  bool cpuDeviceCode_ = false;
   std::vector<std::pair<scene::SceneFeatures, shader::ShaderLibrary::ProgramId>> variants_;
   std::unique_ptr<vk::PipelineLayout> layout_;
   std::unique_ptr<vk::DescriptorSets> sets_;

@@ -14,7 +14,8 @@ TEST(PathTracerLayout, ReflectedBindingsMatchTheSharedHeader) {
   shader::ShaderLibrary::Options o;
   o.includeRoots = {shaderDir()};
   shader::ShaderLibrary lib(o);  // memory-only: this test must compile for real
-  const auto id = lib.registerProgram("pathtracer", render::PathTracer::stageKeys(scene::genericFeatures()));
+  const auto id =
+      lib.registerProgram("pathtracer", render::PathTracer::stageKeys(scene::genericFeatures(), false));
   const auto build = lib.buildProgram(id);
   ASSERT_EQ(build.stages.size(), 5u);
 
@@ -89,7 +90,8 @@ TEST(PathTracerLayout, RaygenIsTheOnlyStageThatTracesRaysFromOneCallSite) {
   specialised.directionalLights = 3;
   for (const auto& features : {scene::genericFeatures(), specialised}) {
     SCOPED_TRACE(scene::describeFeatures(features));
-    const auto build = lib.buildProgram(lib.registerProgram("pt", render::PathTracer::stageKeys(features)));
+    const auto build =
+        lib.buildProgram(lib.registerProgram("pt", render::PathTracer::stageKeys(features, false)));
     ASSERT_EQ(build.stages.size(), 5u);
     for (const auto& st : build.stages) {
       EXPECT_EQ(traceRayInstructions(st->spirv), st->stage == shader::Stage::RayGen ? 1 : 0)

@@ -78,7 +78,8 @@ TEST(Specialization, DefaultSceneFeatures) {
   EXPECT_TRUE(f.specular);  // Lambert walls: specularFactor 0
   EXPECT_NE(std::find(f.extensions.begin(), f.extensions.end(), "KHR_lights_punctual"), f.extensions.end());
   EXPECT_NE(scene::describeFeatures(f).find("KHR_materials_specular"), std::string::npos);
-  EXPECT_EQ(render::PathTracer::stageKeys(f).size(), 5u) << "alpha-masked leaf needs the any-hit stage";
+  EXPECT_EQ(render::PathTracer::stageKeys(f, false).size(), 5u)
+      << "alpha-masked leaf needs the any-hit stage";
 }
 
 TEST(Specialization, OpaqueSceneHasNoAnyHitStageAndNoTextures) {
@@ -87,7 +88,7 @@ TEST(Specialization, OpaqueSceneHasNoAnyHitStageAndNoTextures) {
   EXPECT_FALSE(f.textures);
   EXPECT_FALSE(f.emissive);
   EXPECT_FALSE(f.normalMaps);
-  const auto keys = render::PathTracer::stageKeys(f);
+  const auto keys = render::PathTracer::stageKeys(f, false);
   ASSERT_EQ(keys.size(), 4u);
   for (const auto& k : keys) EXPECT_NE(k.path.extension(), ".rahit");
   const auto defines = scene::featureDefines(f);
@@ -109,7 +110,7 @@ TEST(Specialization, OpaqueTexturedModelRendersTheSameImageSpecialised) {
   EXPECT_TRUE(f.normalMaps);
   EXPECT_TRUE(f.textures);
   EXPECT_EQ(f.directionalLights, 0u);
-  EXPECT_EQ(render::PathTracer::stageKeys(f).size(), 4u);
+  EXPECT_EQ(render::PathTracer::stageKeys(f, false).size(), 4u);
   const auto defines = scene::featureDefines(f);
   EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_HAS_SPECULAR", "0"}), defines.end());
   expectSameImage(renderScene(helmetPath(), false), renderScene(helmetPath(), true));
@@ -150,4 +151,39 @@ TEST(Specialization, SwitchingVariantsReusesCompiledShaders) {
   EXPECT_FALSE(tracer.setFeatures(specialised));
   session->render(1);
   expectNoValidationErrors(*session);
+}
+
+// CPU devices (lavapipe) get code shaped for their JIT (WB_CPU_DEVICE=1: the sampler in one loop instead of
+// seven inlined copies), GPUs straight-line code; a variant of its own in the cache, unless the user's
+// --define chose.
+TEST(Specialization, CpuDeviceCodeIsAVariantOfItsOwn) {
+  auto f = scene::analyzeFeatures(scene::loadGltf(defaultScenePath()), scene::EnvironmentKind::Constant);
+  const shader::Define cpu{"WB_CPU_DEVICE", "1"};
+  for (const auto& k : render::PathTracer::stageKeys(f, true))
+    EXPECT_NE(std::find(k.defines.begin(), k.defines.end(), cpu), k.defines.end()) << k.path;
+  for (const auto& k : render::PathTracer::stageKeys(f, false))
+    EXPECT_EQ(std::find(k.defines.begin(), k.defines.end(), cpu), k.defines.end()) << k.path;
+  f.extraDefines = {{"WB_CPU_DEVICE", "0"}};
+  for (const auto& k : render::PathTracer::stageKeys(f, true)) {
+    EXPECT_EQ(std::find(k.defines.begin(), k.defines.end(), cpu), k.defines.end()) << k.path;
+    EXPECT_NE(std::find(k.defines.begin(), k.defines.end(), shader::Define{"WB_CPU_DEVICE", "0"}),
+              k.defines.end());
+  }
+}
+
+// Both shapes draw the same samples for the same dimensions: the same image (WB_CPU_DEVICE_CODE forces one).
+TEST(Specialization, CpuAndGpuShapedCodeRenderTheSameImage) {
+  auto renderShaped = [](bool cpu) {
+    ::setenv("WB_CPU_DEVICE_CODE", cpu ? "1" : "0", 1);
+    app::SessionOptions o;
+    o.settings.width = 32;
+    o.settings.height = 32;
+    auto session = makeSession(o);
+    EXPECT_EQ(session->pathTracer().cpuDeviceCode(), cpu);
+    session->render(4);
+    expectNoValidationErrors(*session);
+    ::unsetenv("WB_CPU_DEVICE_CODE");
+    return session->image();
+  };
+  expectSameImage(renderShaped(true), renderShaped(false));
 }
