@@ -60,6 +60,10 @@ void Reloader::start() {
   if (running_) return;
   watcher_ = std::make_unique<DirWatcher>(dirs_);
   wakeFd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+  // What the programs are now, taken here and not on the worker: the worker is niced and may first run long
+  // after an edit (on lavapipe the first frame keeps every core busy); a snapshot taken then would hold the
+  // edit, and its reload would report nothing recompiled.
+  snapshot();
   running_ = true;
   thread_ = std::thread([this] {
     lowerThreadPriority();  // compiles yield the cores to the frames (lavapipe renders on the CPU)
@@ -136,7 +140,6 @@ void Reloader::rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::P
 }
 
 void Reloader::run() {
-  snapshot();
   std::set<fs::path> pending;
   std::set<fs::path> writing;  // modified but not yet closed
   bool overflow = false;

@@ -19,7 +19,7 @@ namespace wb::shader {
 // the frame before (p50) at nice 10, 2.0x at nice 0, for edits 12-17% slower. It cannot be undone (raising a
 // priority needs privileges). The kernel's autogroups confine nice to a session: busy programs started from
 // another terminal share the CPU with the whole workbench; ones started from the same session starve its
-// rebuild threads (two busy loops: 12.9 s per edit instead of ~1.1 s; README, "Speed and error").
+// rebuild threads (two busy loops: 12.9 s per edit instead of ~1.1 s; docs/bench/README.md).
 void lowerThreadPriority();
 
 struct ReloadResult {
@@ -47,7 +47,8 @@ class Reloader {
   Reloader(const Reloader&) = delete;
   Reloader& operator=(const Reloader&) = delete;
 
-  void start();  // adds the watches (synchronously), then starts the worker
+  void
+  start();  // adds the watches and records the programs' current stages (synchronously), starts the worker
   void stop();
   std::optional<ReloadResult> poll();  // non-blocking; one result per coalesced change
   void requestReloadAll();

@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <thread>
+#include <vector>
 
 using namespace wb::shader;
 using namespace wb::shader::test;
@@ -66,7 +68,6 @@ struct ReloaderFixture : ::testing::Test {
     lib->buildProgram(rt);
     reloader = std::make_unique<Reloader>(*lib, std::vector<fs::path>{dir});
     reloader->start();
-    std::this_thread::sleep_for(100ms);  // let the worker take its snapshot
   }
   void TearDown() override { reloader->stop(); }
 
@@ -119,6 +120,29 @@ TEST_F(ReloaderFixture, WriteInPlace) {
   auto r = expectOne();
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+  EXPECT_EQ(r.stagesRecompiled, std::vector<std::string>{(dir / "g.vert").string()});
+}
+
+// An edit made as soon as start() returns is a reload of that stage however late the worker thread first runs
+// (it is niced: a busy machine delays it). The worker once took its snapshot of the programs itself: an edit
+// before that went into the snapshot, and its reload reported no stage recompiled (seen in `watch`, whose
+// first frame keeps both cores busy on lavapipe).
+TEST_F(ReloaderFixture, EditRightAfterStartIsRecompiledHoweverLateTheWorkerRuns) {
+  reloader->stop();
+  std::atomic<bool> busy{true};
+  std::vector<std::thread> hogs;
+  for (unsigned i = 0; i < 2 * std::max(1u, std::thread::hardware_concurrency()); ++i)
+    hogs.emplace_back([&] {
+      while (busy.load(std::memory_order_relaxed)) {
+      }
+    });
+  reloader = std::make_unique<Reloader>(*lib, std::vector<fs::path>{dir});
+  reloader->start();
+  writeFile(dir / "g.vert", edited(kVert));
+  busy = false;
+  for (auto& h : hogs) h.join();
+  auto r = expectOne();
+  EXPECT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.stagesRecompiled, std::vector<std::string>{(dir / "g.vert").string()});
 }
 
