@@ -3,8 +3,9 @@
 # round renders the default scene (16x16, 3 spp) with an empty Mesa cache and a warm SPIR-V cache, and takes the
 # first frame minus the median of the later ones (the first trace compiles the pipeline to machine code). Also
 # checks that the trees render the same image (RMSE against the first tree's render at 64x64, 16 spp).
-#   bash bench/jit_cost.sh [-b build/workbench] [-r rounds] [-- render flags] TREE...
+#   bash bench/jit_cost.sh [-b build/workbench] [-r rounds] TREE... [-- render flags]
 # TREE is a folder holding a shaders/ tree (e.g. the repository root, or a copy with one file changed).
+# Results and the breakdown they gave: docs/bench/lavapipe_jit_cost.md.
 set -euo pipefail
 wb=build/workbench
 rounds=5
@@ -17,12 +18,16 @@ while [ $# -gt 0 ]; do
 done
 flags=()
 trees=()
-for a in "$@"; do
-  case $a in
-    --*) flags+=("$a") ;;
-    *) trees+=("$(realpath "$a")") ;;
-  esac
+while [ $# -gt 0 ]; do
+  if [ "$1" = -- ]; then
+    shift
+    flags=("$@")
+    break
+  fi
+  trees+=("$(realpath "$1")")
+  shift
 done
+[ ${#trees[@]} -gt 0 ] || { echo "usage: bash bench/jit_cost.sh [-b BIN] [-r ROUNDS] TREE... [-- RENDER FLAGS]" >&2; exit 2; }
 wb=$(realpath "$wb")
 repo=$(cd "$(dirname "$0")/.." && pwd)
 tmp=$(mktemp -d)
