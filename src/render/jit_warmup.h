@@ -23,6 +23,7 @@
 #include "render/gpu_scene.h"
 #include "render/hybrid/hybrid_renderer.h"
 #include "render/path_tracer.h"
+#include "render/warmup_slot.h"
 #include "shader/reloader.h"
 #include "scene/features.h"
 #include "shader/library.h"

@@ -95,7 +95,7 @@ PathTracer::~PathTracer() {
 }
 
 uint32_t PathTracer::jitWarmups() const {
-  return warmup_ ? warmup_->warmups() : 0u;
+  return warmup_.warmups();
 }
 
 void PathTracer::createImages() {
@@ -167,32 +167,36 @@ void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
 }
 
 void PathTracer::addHotReloadTarget(HotReload& hot) {
-  hot.addTarget(
-      program_,
-      {"pathtracer",
-       [this, features = features_](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-         // The driver's compile on the warm-up device runs beside this device's pipeline creation.
-         const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
-         bool warmed = false;
-         auto prepared = prepareBesideWarmup(
-             warmupEnabled_, [&] { return std::shared_ptr<PreparedPipeline>(preparePipeline(b)); },
-             [&] {
-               warmed = warmOrRenew(
-                   warmup_,
-                   [&] { return std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features); },
-                   [&](PathTracerJitWarmup& w) { return w.warm(b, handlesBefore); });
-             });
-         if (warmed && warmup_->groupHandles() != prepared->pipeline->sbt().groupHandles())
-           ++warmupMismatches_;
-         return prepared;
-       },
-       [this](std::shared_ptr<void> p) {
-         auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
-         commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
-       },
-       [](const std::shared_ptr<void>& p) {
-         return std::static_pointer_cast<PreparedPipeline>(p)->pipeline->libraryStats();
-       }});
+  auto makeWarmup = [this, features = features_] {
+    return std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features);
+  };
+  if (warmupEnabled_) warmup_.makeAhead(makeWarmup);
+  hot.addTarget(program_,
+                {"pathtracer",
+                 [this, makeWarmup](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
+                   // The driver's compile on the warm-up device runs beside this device's pipeline creation.
+                   const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
+                   std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran
+                   auto prepared = prepareBesideWarmup(
+                       warmupEnabled_, [&] { return std::shared_ptr<PreparedPipeline>(preparePipeline(b)); },
+                       [&] {
+                         warmup_.use([&](std::unique_ptr<PathTracerJitWarmup>& w) {
+                           if (warmOrRenew(w, makeWarmup,
+                                           [&](PathTracerJitWarmup& x) { return x.warm(b, handlesBefore); }))
+                             warmedHandles = w->groupHandles();
+                         });
+                       });
+                   if (!warmedHandles.empty() && warmedHandles != prepared->pipeline->sbt().groupHandles())
+                     ++warmupMismatches_;
+                   return prepared;
+                 },
+                 [this](std::shared_ptr<void> p) {
+                   auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
+                   commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
+                 },
+                 [](const std::shared_ptr<void>& p) {
+                   return std::static_pointer_cast<PreparedPipeline>(p)->pipeline->libraryStats();
+                 }});
 }
 
 void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {

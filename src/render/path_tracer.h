@@ -10,6 +10,7 @@
 #include "render/gpu_scene.h"
 #include "render/hot_reload.h"
 #include "render/settings.h"
+#include "render/warmup_slot.h"
 #include "scene/features.h"
 #include "scene/scene.h"
 #include "shader/library.h"
@@ -87,6 +88,9 @@ class PathTracer {
   // Hot reloads on a lazily compiling driver (lavapipe) also have the driver compile the new pipeline on a
   // second device before the commit, so the first frame with it does not stall (render/jit_warmup.h).
   bool jitWarmupEnabled() const { return warmupEnabled_; }
+  // The warm-up device is made ahead, when a hot reload target is added: true once it exists or is being
+  // made.
+  bool jitWarmupPresent() const { return warmup_.present(); }
   uint32_t jitWarmups() const;
   // Warm-ups whose pipeline came out different from this device's (other group handles): wasted, the first
   // frame compiled after all.
@@ -136,7 +140,7 @@ class PathTracer {
   double pipelineMs_ = 0;
   std::atomic<bool> warmupEnabled_{false};
   std::atomic<uint32_t> warmupMismatches_{0};
-  std::unique_ptr<PathTracerJitWarmup> warmup_;  // created by the first hot reload (on its worker thread)
+  WarmupSlot<PathTracerJitWarmup> warmup_;  // made ahead by addHotReloadTarget, used by the reload worker
 };
 
 }  // namespace wb::render

@@ -108,7 +108,9 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   const fs::path chit = fs::canonical(root_ / "shaders/pathtracer/closesthit.rchit");
   {
     wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    EXPECT_FALSE(tracer.jitWarmupPresent());
     tracer.addHotReloadTarget(hot);
+    EXPECT_TRUE(tracer.jitWarmupPresent()) << "made ahead of the first edit, not by it";
     hot.start();
     std::this_thread::sleep_for(200ms);
     edit(chit, "const float minCos = 1e-3;", "const float minCos = 1.5e-3;");
@@ -154,7 +156,9 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
   const std::string original = "const float phi = 2.0 * kPi * u.y;";
   {
     wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    EXPECT_FALSE(hybrid->jitWarmupPresent());
     hybrid->addHotReloadTargets(hot);
+    EXPECT_TRUE(hybrid->jitWarmupPresent()) << "made ahead of the first edit, not by it";
     hot.start();
     std::this_thread::sleep_for(200ms);
     edit(rgen, original, "const float phi = 2.0 * kPi * u.y * 0.9999;");

@@ -159,7 +159,7 @@ std::vector<uint8_t> HybridRenderer::groupHandles(Pass p) const {
 }
 
 uint32_t HybridRenderer::jitWarmups() const {
-  return warmup_ ? warmup_->warmups() : 0u;
+  return warmup_.warmups();
 }
 
 HybridRenderer::~HybridRenderer() {
@@ -290,33 +290,37 @@ void HybridRenderer::commitPipeline(Pass pass, std::shared_ptr<void> prepared) {
 }
 
 void HybridRenderer::addHotReloadTargets(HotReload& hot) {
+  auto makeWarmup = [this] {
+    return std::make_unique<HybridJitWarmup>(ctx_, library_.options(), mode_, hybrid_, shaderRoot_);
+  };
+  if (warmupEnabled_) warmup_.makeAhead(makeWarmup);
   for (size_t i = 0; i < kPassCount; ++i) {
     const Pass pass = static_cast<Pass>(i);
     if (!hasPass(pass)) continue;
-    hot.addTarget(
-        programs_[i],
-        {passName(pass),
-         [this, pass](const shader::ShaderLibrary::ProgramBuild& b) {
-           // As the path tracer's: the warm-up device compiles the pipeline beside this one's creation.
-           const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
-           bool warmed = false;
-           auto prepared = prepareBesideWarmup(
-               warmupEnabled_, [&] { return preparePipeline(pass, b); },
-               [&] {
-                 warmed = warmOrRenew(
-                     warmup_,
-                     [&] {
-                       return std::make_unique<HybridJitWarmup>(ctx_, library_.options(), mode_, hybrid_,
-                                                                shaderRoot_);
-                     },
-                     [&](HybridJitWarmup& w) { return w.warm(pass, b, hybrid_, handlesBefore); });
-               });
-           const auto* p = static_cast<const Prepared*>(prepared.get());
-           if (warmed && p->rayTracing && warmup_->groupHandles(pass) != p->rayTracing->sbt().groupHandles())
-             ++warmupMismatches_;
-           return prepared;
-         },
-         [this, pass](std::shared_ptr<void> p) { commitPipeline(pass, std::move(p)); }});
+    hot.addTarget(programs_[i],
+                  {passName(pass),
+                   [this, pass, makeWarmup](const shader::ShaderLibrary::ProgramBuild& b) {
+                     // As the path tracer's: the warm-up device compiles the pipeline beside this one's
+                     // creation.
+                     const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
+                     std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran (or a raster pass)
+                     auto prepared = prepareBesideWarmup(
+                         warmupEnabled_, [&] { return preparePipeline(pass, b); },
+                         [&] {
+                           warmup_.use([&](std::unique_ptr<HybridJitWarmup>& w) {
+                             if (warmOrRenew(w, makeWarmup, [&](HybridJitWarmup& x) {
+                                   return x.warm(pass, b, hybrid_, handlesBefore);
+                                 }))
+                               warmedHandles = w->groupHandles(pass);
+                           });
+                         });
+                     const auto* p = static_cast<const Prepared*>(prepared.get());
+                     if (!warmedHandles.empty() && p->rayTracing &&
+                         warmedHandles != p->rayTracing->sbt().groupHandles())
+                       ++warmupMismatches_;
+                     return prepared;
+                   },
+                   [this, pass](std::shared_ptr<void> p) { commitPipeline(pass, std::move(p)); }});
   }
 }
 

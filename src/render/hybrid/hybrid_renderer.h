@@ -15,6 +15,7 @@
 #include "render/hybrid/hybrid_settings.h"
 #include "render/path_tracer.h"
 #include "render/settings.h"
+#include "render/warmup_slot.h"
 #include "scene/scene.h"
 #include "shader/library.h"
 #include "vk/graphics_pipeline.h"
@@ -78,6 +79,7 @@ class HybridRenderer {
   // As the path tracer's: hot reloads on a lazily compiling driver compile the new pipeline ahead on a second
   // device (render/jit_warmup.h).
   bool jitWarmupEnabled() const { return warmupEnabled_; }
+  bool jitWarmupPresent() const { return warmup_.present(); }  // as the path tracer's
   uint32_t jitWarmups() const;
   uint32_t jitWarmupMismatches() const { return warmupMismatches_; }
   // The ray tracing passes' group handles (empty for the raster and compute passes).
@@ -131,7 +133,7 @@ class HybridRenderer {
   uint32_t frameIndex_ = 0;
   std::atomic<bool> warmupEnabled_{false};
   std::atomic<uint32_t> warmupMismatches_{0};
-  std::unique_ptr<HybridJitWarmup> warmup_;  // created by the first hot reload (on its worker thread)
+  WarmupSlot<HybridJitWarmup> warmup_;  // made ahead by addHotReloadTargets, used by the reload worker
 };
 
 }  // namespace wb::render
