@@ -23,7 +23,6 @@
 #include "render/gpu_scene.h"
 #include "render/hybrid/hybrid_renderer.h"
 #include "render/path_tracer.h"
-#include "render/warmup_slot.h"
 #include "shader/reloader.h"
 #include "scene/features.h"
 #include "shader/library.h"
@@ -85,15 +84,6 @@ struct WarmupDevice {
   std::unique_ptr<GpuEnvironment> env;
   RenderSettings settings;  // 1x1
 };
-
-// Warms with `warmup`, made anew by `make` when there is none or when it cannot match the render device any
-// more (its device numbered more groups already: warm() returned false). True when a warm-up ran.
-template <class Warmup, class Make, class Warm>
-bool warmOrRenew(std::unique_ptr<Warmup>& warmup, Make&& make, Warm&& warm) {
-  if (warmup && warm(*warmup)) return true;
-  warmup = make();
-  return warm(*warmup);
-}
 
 class PathTracerJitWarmup {
  public:

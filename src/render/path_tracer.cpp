@@ -180,11 +180,10 @@ void PathTracer::addHotReloadTarget(HotReload& hot) {
                    auto prepared = prepareBesideWarmup(
                        warmupEnabled_, [&] { return std::shared_ptr<PreparedPipeline>(preparePipeline(b)); },
                        [&] {
-                         warmup_.use([&](std::unique_ptr<PathTracerJitWarmup>& w) {
-                           if (warmOrRenew(w, makeWarmup,
-                                           [&](PathTracerJitWarmup& x) { return x.warm(b, handlesBefore); }))
-                             warmedHandles = w->groupHandles();
-                         });
+                         if (auto* w = warmup_.warmOrRenew(makeWarmup, [&](PathTracerJitWarmup& x) {
+                               return x.warm(b, handlesBefore);
+                             }))
+                           warmedHandles = w->groupHandles();
                        });
                    if (!warmedHandles.empty() && warmedHandles != prepared->pipeline->sbt().groupHandles())
                      ++warmupMismatches_;

@@ -13,7 +13,7 @@ namespace wb::render {
 // set up, so that the first edit does not wait for it to be made (a second Vulkan instance and device, a
 // stand-in scene and its pipeline): on lavapipe the first closest-hit edit reached the screen 0.86-1.10 s
 // after it with the warm-up made ahead, 1.05-1.13 s without (three alternating runs of `watch` at 128x128).
-// Without makeAhead() the first reload makes it (warmOrRenew).
+// Without makeAhead() the first reload makes it.
 template <class Warmup>
 class WarmupSlot {
  public:
@@ -27,13 +27,17 @@ class WarmupSlot {
       return make();
     });
   }
-  // Runs use(warm-up) (nullptr when none was made) once the one being made ahead is ready; its failure is
-  // rethrown here. One user at a time (the hot-reload worker).
-  template <class Use>
-  auto use(Use&& u) {
+  // Runs warm(warm-up) with the current one (waiting for one being made ahead; its failure is rethrown here),
+  // or with one made anew by `make` when there is none or the current one cannot match the render device any
+  // more (its device numbered more groups already: warm() returned false). Returns the warm-up that warmed,
+  // or nullptr. Called by the hot-reload worker only.
+  template <class Make, class Warm>
+  Warmup* warmOrRenew(Make&& make, Warm&& warm) {
     std::lock_guard lock(mutex_);
     if (pending_.valid()) warmup_ = pending_.get();
-    return u(warmup_);
+    if (warmup_ && warm(*warmup_)) return warmup_.get();
+    warmup_ = make();
+    return warm(*warmup_) ? warmup_.get() : nullptr;
   }
   // Whether there is one, or one is being made (it waits while the worker uses it).
   bool present() const {

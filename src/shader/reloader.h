@@ -47,8 +47,8 @@ class Reloader {
   Reloader(const Reloader&) = delete;
   Reloader& operator=(const Reloader&) = delete;
 
-  void
-  start();  // adds the watches and records the programs' current stages (synchronously), starts the worker
+  // Adds the watches and records the programs' current stages (synchronously), then starts the worker.
+  void start();
   void stop();
   std::optional<ReloadResult> poll();  // non-blocking; one result per coalesced change
   void requestReloadAll();

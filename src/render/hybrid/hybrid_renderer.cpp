@@ -307,12 +307,10 @@ void HybridRenderer::addHotReloadTargets(HotReload& hot) {
                      auto prepared = prepareBesideWarmup(
                          warmupEnabled_, [&] { return preparePipeline(pass, b); },
                          [&] {
-                           warmup_.use([&](std::unique_ptr<HybridJitWarmup>& w) {
-                             if (warmOrRenew(w, makeWarmup, [&](HybridJitWarmup& x) {
-                                   return x.warm(pass, b, hybrid_, handlesBefore);
-                                 }))
-                               warmedHandles = w->groupHandles(pass);
-                           });
+                           if (auto* w = warmup_.warmOrRenew(makeWarmup, [&](HybridJitWarmup& x) {
+                                 return x.warm(pass, b, hybrid_, handlesBefore);
+                               }))
+                             warmedHandles = w->groupHandles(pass);
                          });
                      const auto* p = static_cast<const Prepared*>(prepared.get());
                      if (!warmedHandles.empty() && p->rayTracing &&
