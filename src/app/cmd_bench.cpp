@@ -15,12 +15,12 @@
 #include <CLI/CLI.hpp>
 
 #include "app/process.h"
-#include "app/render_session.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "scene/procedural.h"
 #include "shader/hash.h"
-#include "vk/driver_env.h"
+#include "render/render_session.h"
+#include "vk/driver_policy.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -88,9 +88,9 @@ struct BenchScene {
 };
 
 // A session on a bench scene at a size, in a mode, on the chosen device.
-SessionOptions benchSession(const BenchScene& bs, uint32_t w, uint32_t h, const std::string& device,
-                            render::RenderMode mode = render::RenderMode::PathTrace) {
-  SessionOptions o;
+render::SessionOptions benchSession(const BenchScene& bs, uint32_t w, uint32_t h, const std::string& device,
+                                    render::RenderMode mode = render::RenderMode::PathTrace) {
+  render::SessionOptions o;
   o.scenePath = bs.path;
   o.sceneData = bs.data;
   o.settings.width = w;
@@ -104,16 +104,16 @@ SessionOptions benchSession(const BenchScene& bs, uint32_t w, uint32_t h, const 
 // Path tracer rates of one scene and variant: medians over `repeats` runs of `spp` samples after a warm-up.
 json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h, uint32_t spp, int repeats,
                      const std::string& device, std::string& deviceName, std::string& driver) {
-  SessionOptions o = benchSession(bs, w, h, device);
+  render::SessionOptions o = benchSession(bs, w, h, device);
   o.settings.generic = generic;
-  RenderSession s(o);
+  render::RenderSession s(o);
   deviceName = s.context().deviceName();
   driver = s.context().driverInfo();
   s.render(1);  // warm-up: the driver compiles the pipeline at its first trace
   std::vector<double> paths, rays, primary, bounce, shadow, seconds;
   for (int r = 0; r < repeats; ++r) {
     const double t = s.render(spp);
-    const auto c = s.pathTracer().readCounters();
+    const auto c = s.renderer().readCounters();
     seconds.push_back(t);
     paths.push_back(c.pathCount / t);
     rays.push_back(c.rayCount / t);
@@ -295,7 +295,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
                         : std::to_string(fs::last_write_time(bs.path, ec).time_since_epoch().count());
     const std::string key = "modes-reference v1 " + bs.name + " " + bs.path + " " + mtime + " " +
                             std::to_string(w) + "x" + std::to_string(h) + " spp " + std::to_string(refSpp) +
-                            " shaders " + shaderSourceFingerprint();
+                            " shaders " + render::shaderSourceFingerprint();
     const fs::path refFile =
         shaderCacheDir() / "references" / (shader::Hasher().add(key).finish().hex() + ".exr");
     eval::ImageRGBA reference;
@@ -306,7 +306,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
       std::fprintf(stderr, "bench: %s reference, %u spp at %ux%u ...\n", bs.name.c_str(), refSpp, w, h);
       auto o = benchSession(bs, w, h, device);
       o.settings.seed = 0x5eed0000u;
-      RenderSession s(o);
+      render::RenderSession s(o);
       refSeconds = s.render(refSpp);
       reference = s.image();
       fs::create_directories(refFile.parent_path());
@@ -315,7 +315,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
     }
     for (auto mode : modes) {
       std::fprintf(stderr, "bench: %s in mode %s ...\n", bs.name.c_str(), render::renderModeName(mode));
-      RenderSession s(benchSession(bs, w, h, device, mode));
+      render::RenderSession s(benchSession(bs, w, h, device, mode));
       deviceName = s.context().deviceName();
       driver = s.context().driverInfo();
       s.render(1);  // warm-up (the driver compiles pipelines at the first use)
@@ -348,7 +348,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
     for (auto mode : modes) {
       std::fprintf(stderr, "bench: default scene, mode %s at %s ...\n", render::renderModeName(mode),
                    speedSize.c_str());
-      RenderSession s(benchSession(scenes.front(), sw, sh, device, mode));
+      render::RenderSession s(benchSession(scenes.front(), sw, sh, device, mode));
       s.render(1);  // warm-up
       std::vector<double> t;
       for (int r = 0; r < repeats; ++r) {

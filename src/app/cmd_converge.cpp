@@ -13,7 +13,7 @@
 
 #include "app/converge_report.h"
 #include "app/render_options.h"
-#include "app/render_session.h"
+#include "render/render_session.h"
 #include "common/paths.h"
 #include "eval/hard_cases.h"
 #include "eval/metrics.h"
@@ -139,18 +139,14 @@ class Progress {
 };
 
 // Adds `samples` samples (hybrid modes: frames, which keep accumulating shadows and AO) to the current image.
-double timedRender(RenderSession& session, uint32_t samples) {
+double timedRender(render::RenderSession& session, uint32_t samples) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (auto* hybrid = session.hybrid()) {
-    hybrid->render(samples);
-  } else {
-    session.pathTracer().render(samples);
-  }
+  session.renderer().render(samples);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-SessionOptions sessionOptions(const RenderOptions& ro) {
-  SessionOptions so;
+render::SessionOptions sessionOptions(const RenderOptions& ro) {
+  render::SessionOptions so;
   so.scenePath = ro.scene;
   so.settings = ro.settings;
   so.context.deviceName = ro.device;
@@ -180,7 +176,7 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(scene, ec);
   std::string key = "scene " + canonical.string() + " mtime " + mtimeOf(scene) + " " + settingsKey(s) +
-                    " spp " + std::to_string(spp) + " shaders " + shaderSourceFingerprint() + " v2";
+                    " spp " + std::to_string(spp) + " shaders " + render::shaderSourceFingerprint() + " v2";
   if (!s.envPath.empty()) key += " envmtime " + mtimeOf(s.envPath);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
@@ -194,8 +190,8 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
   RenderOptions ro = base;
   ro.settings.seed = 0x5eed0000u;           // never one of the runs' seeds
   ro.mode = render::RenderMode::PathTrace;  // the reference is always the path tracer
-  RenderSession session(sessionOptions(ro));
-  session.pathTracer().resetAccumulation();
+  render::RenderSession session(sessionOptions(ro));
+  session.renderer().resetAccumulation();
   double t = 0;
   for (uint32_t done = 0; done < spp;) {
     const uint32_t n = std::min<uint32_t>(8, spp - done);
@@ -221,19 +217,17 @@ ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::
   ConfigResult result;
   result.name = cfg.name;
   for (const auto& f : cfg.flags) result.flags += (result.flags.empty() ? "" : " ") + f;
-  RenderSession session(sessionOptions(cfg.options));
+  render::RenderSession session(sessionOptions(cfg.options));
   result.setupSeconds = session.setupSeconds();
   std::vector<uint32_t> schedule;  // spp of the checkpoints, set by run 0
   for (uint32_t run = 0; run < c.runs; ++run) {
     render::RenderSettings s = cfg.options.settings;
     s.seed = cfg.options.settings.seed + 1 + run * 7919u;
-    session.pathTracer().setSettings(s);
-    session.pathTracer().resetAccumulation();
-    session.pathTracer().resetCounters();
-    if (auto* hybrid = session.hybrid()) {
-      hybrid->setSettings(s);
-      hybrid->resetAccumulation();
-    }
+    session.forEachRenderer([&](render::Renderer& r) {
+      r.setSettings(s);
+      r.resetAccumulation();
+      r.resetCounters();
+    });
     const std::string label = "[" + std::to_string(index + 1) + "/" + std::to_string(count) + "] " +
                               cfg.name + " run " + std::to_string(run + 1);
     double t = 0;
@@ -284,7 +278,7 @@ ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::
     std::snprintf(detail, sizeof detail, "%.1f/%.0f s %u spp", t, c.seconds, spp);
     progress.update(label, 1.0, detail, true);
     progress.done();
-    result.dropped += session.pathTracer().readCounters().droppedSamples;
+    result.dropped += session.renderer().readCounters().droppedSamples;
     if (run == 0 && !result.checkpoints.empty()) {
       result.fireflies = eval::fireflyStats(result.checkpoints.back().images.back());
     }
@@ -415,15 +409,15 @@ int runHardCases(const std::vector<std::string>& args, const ConvergeOptions& c)
       RenderOptions ro = parseRenderFlags(args, splitFlags(variant));
       render::RenderSettings s = ro.settings;
       hc.adjust(s);
-      SessionOptions so = sessionOptions(ro);
+      render::SessionOptions so = sessionOptions(ro);
       so.sceneData = hc.scene;
       so.settings = s;
       progress.update("[" + std::to_string(i + 1) + "/" + std::to_string(cases.size()) + "] " + hc.name, 0.0,
                       variant, true);
-      RenderSession session(so);
+      render::RenderSession session(so);
       const double seconds = session.render(s.spp);
       const auto img = session.image();
-      const auto counters = session.pathTracer().readCounters();
+      const auto counters = session.renderer().readCounters();
       const auto m = eval::meanRgb(img);
       const auto ff = eval::fireflyStats(img);
       std::string energy = "n/a";

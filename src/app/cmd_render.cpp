@@ -7,9 +7,9 @@
 
 #include "app/render_options.h"
 #include "app/hybrid_json.h"
-#include "app/render_session.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
+#include "render/render_session.h"
 
 namespace wb::app {
 namespace {
@@ -53,7 +53,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     return 2;
   }
   try {
-    SessionOptions so;
+    render::SessionOptions so;
     so.scenePath = ro.scene;
     so.settings = ro.settings;
     so.context.deviceName = ro.device;
@@ -61,14 +61,14 @@ int runRenderCommand(const std::vector<std::string>& args) {
     so.hybrid = ro.hybrid;
     std::optional<eval::ImageRGBA> referenceImage;
     if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
-    RenderSession session(so);
+    render::RenderSession session(so);
     for (const auto& w : session.scene().warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     const double seconds = session.render(ro.settings.spp);
     const auto image = session.image();
     eval::writeImage(outPath, image);
     if (ro.aovAlbedo) eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));
     if (ro.aovNormal) eval::writeImage(aovPath(outPath, "normal"), session.aov(render::Aov::Normal));
-    const auto counters = session.pathTracer().readCounters();
+    const auto counters = session.renderer().readCounters();
     double mean[3] = {0, 0, 0};
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
       for (int c = 0; c < 3; ++c) mean[c] += image.pixels[4 * i + c];

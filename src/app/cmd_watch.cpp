@@ -11,9 +11,9 @@
 
 #include "app/reload_log.h"
 #include "app/render_options.h"
-#include "app/render_session.h"
 #include "common/paths.h"
 #include "render/hot_reload.h"
+#include "render/render_session.h"
 
 namespace wb::app {
 namespace {
@@ -59,18 +59,15 @@ int runWatchCommand(const std::vector<std::string>& args) {
     }
   }
   try {
-    SessionOptions so;
+    render::SessionOptions so;
     so.scenePath = ro.scene;
     so.settings = ro.settings;
     so.context.deviceName = ro.device;
     so.mode = ro.mode;
     so.hybrid = ro.hybrid;
-    RenderSession session(so);
-    auto& tracer = session.pathTracer();
+    render::RenderSession session(so);
     render::HotReload hot(session.library(), {shaderDir()});
-    tracer.addHotReloadTarget(hot);
-    // The hybrid modes' raster and ray tracing pipelines reload through the same shader library.
-    if (auto* hybrid = session.hybrid()) hybrid->addHotReloadTargets(hot);
+    session.attachHotReload(&hot);  // every renderer's pipelines, the hybrid modes' raster ones too
     hot.start();
     std::signal(SIGINT, [](int) { gInterrupted = true; });
     std::signal(SIGTERM, [](int) { gInterrupted = true; });
@@ -90,9 +87,9 @@ int runWatchCommand(const std::vector<std::string>& args) {
         log.flush();
       }
     };
-    // While a rebuild compiles on a CPU device, sleep after each frame so that the frames keep
-    // kCpuRenderShareWhileCompiling of the time (render/hot_reload.h).
-    const double yieldRatio = render::rebuildRestRatio(session.context().cpuDevice());
+    // While a rebuild compiles, rest after each frame where the device's policy says so (the compile then
+    // gets the cores of a CPU device).
+    const double yieldRatio = session.context().policy().watchRestRatio;
     uint64_t frame = 0;
     while (!gInterrupted) {
       if (frames && frame >= frames) break;
@@ -110,13 +107,9 @@ int runWatchCommand(const std::vector<std::string>& args) {
         }
       }
       const auto frameBegin = std::chrono::steady_clock::now();
-      if (auto* hybrid = session.hybrid()) {
-        session.context().submitAndWait([&](VkCommandBuffer cmd) { hybrid->record(cmd); });
-        hybrid->advanceFrame();
-      } else {
-        session.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.record(cmd); });
-        tracer.advanceSample();
-      }
+      auto& renderer = session.renderer();
+      session.context().submitAndWait([&](VkCommandBuffer cmd) { renderer.record(cmd); });
+      renderer.advance();
       hot.frameFinished(frameBegin);  // the frame's own time: the yield below is not part of it
       const auto frameEnd = std::chrono::steady_clock::now();
       if (yieldRatio > 0 && hot.compiling()) {
@@ -131,6 +124,7 @@ int runWatchCommand(const std::vector<std::string>& args) {
       }
     }
     hot.stop();
+    session.attachHotReload(nullptr);
     std::printf("watch: %llu frames, %zu reloads\n", static_cast<unsigned long long>(frame),
                 hot.history().size());
   } catch (const std::exception& e) {

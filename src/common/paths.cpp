@@ -1,7 +1,8 @@
 #include "common/paths.h"
 
-#include <cstdlib>
 #include <system_error>
+
+#include "common/env.h"
 
 namespace fs = std::filesystem;
 
@@ -14,7 +15,7 @@ bool looksLikeRoot(const fs::path& p) {
 }
 
 fs::path findRoot() {
-  if (const char* env = std::getenv("WB_ROOT"); env && *env) return fs::path(env);
+  if (const auto root = env::get("WB_ROOT")) return fs::path(*root);
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
@@ -38,11 +39,11 @@ fs::path assetDir() {
   return projectRoot() / "assets";
 }
 fs::path shaderCacheDir() {
-  if (const char* env = std::getenv("WB_SHADER_CACHE_DIR"); env && *env) return fs::path(env);
+  if (const auto dir = env::get("WB_SHADER_CACHE_DIR")) return fs::path(*dir);
   return projectRoot() / "shader_cache";
 }
 fs::path sharedDir() {
-  if (const char* env = std::getenv("WB_SHARED_DIR"); env && *env) return fs::path(env);
+  if (const auto dir = env::get("WB_SHARED_DIR")) return fs::path(*dir);
   return projectRoot().parent_path() / "shared";
 }
 fs::path defaultScenePath() {

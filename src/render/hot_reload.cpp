@@ -1,7 +1,6 @@
 #include "render/hot_reload.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <map>
 
 namespace wb::render {
@@ -13,12 +12,6 @@ double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_cl
 
 }  // namespace
 
-double rebuildRestRatio(bool cpuDevice, double share) {
-  const char* y = std::getenv("WB_REBUILD_YIELD");
-  if (y && *y) return std::max(0.0, std::atof(y));  // empty: as if unset
-  return cpuDevice ? (1.0 - share) / share : 0.0;
-}
-
 HotReload::HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs)
     : library_(library), reloader_(library, std::move(watchDirs)) {}
 
@@ -29,6 +22,77 @@ HotReload::~HotReload() {
 void HotReload::addTarget(shader::ShaderLibrary::ProgramId program, Target target) {
   std::lock_guard lock(mutex_);
   targets_[program] = std::move(target);
+}
+
+void HotReload::addRenderer(Renderer& renderer) {
+  Warmup* warmup = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    auto& w = warmups_[&renderer];
+    if (!w) {
+      w = std::make_unique<Warmup>();
+      w->enabled = renderer.context().policy().jitWarmup;
+    }
+    warmup = w.get();
+  }
+  const auto programs = renderer.programs();
+  for (size_t i = 0; i < programs.size(); ++i) {
+    const auto id = programs[i].id;
+    {
+      std::lock_guard lock(mutex_);
+      if (targets_.count(id)) continue;
+    }
+    addTarget(id, {programs[i].name,
+                   [this, &renderer, warmup, i, id](const shader::ShaderLibrary::ProgramBuild& b) {
+                     return buildWithWarmup(renderer, *warmup, i, id, b);
+                   },
+                   [&renderer, id](std::unique_ptr<vk::BuiltPipeline> p) {
+                     renderer.installPipeline(id, std::move(p));
+                   }});
+  }
+  if (warmup->enabled) {
+    const auto options = library_.options();
+    warmup->slot.makeAhead([&renderer, options] { return std::make_unique<JitWarmup>(renderer, options); });
+  }
+}
+
+std::unique_ptr<vk::BuiltPipeline> HotReload::buildWithWarmup(
+    Renderer& renderer, Warmup& warmup, size_t programIndex, shader::ShaderLibrary::ProgramId program,
+    const shader::ShaderLibrary::ProgramBuild& build) {
+  if (!warmup.enabled) return renderer.buildPipeline(program, build);
+  // The driver's compile on the warm-up device runs beside this device's pipeline creation; the probe comes
+  // first so that the warm-up can number its groups like the pipeline built here.
+  const auto counter = probeGroupCounter(renderer.context(), build);
+  std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran, or not a ray tracing pipeline
+  const auto options = library_.options();
+  auto built = buildBesideWarmup(
+      warmup.enabled, [&] { return renderer.buildPipeline(program, build); },
+      [&] {
+        auto make = [&] { return std::make_unique<JitWarmup>(renderer, options); };
+        if (auto* w = warmup.slot.warmOrRenew(make, [&](JitWarmup& x) {
+              return x.warm(renderer, programIndex, build, counter.value_or(0));
+            }))
+          warmedHandles = w->groupHandles();
+      });
+  if (!warmedHandles.empty() && built->rayTracing && warmedHandles != built->rayTracing->sbt().groupHandles())
+    ++warmup.mismatches;
+  return built;
+}
+
+HotReload::WarmupStats HotReload::jitWarmup(const Renderer& renderer) const {
+  const Warmup* w = nullptr;
+  {
+    std::lock_guard lock(mutex_);
+    auto it = warmups_.find(&renderer);
+    if (it == warmups_.end()) return {};
+    w = it->second.get();  // entries live as long as this object
+  }
+  WarmupStats s;
+  s.enabled = w->enabled;
+  s.present = w->slot.present();
+  s.warmups = w->slot.warmups();
+  s.mismatches = w->mismatches;
+  return s;
 }
 
 void HotReload::start() {
@@ -84,15 +148,13 @@ void HotReload::run() {
         target = it->second;
       }
       try {
-        p.prepared.emplace_back(result->programs[i], target.prepare(result->builds[i]));
+        p.built.emplace_back(result->programs[i], target.build(result->builds[i]));
         p.event.pipelinesRebuilt.push_back(target.name);
-        if (target.libraryStats) {
-          const vk::RtLibraryStats s = target.libraryStats(p.prepared.back().second);
-          p.event.libraries.librariesCompiled += s.librariesCompiled;
-          p.event.libraries.librariesReused += s.librariesReused;
-          p.event.libraries.libraryMs += s.libraryMs;
-          p.event.libraries.linkMs += s.linkMs;
-        }
+        const vk::RtLibraryStats s = p.built.back().second->libraryStats();
+        p.event.libraries.librariesCompiled += s.librariesCompiled;
+        p.event.libraries.librariesReused += s.librariesReused;
+        p.event.libraries.libraryMs += s.libraryMs;
+        p.event.libraries.linkMs += s.linkMs;
       } catch (const std::exception& e) {
         // The program compiled but its pipeline did not build: the last good pipeline stays, and the error is
         // current (banner, Shaders panel) until a later build of this program succeeds.
@@ -108,7 +170,7 @@ void HotReload::run() {
       for (auto id : result->failedPrograms) {
         errors_[id] = result->error;
       }
-      for (const auto& [id, ptr] : p.prepared) errors_.erase(id);
+      for (const auto& [id, ptr] : p.built) errors_.erase(id);
       for (const auto& [id, message] : pipelineErrors) errors_[id] = message;
       pending_.push_back(std::move(p));
       preparing_ = false;
@@ -124,20 +186,20 @@ std::optional<ReloadEvent> HotReload::poll() {
     p = std::move(pending_.front());
     pending_.pop_front();
   }
-  for (auto& [id, prepared] : p->prepared) {
+  for (auto& [id, built] : p->built) {
     Target target;
     {
       std::lock_guard lock(mutex_);
       target = targets_.at(id);
     }
-    target.commit(std::move(prepared));
+    target.install(std::move(built));
   }
   const auto now = std::chrono::steady_clock::now();
   p->event.editToNewPipelineMs = msBetween(p->editTime, now);
-  if (p->prepared.empty()) p->event.frames = frameTimeline_.stats(p->editTime, false);
+  if (p->built.empty()) p->event.frames = frameTimeline_.stats(p->editTime, false);
   std::lock_guard lock(mutex_);
   history_.push_back(p->event);
-  awaitingFrame_ = p->prepared.empty() ? std::nullopt : std::optional(p->editTime);
+  awaitingFrame_ = p->built.empty() ? std::nullopt : std::optional(p->editTime);
   return p->event;
 }
 

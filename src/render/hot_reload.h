@@ -1,6 +1,8 @@
 // Hot reload for the render loop: the shader Reloader compiles changed programs on its thread, this class's
-// worker builds their pipelines (still off the frame path), and the render thread commits them at a frame
+// worker builds their pipelines (still off the frame path), and the render thread installs them at a frame
 // boundary. Failures keep the last good pipeline and are kept as the current error until a later success.
+// Where the device's policy asks for it (DevicePolicy::jitWarmup), a renderer's new pipelines are also
+// compiled ahead on a warm-up device (render/jit_warmup.h) before they are installed.
 #pragma once
 #include <atomic>
 #include <chrono>
@@ -14,28 +16,14 @@
 #include <thread>
 #include <vector>
 
+#include "render/jit_warmup.h"
 #include "render/reload_frames.h"
+#include "render/renderer.h"
+#include "render/warmup_slot.h"
 #include "shader/reloader.h"
-#include "vk/rt_pipeline.h"
+#include "vk/built_pipeline.h"
 
 namespace wb::render {
-
-// On a CPU device (lavapipe) the frames and a rebuild's compiles share the cores: while a rebuild compiles,
-// `watch` keeps this share of the CPU for its frames (it rests between frames; the window traces with this
-// share of its budget and rests to kWindowShareWhileCompiling below) so the edit reaches the screen sooner.
-// The frames drawn meanwhile are thrown away at the swap anyway (accumulation restarts). GPUs render beside
-// the CPU's compile: they keep everything. Measured on lavapipe (bench --only reload, 2 x 8 edits,
-// alternating): a 0.1 share reaches the first new frame as soon as no warm-up at all (1321 vs 1324 ms mean of
-// the p50s), 0.25 took 80 ms longer.
-inline constexpr double kCpuRenderShareWhileCompiling = 0.1;
-// The live window keeps a larger share, so it still answers input (~10 frames/s) while a rebuild compiles.
-// Measured with bench/window_reload.sh (8 edits, 2 rounds, alternating; edit to first new frame p50): share
-// 0.25 1604 and 1268 ms at ~10 frames/s, share 0.1 2026 and 1367 ms at ~3 frames/s, no rest 2639 and 3048 ms.
-inline constexpr double kWindowShareWhileCompiling = 0.25;
-// After a frame that took frameMs, a render loop on a CPU device rests frameMs times this while a rebuild
-// compiles (its frames then keep `share` of the time); 0 on GPUs. WB_REBUILD_YIELD=R sets the ratio (0: never
-// rest; empty: the default).
-double rebuildRestRatio(bool cpuDevice, double share = kCpuRenderShareWhileCompiling);
 
 // One reload as the UI history and the `watch` log show it.
 struct ReloadEvent {
@@ -60,14 +48,19 @@ struct ReloadEvent {
 
 class HotReload {
  public:
-  // A pipeline owner: `prepare` builds a pipeline from a program build on the worker thread and returns it
-  // type-erased; `commit` installs it on the render thread.
+  // A pipeline owner: `build` makes a pipeline from a program build on the worker thread; `install` takes it
+  // on the render thread, at a frame boundary.
   struct Target {
     std::string name;
-    std::function<std::shared_ptr<void>(const shader::ShaderLibrary::ProgramBuild&)> prepare;
-    std::function<void(std::shared_ptr<void>)> commit;
-    // Optional: what a prepared pipeline's library build took (summed into ReloadEvent::libraries).
-    std::function<vk::RtLibraryStats(const std::shared_ptr<void>&)> libraryStats;
+    std::function<std::unique_ptr<vk::BuiltPipeline>(const shader::ShaderLibrary::ProgramBuild&)> build;
+    std::function<void(std::unique_ptr<vk::BuiltPipeline>)> install;
+  };
+  // The JIT warm-up of one renderer's reloads.
+  struct WarmupStats {
+    bool enabled = false;     // the device's policy asks for it (and no warm-up has failed)
+    bool present = false;     // the warm-up device exists or is being made
+    uint32_t warmups = 0;     // pipelines compiled ahead
+    uint32_t mismatches = 0;  // warmed pipelines whose groups got other numbers (the first frame compiled)
   };
 
   HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs);
@@ -76,6 +69,11 @@ class HotReload {
   HotReload& operator=(const HotReload&) = delete;
 
   void addTarget(shader::ShaderLibrary::ProgramId program, Target target);
+  // Registers every program of `renderer` as a target (call it again after its programs changed: new ones are
+  // added). With DevicePolicy::jitWarmup its warm-up device starts being made now, on a low-priority thread,
+  // so that the first edit does not wait for it. `renderer` must outlive this object.
+  void addRenderer(Renderer& renderer);
+  WarmupStats jitWarmup(const Renderer& renderer) const;
   void start();
   void stop();
 
@@ -100,14 +98,23 @@ class HotReload {
  private:
   struct Pending {
     ReloadEvent event;
-    std::vector<std::pair<shader::ShaderLibrary::ProgramId, std::shared_ptr<void>>> prepared;
+    std::vector<std::pair<shader::ShaderLibrary::ProgramId, std::unique_ptr<vk::BuiltPipeline>>> built;
     std::chrono::steady_clock::time_point editTime;
   };
+  struct Warmup {
+    std::atomic<bool> enabled{false};
+    std::atomic<uint32_t> mismatches{0};
+    WarmupSlot<JitWarmup> slot;
+  };
   void run();
+  std::unique_ptr<vk::BuiltPipeline> buildWithWarmup(Renderer& renderer, Warmup& warmup, size_t programIndex,
+                                                     shader::ShaderLibrary::ProgramId program,
+                                                     const shader::ShaderLibrary::ProgramBuild& build);
 
   shader::ShaderLibrary& library_;
   shader::Reloader reloader_;
   std::map<shader::ShaderLibrary::ProgramId, Target> targets_;
+  std::map<const Renderer*, std::unique_ptr<Warmup>> warmups_;  // declared after targets_: destroyed first
   std::thread thread_;
   std::atomic<bool> running_{false};
   std::atomic<bool> autoReload_{true};

@@ -1,11 +1,12 @@
 #include "render/jit_warmup.h"
 
 #include <chrono>
-#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <thread>
 
+#include "common/env.h"
 #include "scene/procedural.h"
 #include "vk/check.h"
 #include "vk/pipeline_layout.h"
@@ -67,59 +68,73 @@ void awaitCacheWrite(std::chrono::steady_clock::duration dispatch, uint64_t byte
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
 }
 
-}  // namespace
-
-bool jitWarmupWanted(const vk::Context& ctx) {
-  const char* v = std::getenv("WB_JIT_WARMUP");
-  if (v && std::string(v) == "0") return false;
-  if (v && std::string(v) == "1") return true;
-  return ctx.cpuDevice();
+const shader::CompiledShader* raygenStage(const shader::ShaderLibrary::ProgramBuild& build) {
+  for (const auto& s : build.stages)
+    if (s->stage == shader::Stage::RayGen) return s.get();
+  return nullptr;
 }
 
-bool alignGroupHandles(vk::Context& ctx, const shader::ShaderLibrary::ProgramBuild& build, uint32_t last) {
-  const shader::CompiledShader* raygen = nullptr;
-  for (const auto& s : build.stages)
-    if (s->stage == shader::Stage::RayGen) raygen = s.get();
-  if (!raygen) return true;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    const uint32_t now = ctx.lastGroupHandleWord();
-    if (now == last) return true;
-    if (now > last) return false;
-    const uint32_t count = last - now;
-    vk::PipelineLayout layout(ctx, build.layout);
-    const vk::ShaderModule module(ctx.device(), *raygen);
-    const VkPipelineShaderStageCreateInfo stage = module.stageInfo();
-    VkRayTracingShaderGroupCreateInfoKHR group{VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
-    group.type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
-    group.generalShader = 0;
-    group.closestHitShader = group.anyHitShader = group.intersectionShader = VK_SHADER_UNUSED_KHR;
-    const std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(count, group);
-    VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
-    ci.stageCount = 1;
-    ci.pStages = &stage;
-    ci.groupCount = count;
-    ci.pGroups = groups.data();
-    ci.maxPipelineRayRecursionDepth = 1;
-    ci.layout = layout.handle();
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &ci, nullptr,
-                                             &pipeline));
-    std::vector<uint8_t> handles(size_t(count) * ctx.rayTracing().handleSize);
-    const VkResult h = ctx.vkGetRayTracingShaderGroupHandlesKHR(ctx.device(), pipeline, 0, count,
-                                                                handles.size(), handles.data());
-    vkDestroyPipeline(ctx.device(), pipeline, nullptr);
-    WB_VK(h);
-    ctx.noteGroupHandles(handles);
+// Creates a pipeline of `count` general groups of `raygen` on `ctx` and returns the largest leading word of
+// their handles (the counter's value after them).
+uint32_t makeThrowawayGroups(vk::Context& ctx, const shader::ShaderLibrary::ProgramBuild& build,
+                             const shader::CompiledShader& raygen, uint32_t count) {
+  vk::PipelineLayout layout(ctx, build.layout);
+  const vk::ShaderModule module(ctx.device(), raygen);
+  const VkPipelineShaderStageCreateInfo stage = module.stageInfo();
+  VkRayTracingShaderGroupCreateInfoKHR group{VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
+  group.type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
+  group.generalShader = 0;
+  group.closestHitShader = group.anyHitShader = group.intersectionShader = VK_SHADER_UNUSED_KHR;
+  const std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(count, group);
+  VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+  ci.stageCount = 1;
+  ci.pStages = &stage;
+  ci.groupCount = count;
+  ci.pGroups = groups.data();
+  ci.maxPipelineRayRecursionDepth = 1;
+  ci.layout = layout.handle();
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  WB_VK(ctx.vkCreateRayTracingPipelinesKHR(ctx.device(), VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &ci, nullptr,
+                                           &pipeline));
+  const uint32_t handleSize = ctx.rayTracing().handleSize;
+  std::vector<uint8_t> handles(size_t(count) * handleSize);
+  const VkResult h = ctx.vkGetRayTracingShaderGroupHandlesKHR(ctx.device(), pipeline, 0, count,
+                                                              handles.size(), handles.data());
+  vkDestroyPipeline(ctx.device(), pipeline, nullptr);
+  WB_VK(h);
+  uint32_t last = 0;
+  for (size_t at = 0; at + sizeof(uint32_t) <= handles.size(); at += std::max<size_t>(handleSize, 4)) {
+    uint32_t word;
+    std::memcpy(&word, handles.data() + at, sizeof word);
+    last = std::max(last, word);
   }
-  return ctx.lastGroupHandleWord() == last;
+  return last;
+}
+
+}  // namespace
+
+std::optional<uint32_t> probeGroupCounter(vk::Context& ctx,
+                                          const shader::ShaderLibrary::ProgramBuild& build) {
+  const auto* raygen = raygenStage(build);
+  if (!raygen) return std::nullopt;
+  return makeThrowawayGroups(ctx, build, *raygen, 1);
+}
+
+bool alignGroupCounter(vk::Context& ctx, const shader::ShaderLibrary::ProgramBuild& build, uint32_t last) {
+  const auto* raygen = raygenStage(build);
+  if (!raygen) return true;
+  const uint32_t now = makeThrowawayGroups(ctx, build, *raygen, 1);
+  if (now == last) return true;
+  if (now > last) return false;
+  return makeThrowawayGroups(ctx, build, *raygen, last - now) == last;
 }
 
 uint64_t mesaShaderCacheBytes() {
-  const char* dir = std::getenv("MESA_SHADER_CACHE_DIR");
-  if (!dir || !*dir) return 0;
+  const auto dir = env::get("MESA_SHADER_CACHE_DIR");
+  if (!dir) return 0;
   uint64_t bytes = 0;
   std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+  for (auto it = std::filesystem::recursive_directory_iterator(*dir, ec);
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
     if (it->is_regular_file(ec)) bytes += it->file_size(ec);
   }
@@ -130,7 +145,6 @@ WarmupDevice::WarmupDevice(const vk::Context& main, const shader::ShaderLibrary:
     : ctx(warmupContext(main)), library(warmupLibrary(libraryOptions)), scene(standInScene()) {
   gpuScene = std::make_unique<GpuScene>(*ctx, scene);
   env = std::make_unique<GpuEnvironment>(*ctx, blackEnvironment());
-  settings.width = settings.height = 1;
 }
 
 WarmupDevice::~WarmupDevice() {
@@ -138,52 +152,33 @@ WarmupDevice::~WarmupDevice() {
   gpuScene.reset();
 }
 
-PathTracerJitWarmup::PathTracerJitWarmup(const vk::Context& main,
-                                         const shader::ShaderLibrary::Options& libraryOptions,
-                                         const scene::SceneFeatures& features)
-    : device_(main, libraryOptions) {
-  tracer_ = std::make_unique<PathTracer>(*device_.ctx, *device_.library, *device_.gpuScene, *device_.env,
-                                         device_.settings, features);
+RendererResources WarmupDevice::resources() const {
+  return {*ctx, *library, scene, *gpuScene, *env};
 }
 
-PathTracerJitWarmup::~PathTracerJitWarmup() = default;
+JitWarmup::JitWarmup(const Renderer& like, const shader::ShaderLibrary::Options& libraryOptions)
+    : device_(like.context(), libraryOptions) {
+  RenderSettings settings = like.settings();
+  settings.width = settings.height = 1;
+  settings.tileWidth = settings.tileHeight = 0;
+  renderer_ = like.makeLike(device_.resources(), settings);
+}
 
-bool PathTracerJitWarmup::warm(const shader::ShaderLibrary::ProgramBuild& build,
-                               uint32_t renderDeviceGroupHandle) {
+JitWarmup::~JitWarmup() = default;
+
+bool JitWarmup::warm(const Renderer& like, size_t programIndex,
+                     const shader::ShaderLibrary::ProgramBuild& build, uint32_t renderDeviceGroupCounter) {
   using Clock = std::chrono::steady_clock;
-  if (!alignGroupHandles(*device_.ctx, build, renderDeviceGroupHandle)) return false;
-  tracer_->swapPipeline(build);
+  // Compiled parameters first: a new specialisation rebuilds a pipeline here (new group numbers).
+  renderer_->matchCompiledParameters(like);
+  if (!alignGroupCounter(*device_.ctx, build, renderDeviceGroupCounter)) return false;
+  const auto program = renderer_->programs().at(programIndex).id;
+  auto built = renderer_->buildPipeline(program, build);
+  handles_ = built->rayTracing ? built->rayTracing->sbt().groupHandles() : std::vector<uint8_t>{};
+  renderer_->installPipeline(program, std::move(built));
   const uint64_t before = mesaShaderCacheBytes();
   const auto t1 = Clock::now();
-  // Zero rays: llvmpipe compiles the pipeline when it is dispatched, before it looks at the size.
-  device_.ctx->submitAndWait([&](VkCommandBuffer cmd) { tracer_->record(cmd, PixelRegion{0, 0, 0, 0}); });
-  awaitCacheWrite(Clock::now() - t1, before);
-  ++warmups_;
-  return true;
-}
-
-HybridJitWarmup::HybridJitWarmup(const vk::Context& main,
-                                 const shader::ShaderLibrary::Options& libraryOptions, RenderMode mode,
-                                 const HybridSettings& hybrid, const std::filesystem::path& shaderRoot)
-    : device_(main, libraryOptions) {
-  renderer_ =
-      std::make_unique<HybridRenderer>(*device_.ctx, *device_.library, *device_.gpuScene, device_.scene,
-                                       *device_.env, device_.settings, mode, hybrid, shaderRoot);
-}
-
-HybridJitWarmup::~HybridJitWarmup() = default;
-
-bool HybridJitWarmup::warm(HybridRenderer::Pass pass, const shader::ShaderLibrary::ProgramBuild& build,
-                           const HybridSettings& hybrid, uint32_t renderDeviceGroupHandle) {
-  using Clock = std::chrono::steady_clock;
-  // Settings first: a new reflection depth rebuilds the reflection pipeline (new group numbers).
-  if (hybrid.reflectionDepth != renderer_->hybridSettings().reflectionDepth)
-    renderer_->setHybridSettings(hybrid);
-  if (!alignGroupHandles(*device_.ctx, build, renderDeviceGroupHandle)) return false;
-  renderer_->commitPipeline(pass, renderer_->preparePipeline(pass, build));
-  const uint64_t before = mesaShaderCacheBytes();
-  const auto t1 = Clock::now();
-  renderer_->render(1);  // every pass at 1x1: llvmpipe compiles the new pipeline at its first use
+  device_.ctx->submitAndWait([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); });
   awaitCacheWrite(Clock::now() - t1, before);
   ++warmups_;
   return true;

@@ -1,32 +1,20 @@
 #include "render/path_tracer.h"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/half.h"
 #include "common/paths.h"
-#include "render/jit_warmup.h"
 #include "render/sample_tables.h"
 
 namespace wb::render {
 namespace {
 
-constexpr uint32_t kMissCount = 2;     // environment, shadow
 constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
 
 }  // namespace
-
-CameraState cameraFromScene(const scene::Camera& camera) {
-  CameraState c;
-  c.view = glm::lookAt(camera.eye, camera.target, camera.up);
-  c.yfov = camera.yfov;
-  c.znear = camera.znear > 0.0f ? camera.znear : 0.01f;
-  return c;
-}
 
 std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features,
                                                      bool cpuDeviceCode) {
@@ -45,28 +33,22 @@ std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures&
   return keys;
 }
 
-PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& scene,
-                       const GpuEnvironment& env, const RenderSettings& settings,
+PathTracer::PathTracer(const RendererResources& r, const RenderSettings& settings,
                        const scene::SceneFeatures& features)
-    : ctx_(ctx), library_(library), scene_(scene), env_(&env), settings_(settings) {
-  // On GPUs by default; not on lavapipe: Mesa 25.0 links ray tracing libraries without a validation error but
-  // the linked pipeline renders nothing (and it would gain nothing there: llvmpipe compiles the linked
-  // pipeline as one function at its first dispatch). WB_PIPELINE_LIBRARY=0 / =1 forces it off / on.
-  const char* lib = std::getenv("WB_PIPELINE_LIBRARY");
-  const bool forced = lib && std::string(lib) == "1", off = lib && std::string(lib) == "0";
-  if (ctx.pipelineLibrarySupported() && !off && (!ctx.cpuDevice() || forced)) {
-    libraries_ = std::make_unique<vk::RtLibraryCache>(ctx);
-  }
-  frameUniforms_ = vk::Buffer(ctx, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-  counters_ = vk::Buffer(ctx, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    : ctx_(r.ctx),
+      library_(r.library),
+      gpuScene_(r.gpuScene),
+      env_(&r.environment),
+      settings_(settings),
+      cpuDeviceCode_(r.ctx.policy().cpuShapedShaderCode) {
+  if (ctx_.policy().pipelineLibraries) libraries_ = std::make_unique<vk::RtLibraryCache>(ctx_);
+  frameUniforms_ = vk::Buffer(ctx_, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
-  blueNoise_ = vk::makeBuffer(ctx, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  sobol_ = vk::makeBuffer(ctx, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  blueNoise_ = vk::makeBuffer(ctx_, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
-  const char* code = std::getenv("WB_CPU_DEVICE_CODE");
-  cpuDeviceCode_ = code && *code ? std::string(code) == "1" : ctx.cpuDevice();
   setFeatures(features);
-  warmupEnabled_ = jitWarmupWanted(ctx);
 }
 
 bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
@@ -84,18 +66,14 @@ bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
                                   stageKeys(features, cpuDeviceCode_));
     variants_.emplace_back(features, id);
   }
-  swapPipeline(library_.buildProgram(id));
   program_ = id;
   features_ = features;
+  installPipeline(id, buildPipeline(id, library_.buildProgram(id)));
   return true;
 }
 
 PathTracer::~PathTracer() {
   vkDeviceWaitIdle(ctx_.device());
-}
-
-uint32_t PathTracer::jitWarmups() const {
-  return warmup_.warmups();
 }
 
 void PathTracer::createImages() {
@@ -118,88 +96,65 @@ void PathTracer::createImages() {
 
 void PathTracer::writeDescriptors() {
   auto& s = *sets_;
-  emitterVersion_ = scene_.emitterVersion();
-  s.writeAccelerationStructure(0, WB_BIND_TLAS, scene_.tlas());
+  emitterVersion_ = gpuScene_.emitterVersion();
+  s.writeAccelerationStructure(0, WB_BIND_TLAS, gpuScene_.tlas());
   s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
   s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
   s.writeStorageImage(0, WB_BIND_AOV_NORMAL, normal_.view());
   s.writeStorageImage(0, WB_BIND_AOV_INFO, info_.view());
   s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
-  s.writeBuffer(0, WB_BIND_GEOMETRIES, scene_.geometries().handle());
-  s.writeBuffer(0, WB_BIND_MATERIALS, scene_.materials().handle());
-  s.writeBuffer(0, WB_BIND_LIGHTS, scene_.lights().handle());
-  s.writeSampledImages(0, WB_BIND_TEXTURES, scene_.textureDescriptors());
+  s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
+  s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
+  s.writeBuffer(0, WB_BIND_LIGHTS, gpuScene_.lights().handle());
+  s.writeSampledImages(0, WB_BIND_TEXTURES, gpuScene_.textureDescriptors());
   s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_->descriptor()});
   s.writeBuffer(0, WB_BIND_ENV_ALIAS, env_->aliasTable().handle());
   s.writeBuffer(0, WB_BIND_COUNTERS, counters_.handle());
   s.writeBuffer(0, WB_BIND_BLUE_NOISE, blueNoise_.handle());
   s.writeBuffer(0, WB_BIND_SOBOL, sobol_.handle());
-  s.writeBuffer(0, WB_BIND_EMITTERS, scene_.emitters().handle());
-  s.writeBuffer(0, WB_BIND_EMITTER_ALIAS, scene_.emitterAlias().handle());
+  s.writeBuffer(0, WB_BIND_EMITTERS, gpuScene_.emitters().handle());
+  s.writeBuffer(0, WB_BIND_EMITTER_ALIAS, gpuScene_.emitterAlias().handle());
 }
 
-std::unique_ptr<PreparedPipeline> PathTracer::preparePipeline(
-    const shader::ShaderLibrary::ProgramBuild& build) const {
-  // Groups: raygen, environment miss, shadow miss, one triangle hit group (closest-hit + any-hit when the
-  // program has an any-hit stage, i.e. some material is not opaque).
-  const int anyHit = build.stages.size() > 4 ? 4 : -1;
-  const std::vector<vk::RtShaderGroup> groups = {
-      {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, anyHit, -1}};
-  auto prepared = std::make_unique<PreparedPipeline>();
-  prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
-  prepared->pipeline = std::make_unique<vk::RayTracingPipeline>(
-      ctx_, build.stages, groups, kMissCount, prepared->layout->handle(), kMaxRecursion,
+std::vector<RendererProgram> PathTracer::programs() const {
+  return {{program_, "pathtracer"}};
+}
+
+std::unique_ptr<vk::BuiltPipeline> PathTracer::buildPipeline(
+    shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const {
+  (void)program;
+  // The any-hit stage is there when some material is not opaque (stageKeys).
+  vk::RtBindingTable table;
+  table.raygen("raygen.rgen")
+      .miss("miss.rmiss")
+      .miss("shadow.rmiss")
+      .hitGroup({.closestHit = "closesthit.rchit", .anyHit = "anyhit.rahit"});
+  auto built = std::make_unique<vk::BuiltPipeline>();
+  built->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
+  built->rayTracing = std::make_unique<vk::RayTracingPipeline>(
+      ctx_, build.stages, table, built->layout->handle(), kMaxRecursion,
       std::vector<vk::SpecializationConstant>{}, libraries_.get(), vk::layoutKey(build.layout));
-  return prepared;
+  return built;
 }
 
-void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
+void PathTracer::installPipeline(shader::ShaderLibrary::ProgramId program,
+                                 std::unique_ptr<vk::BuiltPipeline> pipeline) {
+  if (program != program_) return;  // a variant this tracer has switched away from
   vkDeviceWaitIdle(ctx_.device());  // the old pipeline and descriptor sets may still be in flight
   sets_.reset();
-  pipeline_ = std::move(prepared->pipeline);
-  layout_ = std::move(prepared->layout);
-  sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *layout_);
+  pipeline_ = std::move(pipeline);
+  sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *pipeline_->layout);
   writeDescriptors();
-  pipelineMs_ = pipeline_->createMs();
+  pipelineMs_ = pipeline_->rayTracing->createMs();
   sampleIndex_ = 0;
+  ++installs_;
   // Libraries of the last few builds stay (variants and an edit in flight); older ones go.
-  if (libraries_) libraries_->trim(24, pipeline_->libraryKeys());
+  if (libraries_) libraries_->trim(24, pipeline_->rayTracing->libraryKeys());
 }
 
-void PathTracer::addHotReloadTarget(HotReload& hot) {
-  auto makeWarmup = [this, features = features_] {
-    return std::make_unique<PathTracerJitWarmup>(ctx_, library_.options(), features);
-  };
-  if (warmupEnabled_) warmup_.makeAhead(makeWarmup);
-  hot.addTarget(program_,
-                {"pathtracer",
-                 [this, makeWarmup](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-                   // The driver's compile on the warm-up device runs beside this device's pipeline creation.
-                   const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
-                   std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran
-                   auto prepared = prepareBesideWarmup(
-                       warmupEnabled_, [&] { return std::shared_ptr<PreparedPipeline>(preparePipeline(b)); },
-                       [&] {
-                         if (auto* w = warmup_.warmOrRenew(makeWarmup, [&](PathTracerJitWarmup& x) {
-                               return x.warm(b, handlesBefore);
-                             }))
-                           warmedHandles = w->groupHandles();
-                       });
-                   if (!warmedHandles.empty() && warmedHandles != prepared->pipeline->sbt().groupHandles())
-                     ++warmupMismatches_;
-                   return prepared;
-                 },
-                 [this](std::shared_ptr<void> p) {
-                   auto prepared = std::static_pointer_cast<PreparedPipeline>(p);
-                   commitPipeline(std::make_unique<PreparedPipeline>(std::move(*prepared)));
-                 },
-                 [](const std::shared_ptr<void>& p) {
-                   return std::static_pointer_cast<PreparedPipeline>(p)->pipeline->libraryStats();
-                 }});
-}
-
-void PathTracer::swapPipeline(const shader::ShaderLibrary::ProgramBuild& build) {
-  commitPipeline(preparePipeline(build));
+std::unique_ptr<Renderer> PathTracer::makeLike(const RendererResources& resources,
+                                               const RenderSettings& settings) const {
+  return std::make_unique<PathTracer>(resources, settings, features_);
 }
 
 void PathTracer::setCamera(const CameraState& camera) {
@@ -225,6 +180,11 @@ void PathTracer::setEnvironment(const GpuEnvironment& env) {
   sampleIndex_ = 0;
 }
 
+void PathTracer::setLights(const std::vector<gpu::DirectionalLight>& lights) {
+  (void)lights;  // the scene's light buffer, which the shaders read, holds them already
+  sampleIndex_ = 0;
+}
+
 void PathTracer::updateFrameUniforms() {
   gpu::FrameUniforms f{};
   const float aspect = float(settings_.width) / float(settings_.height);
@@ -233,15 +193,15 @@ void PathTracer::updateFrameUniforms() {
   f.viewInverse = glm::inverse(camera_.view);
   f.projInverse = glm::inverse(proj);
   f.envColor = glm::vec4(settings_.envColor, 1.0f);
-  f.lightCount = scene_.lightCount();
+  f.lightCount = gpuScene_.lightCount();
   f.envMapPresent = env_->isMap() ? 1u : 0u;
   f.envWidth = env_->width();
   f.envHeight = env_->height();
   f.envIntensity = settings_.envIntensity;
   f.envRotation = glm::radians(settings_.envRotationDeg);
   f.envTotalWeight = env_->totalWeight();
-  f.emitterCount = scene_.emitterCount();
-  f.emitterTotalPower = scene_.emitterTotalPower();
+  f.emitterCount = gpuScene_.emitterCount();
+  f.emitterTotalPower = gpuScene_.emitterTotalPower();
   // Light sampling splits between the environment and the area lights; a black environment gets none.
   const bool envBlack =
       settings_.envIntensity <= 0.0f || (!env_->isMap() && settings_.envColor == glm::vec3(0.0f));
@@ -249,11 +209,10 @@ void PathTracer::updateFrameUniforms() {
   std::memcpy(frameUniforms_.mapped(), &f, sizeof(f));
 }
 
-void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) {
-  PixelRegion r = region.value_or(PixelRegion{0, 0, settings_.width, settings_.height});
+void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
-  if (scene_.emitterVersion() != emitterVersion_) writeDescriptors();
-  if (sampleIndex_ == 0 && (!region || (r.x == 0 && r.y == 0))) updateFrameUniforms();
+  if (gpuScene_.emitterVersion() != emitterVersion_) writeDescriptors();
+  if (sampleIndex_ == 0 && r.x == 0 && r.y == 0) updateFrameUniforms();
   gpu::PushConstants pc{};
   pc.sampleIndex = sampleIndex_;
   pc.maxBounces = settings_.maxBounces;
@@ -268,34 +227,38 @@ void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) 
   pc.tileOffset = glm::uvec2(r.x, r.y);
   pc.imageSize = glm::uvec2(settings_.width, settings_.height);
 
+  const vk::PipelineLayout& layout = *pipeline_->layout;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_->handle());
   const auto& sets = sets_->sets();
   if (!sets.empty()) {
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_->handle(), 0,
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout.handle(), 0,
                             static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
   }
-  for (const auto& range : layout_->desc().pushConstants) {
-    vkCmdPushConstants(cmd, layout_->handle(), range.stageFlags, range.offset, range.size,
+  for (const auto& range : layout.desc().pushConstants) {
+    vkCmdPushConstants(cmd, layout.handle(), range.stageFlags, range.offset, range.size,
                        reinterpret_cast<const char*>(&pc) + range.offset);
   }
-  pipeline_->sbt().trace(ctx_, cmd, r.width, r.height);
+  pipeline_->rayTracing->sbt().trace(ctx_, cmd, r.width, r.height);
   vk::memoryBarrier(cmd);
 }
 
-void PathTracer::render(uint32_t samples) {
+void PathTracer::record(VkCommandBuffer cmd) {
   const uint32_t tw = settings_.tileWidth ? settings_.tileWidth : settings_.width;
   const uint32_t th = settings_.tileHeight ? settings_.tileHeight : settings_.height;
-  for (uint32_t i = 0; i < samples; ++i) {
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-      for (uint32_t y = 0; y < settings_.height; y += th) {
-        for (uint32_t x = 0; x < settings_.width; x += tw) {
-          record(cmd,
-                 PixelRegion{x, y, std::min(tw, settings_.width - x), std::min(th, settings_.height - y)});
-        }
-      }
-    });
-    advanceSample();
+  for (uint32_t y = 0; y < settings_.height; y += th) {
+    for (uint32_t x = 0; x < settings_.width; x += tw)
+      recordRegion(cmd,
+                   PixelRegion{x, y, std::min(tw, settings_.width - x), std::min(th, settings_.height - y)});
   }
+}
+
+eval::ImageRGBA PathTracer::readImage() const {
+  eval::ImageRGBA img;
+  img.width = settings_.width;
+  img.height = settings_.height;
+  img.pixels = readAccumulation();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
 }
 
 std::vector<float> PathTracer::readAccumulation() const {

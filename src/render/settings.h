@@ -1,6 +1,7 @@
 // Every path tracer parameter, as the command line, the UI and the tests set it.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,6 +10,11 @@
 namespace wb::render {
 
 enum class SamplerKind { Sobol, Pcg };
+
+// The path tracer, or one of its fast, biased counterparts.
+enum class RenderMode { PathTrace, Hybrid, Reflections };
+const char* renderModeName(RenderMode m);                            // "pathtrace" | "hybrid" | "reflections"
+std::optional<RenderMode> parseRenderMode(const std::string& text);  // nullopt when unknown
 
 struct RenderSettings {
   uint32_t width = 512, height = 512;

@@ -9,11 +9,9 @@
 
 namespace wb::render {
 
-// Where a pass keeps its warm-up. makeAhead() starts making one on a low-priority thread when hot reload is
-// set up, so that the first edit does not wait for it to be made (a second Vulkan instance and device, a
-// stand-in scene and its pipeline): on lavapipe the first closest-hit edit reached the screen 0.86-1.10 s
-// after it with the warm-up made ahead, 1.05-1.13 s without (three alternating runs of `watch` at 128x128).
-// Without makeAhead() the first reload makes it.
+// makeAhead() starts making a warm-up on a low-priority thread when hot reload is set up, so that the first
+// edit does not wait for it to be made (a second Vulkan instance and device, a stand-in scene and its
+// pipelines). Without makeAhead() the first reload makes it.
 template <class Warmup>
 class WarmupSlot {
  public:
@@ -39,10 +37,10 @@ class WarmupSlot {
     warmup_ = make();
     return warm(*warmup_) ? warmup_.get() : nullptr;
   }
-  // Whether there is one, or one is being made (it waits while the worker uses it).
+  // Whether there is one, or one is being made (without waiting: one in use by the worker is there).
   bool present() const {
-    std::lock_guard lock(mutex_);
-    return warmup_ || pending_.valid();
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    return !lock || warmup_ || pending_.valid();
   }
   // Warm-ups run by the current one, without waiting (0 while one is being made or used).
   uint32_t warmups() const {

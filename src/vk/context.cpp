@@ -8,9 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "common/paths.h"
+#include "common/env.h"
 #include "vk/device_select.h"
-#include "vk/driver_env.h"
 
 namespace wb::vk {
 namespace {
@@ -91,11 +90,6 @@ std::vector<std::string> missingDeviceFeatures(VkPhysicalDevice d, const DeviceC
   return SupportedFeatures(d).missingEssentials();
 }
 
-bool envFlag(const char* name) {
-  const char* v = std::getenv(name);
-  return v && *v && std::strcmp(v, "0") != 0;
-}
-
 // Keeps every shared library loaded now loaded until the process exits. vkDestroyInstance makes the loader
 // unload the driver, and the next instance loads it again: NVIDIA's libnvidia-tls takes static TLS each time
 // it is loaded, and after ~20 instances in one process (the hard-case suite, a test binary run whole)
@@ -172,26 +166,14 @@ void Context::onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severit
   if (error) messages_.emplace_back(message);
 }
 
-void Context::noteGroupHandles(const std::vector<uint8_t>& handles) {
-  const size_t size = std::max<size_t>(rt_.handleSize, sizeof(uint32_t));
-  for (size_t at = 0; at + sizeof(uint32_t) <= handles.size(); at += size) {
-    uint32_t word;
-    std::memcpy(&word, handles.data() + at, sizeof word);
-    uint32_t seen = lastGroupHandleWord_.load();
-    while (word > seen && !lastGroupHandleWord_.compare_exchange_weak(seen, word)) {
-    }
-  }
-}
-
 std::vector<std::string> Context::validationMessages() const {
   std::lock_guard lock(messagesMutex_);
   return messages_;
 }
 
 void Context::createInstance(const ContextOptions& options) {
-  applyDriverDefaults(shaderCacheDir());
   const char* kValidation = "VK_LAYER_KHRONOS_validation";
-  bool wantValidation = options.validation || envFlag("WB_VALIDATION");
+  bool wantValidation = options.validation || env::enabled("WB_VALIDATION");
   validation_ = wantValidation && layerAvailable(kValidation);
   if (wantValidation && !validation_) {
     std::fprintf(stderr, "warning: validation requested but %s is not installed\n", kValidation);
@@ -262,10 +244,14 @@ void Context::pickDevice(const ContextOptions& options) {
   if (!choice.index) throw VulkanError(choice.error);
   physical_ = devices[*choice.index];
   deviceName_ = candidates[*choice.index].name;
-  cpuDevice_ = candidates[*choice.index].cpu;
   for (const auto& e : candidates[*choice.index].extensions) {
     if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
   }
+  DeviceTraits traits;
+  traits.cpuImplementation = candidates[*choice.index].cpu;
+  traits.pipelineLibrarySupported = pipelineLibrary_;
+  traits.deferredHostOpsSupported = true;  // VK_KHR_deferred_host_operations is a required extension
+  policy_ = resolveDevicePolicy(traits, PolicyOverrides::fromEnvironment());
 
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};

@@ -9,6 +9,7 @@
 #include <vulkan/vulkan.h>
 
 #include "vk/check.h"
+#include "vk/driver_policy.h"
 #include "vk/pipeline_cache.h"
 
 namespace wb::vk {
@@ -48,7 +49,8 @@ class Context {
   const RayTracingProperties& rayTracing() const { return rt_; }
   bool validationEnabled() const { return validation_; }
   bool pipelineLibrarySupported() const { return pipelineLibrary_; }
-  bool cpuDevice() const { return cpuDevice_; }  // a software rasteriser (lavapipe)
+  // What this device needs done differently (vk/driver_policy.h), resolved when the device is made.
+  const DevicePolicy& policy() const { return policy_; }
   float timestampPeriodNs() const { return timestampPeriod_; }
   // The pipeline cache every pipeline is created with (persisted at exit when a directory was given).
   VkPipelineCache pipelineCache() const { return pipelineCache_ ? pipelineCache_->handle() : VK_NULL_HANDLE; }
@@ -82,13 +84,6 @@ class Context {
   PFN_vkGetDeferredOperationResultKHR vkGetDeferredOperationResultKHR = nullptr;
   PFN_vkGetDeferredOperationMaxConcurrencyKHR vkGetDeferredOperationMaxConcurrencyKHR = nullptr;
 
-  // Ray tracing group handles returned by this device (ShaderBindingTable reports them): the largest leading
-  // 32-bit word seen. lavapipe numbers every group it creates in that word with a per-device counter, and the
-  // machine code it compiles for a pipeline contains the numbers (render/jit_warmup.h keeps two devices in
-  // step).
-  void noteGroupHandles(const std::vector<uint8_t>& handles);
-  uint32_t lastGroupHandleWord() const { return lastGroupHandleWord_.load(); }
-
   // Called from the debug messenger.
   void onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, const char* message);
 
@@ -112,10 +107,9 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_{};
   bool validation_ = false;
   bool pipelineLibrary_ = false;
-  bool cpuDevice_ = false;
+  DevicePolicy policy_;
   float timestampPeriod_ = 1.0f;
   std::atomic<uint32_t> validationErrors_{0};
-  std::atomic<uint32_t> lastGroupHandleWord_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;
   std::mutex queueMutex_;

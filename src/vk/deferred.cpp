@@ -1,24 +1,14 @@
 #include "vk/deferred.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <cstring>
 #include <thread>
 #include <vector>
 
 namespace wb::vk {
 
-bool deferredHostOpsWanted() {
-  const char* v = std::getenv("WB_DEFERRED_HOST_OPS");
-  return !(v && std::strcmp(v, "0") == 0);
-}
-
 VkResult runDeferred(const Context& ctx, const std::function<VkResult(VkDeferredOperationKHR)>& call,
                      unsigned maxThreads) {
-  // lavapipe compiles at the first dispatch, so deferring gains nothing there, and its Mesa 25.0 crashes
-  // linking pipeline libraries inside a deferred operation (tests/render/pipeline_library_test.cpp).
-  if (!deferredHostOpsWanted() || ctx.cpuDevice() || !ctx.vkCreateDeferredOperationKHR)
-    return call(VK_NULL_HANDLE);
+  if (!ctx.policy().deferredHostOps || !ctx.vkCreateDeferredOperationKHR) return call(VK_NULL_HANDLE);
   VkDeferredOperationKHR op = VK_NULL_HANDLE;
   if (ctx.vkCreateDeferredOperationKHR(ctx.device(), nullptr, &op) != VK_SUCCESS) return call(VK_NULL_HANDLE);
   VkResult result = call(op);

@@ -74,15 +74,17 @@ std::string layoutKey(const shader::PipelineLayoutDesc& desc) {
 
 RayTracingPipeline::RayTracingPipeline(
     Context& ctx, const std::vector<std::shared_ptr<const shader::CompiledShader>>& stages,
-    const std::vector<RtShaderGroup>& groups, uint32_t missCount, VkPipelineLayout layout,
-    uint32_t maxRecursionDepth, const std::vector<SpecializationConstant>& constants,
-    RtLibraryCache* libraries, const std::string& layoutId)
+    const RtBindingTable& table, VkPipelineLayout layout, uint32_t maxRecursionDepth,
+    const std::vector<SpecializationConstant>& constants, RtLibraryCache* libraries,
+    const std::string& layoutId)
     : ctx_(ctx) {
   auto t0 = std::chrono::steady_clock::now();
   if (maxRecursionDepth > ctx.rayTracing().maxRecursionDepth) {
     throw VulkanError("ray recursion depth " + std::to_string(maxRecursionDepth) + " exceeds the device's " +
                       std::to_string(ctx.rayTracing().maxRecursionDepth));
   }
+  const std::vector<RtShaderGroup> groups = table.resolve(stages);
+  const uint32_t missCount = table.missCount();
   const Specialization spec(constants);
   std::vector<ShaderModule> modules;  // only needed while the pipeline is created
   std::vector<VkPipelineShaderStageCreateInfo> stageInfos;

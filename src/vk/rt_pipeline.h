@@ -10,18 +10,11 @@
 #include <vulkan/vulkan.h>
 
 #include "shader/types.h"
+#include "vk/rt_binding_table.h"
 #include "vk/sbt.h"
 #include "vk/shader_module.h"
 
 namespace wb::vk {
-
-// A group refers to stages by their index in the stage list; -1 = unused.
-struct RtShaderGroup {
-  int general = -1;  // raygen, miss or callable
-  int closestHit = -1;
-  int anyHit = -1;
-  int intersection = -1;
-};
 
 // Pipeline libraries (VK_KHR_pipeline_library), one per shader group, kept across rebuilds: a pipeline linked
 // from them recompiles only the groups whose SPIR-V, specialisation, layout or interface changed, so an edit
@@ -69,12 +62,12 @@ struct RtLibraryStats {
 
 class RayTracingPipeline {
  public:
-  // Groups must come in SBT order: one raygen, then `missCount` miss groups, then the hit groups. With a
-  // library cache (and a device with VK_KHR_pipeline_library) the pipeline is linked from per-group
-  // libraries; `layoutId` must then identify the layout's contents (layoutKey()).
+  // The groups come from `table`, resolved against `stages`. With a library cache (and a device with
+  // VK_KHR_pipeline_library) the pipeline is linked from per-group libraries; `layoutId` must then identify
+  // the layout's contents (layoutKey()).
   RayTracingPipeline(Context& ctx, const std::vector<std::shared_ptr<const shader::CompiledShader>>& stages,
-                     const std::vector<RtShaderGroup>& groups, uint32_t missCount, VkPipelineLayout layout,
-                     uint32_t maxRecursionDepth, const std::vector<SpecializationConstant>& constants = {},
+                     const RtBindingTable& table, VkPipelineLayout layout, uint32_t maxRecursionDepth,
+                     const std::vector<SpecializationConstant>& constants = {},
                      RtLibraryCache* libraries = nullptr, const std::string& layoutId = {});
   // The libraries this pipeline was linked from (their cache keys); empty when monolithic.
   const std::vector<std::string>& libraryKeys() const { return libraryKeys_; }

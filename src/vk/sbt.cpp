@@ -42,7 +42,6 @@ ShaderBindingTable::ShaderBindingTable(Context& ctx, VkPipeline pipeline, uint32
   std::vector<uint8_t> handles(size_t(groupCount) * rt.handleSize);
   WB_VK(ctx.vkGetRayTracingShaderGroupHandlesKHR(ctx.device(), pipeline, 0, groupCount, handles.size(),
                                                  handles.data()));
-  ctx.noteGroupHandles(handles);
   // Over-allocate by one base alignment so the start can be aligned whatever the allocation gives.
   buffer_ = Buffer(ctx, layout_.totalSize + rt.baseAlignment,
                    VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);

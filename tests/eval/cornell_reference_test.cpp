@@ -17,7 +17,7 @@ TEST(CornellReference, AgreesWithCyclesWithinNoise) {
   const auto dir = sharedDir() / "reference";
   const eval::ImageRGBA cycles = eval::readExr(dir / "cornell_cycles.exr");
   ASSERT_EQ(cycles.width, 256u);
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.scenePath = (dir / "cornell.gltf").string();
   o.settings.width = o.settings.height = 64;
   o.settings.envColor = glm::vec3(0.0f);  // --env-color 0,0,0

@@ -6,8 +6,9 @@
 
 namespace wb::testing {
 
-inline std::vector<eval::ImageRGBA> renderRuns(app::RenderSession& session, render::RenderSettings settings,
-                                               uint32_t runs, uint32_t spp, uint32_t firstSeed) {
+inline std::vector<eval::ImageRGBA> renderRuns(render::RenderSession& session,
+                                               render::RenderSettings settings, uint32_t runs, uint32_t spp,
+                                               uint32_t firstSeed) {
   // Independent runs need independent randomisations: with the Sobol sampler the seed only shifts every
   // dimension's Cranley-Patterson rotation by the same constant (seed x golden ratio), so runs of one pixel
   // are a one-parameter family, their spread underestimates the pixel's error and the per-pixel test fails.

@@ -12,7 +12,7 @@ using namespace wb;
 using namespace wb::testing;
 
 TEST(StatisticalTestGpu, SeedsPassTwoPercentBiasFails) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.scenePath = (sharedDir() / "reference/cornell.gltf").string();
   o.settings.width = o.settings.height = 64;
   o.settings.envColor = glm::vec3(0.0f);

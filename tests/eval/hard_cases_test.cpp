@@ -47,7 +47,7 @@ TEST(HardCaseSuite, NoNanOrInfAndFurnacesHoldTheirEnergy) {
   for (const auto& hc : cases) {
     for (const auto& variant : hc.variants) {
       SCOPED_TRACE(hc.name + " " + variant);
-      app::SessionOptions o;
+      render::SessionOptions o;
       o.sceneData = hc.scene;
       o.settings = settingsFor(variant);
       hc.adjust(o.settings);

@@ -26,7 +26,7 @@ constexpr uint32_t kRuns = 8, kRefRuns = 48, kRefSppFactor = 4;
 
 struct Case {
   const char* name;
-  app::SessionOptions options;
+  render::SessionOptions options;
   uint32_t spp;
 };
 

@@ -22,7 +22,7 @@ struct MeanEstimate {
 
 // Mean image value over independent seeds, with the standard error of that mean.
 MeanEstimate cornellMean(render::RenderSettings s, int seeds, uint32_t spp) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.scenePath = (sharedDir() / "reference/cornell.gltf").string();
   s.width = 24;
   s.height = 24;
@@ -103,7 +103,7 @@ TEST(Emitters, SingleSidedEmitterLightsOnlyInFront) {
     if (facingFloor) t[1][1] = -1.0f, t[2][2] = -1.0f;  // rotate 180 degrees about X: normal -Y
     t[3] = glm::vec4(0.0f, 1.0f, 0.0f, 1.0f);
     sc.instances.push_back({1, t, "emitter"});
-    app::SessionOptions o;
+    render::SessionOptions o;
     o.sceneData = sc;
     o.settings.width = 32;
     o.settings.height = 32;
@@ -126,7 +126,7 @@ TEST(Emitters, SingleSidedEmitterLightsOnlyInFront) {
 namespace {
 
 eval::ImageRGBA renderCornell(const scene::Scene& scene, const std::vector<gpu::Material>* edit) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = scene;
   o.settings.width = 24;
   o.settings.height = 24;

@@ -12,7 +12,7 @@ using namespace wb::testing;
 namespace {
 
 double furnaceMean(render::RenderSettings settings, uint32_t spp) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = makeFurnaceScene(lambert(glm::vec3(1.0f)));
   settings.width = 32;
   settings.height = 32;

@@ -5,16 +5,16 @@
 #include <cmath>
 #include <memory>
 
-#include "app/render_session.h"
+#include "render/render_session.h"
 
 namespace wb::testing {
 
-inline std::unique_ptr<app::RenderSession> makeSession(app::SessionOptions o) {
+inline std::unique_ptr<render::RenderSession> makeSession(render::SessionOptions o) {
   o.context.validation = true;
-  return std::make_unique<app::RenderSession>(o);
+  return std::make_unique<render::RenderSession>(o);
 }
 
-inline void expectNoValidationErrors(app::RenderSession& s) {
+inline void expectNoValidationErrors(render::RenderSession& s) {
   EXPECT_EQ(s.context().validationErrors(), 0u);
   for (const auto& m : s.context().validationMessages()) ADD_FAILURE() << "validation: " << m;
 }

@@ -4,7 +4,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -49,11 +48,11 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
   std::atomic<int> commits{0};
   wb::render::HotReload hot(lib, {dir});
   hot.addTarget(id, {"test pipeline",
-                     [&](const wb::shader::ShaderLibrary::ProgramBuild&) -> std::shared_ptr<void> {
+                     [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
                        if (failing) throw std::runtime_error("the driver refused it");
-                       return std::make_shared<int>(1);
+                       return std::make_unique<wb::vk::BuiltPipeline>();
                      },
-                     [&](std::shared_ptr<void>) { ++commits; }});
+                     [&](std::unique_ptr<wb::vk::BuiltPipeline>) { ++commits; }});
   hot.start();
   std::this_thread::sleep_for(200ms);
 
@@ -74,28 +73,4 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
   EXPECT_EQ(hot.currentError(), "");
   hot.stop();
   fs::remove_all(dir);
-}
-
-// How long render loops rest after a frame while a rebuild compiles: most of the CPU goes to the compile on a
-// CPU device (the frames keep kCpuRenderShareWhileCompiling), nothing changes on a GPU; WB_REBUILD_YIELD
-// rules.
-TEST(HotReloadRest, CpuDevicesRestGpusDoNotAndTheEnvironmentOverrides) {
-  const char* saved = std::getenv("WB_REBUILD_YIELD");
-  const std::string keep = saved ? saved : "";
-  ::unsetenv("WB_REBUILD_YIELD");
-  const double share = wb::render::kCpuRenderShareWhileCompiling;
-  EXPECT_NEAR(1.0 / (1.0 + wb::render::rebuildRestRatio(true)), share, 1e-12);
-  EXPECT_EQ(wb::render::rebuildRestRatio(false), 0.0);
-  EXPECT_NEAR(wb::render::rebuildRestRatio(true, 0.25), 3.0, 1e-12);
-  ::setenv("WB_REBUILD_YIELD", "3", 1);
-  EXPECT_EQ(wb::render::rebuildRestRatio(false), 3.0);
-  ::setenv("WB_REBUILD_YIELD", "-2", 1);
-  EXPECT_EQ(wb::render::rebuildRestRatio(true), 0.0);
-  ::setenv("WB_REBUILD_YIELD", "", 1);  // empty: the default
-  EXPECT_NEAR(1.0 / (1.0 + wb::render::rebuildRestRatio(true)), share, 1e-12);
-  if (saved) {
-    ::setenv("WB_REBUILD_YIELD", keep.c_str(), 1);
-  } else {
-    ::unsetenv("WB_REBUILD_YIELD");
-  }
 }

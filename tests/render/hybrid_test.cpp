@@ -49,8 +49,8 @@ float hitBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
   return t0 <= t1 ? t0 : -1.0f;
 }
 
-app::SessionOptions hybridOptions(const scene::Scene& sc, render::RenderMode mode, uint32_t size) {
-  app::SessionOptions o;
+render::SessionOptions hybridOptions(const scene::Scene& sc, render::RenderMode mode, uint32_t size) {
+  render::SessionOptions o;
   o.sceneData = sc;
   o.settings.width = size;
   o.settings.height = size;
@@ -345,9 +345,9 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
   render::RenderSettings settings;
   settings.width = settings.height = 32;
   render::GpuScene gpuScene(ctx, s.scene);
-  render::GpuEnvironment env(ctx, app::loadEnvironmentData(settings));
+  render::GpuEnvironment env(ctx, render::loadEnvironmentData(settings));
   render::HybridSettings hs;
-  render::HybridRenderer hybrid(ctx, library, gpuScene, s.scene, env, settings,
+  render::HybridRenderer hybrid({ctx, library, s.scene, gpuScene, env}, settings,
                                 render::RenderMode::Reflections, hs, shaders.root);
   hybrid.render(1);
 
@@ -371,7 +371,7 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
                 std::max(hybrid.program(Pass::ShadowAo), hybrid.program(Pass::Reflection))}));
 
   render::HotReload hot(library, {shaders.root});
-  hybrid.addHotReloadTargets(hot);
+  hot.addRenderer(hybrid);
   hot.start();
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the watcher is up
   auto waitForReload = [&]() -> std::optional<render::ReloadEvent> {

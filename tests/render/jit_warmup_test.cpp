@@ -3,7 +3,7 @@
 // code instead of compiling it. Observed without timings: what that first frame adds to the disk cache. A
 // compile stores the pipeline's machine code there (tens of KiB); a cache load adds nothing. The render
 // device makes extra ray tracing pipelines first, so the warm-up must bring its group numbering in step
-// (alignGroupHandles).
+// (alignGroupCounter).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -63,15 +63,15 @@ class JitWarmup : public ::testing::Test {
     fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root_ / "shaders", fs::copy_options::recursive);
     fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root_ / "assets", fs::copy_options::recursive);
     ::setenv("WB_ROOT", root_.c_str(), 1);
-    // Mesa's cache and llvmpipe's width as the workbench sets them (vk/driver_env.h): under the private
+    // Mesa's cache and llvmpipe's width as the workbench sets them (vk/driver_policy.h): under the private
     // shader cache of the first session.
     ::unsetenv("MESA_SHADER_CACHE_DIR");
     ASSERT_EQ(wb::shaderDir(), root_ / "shaders") << "run this test in a process of its own (as ctest does)";
   }
   void TearDown() override { fs::remove_all(root_); }
 
-  std::unique_ptr<wb::app::RenderSession> session(wb::render::RenderMode mode) {
-    wb::app::SessionOptions o;
+  std::unique_ptr<wb::render::RenderSession> session(wb::render::RenderMode mode) {
+    wb::render::SessionOptions o;
     o.settings.width = o.settings.height = 16;
     o.cacheDir = root_ / "shader_cache";
     o.quiet = true;
@@ -97,28 +97,31 @@ class JitWarmup : public ::testing::Test {
 TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   auto s = session(wb::render::RenderMode::PathTrace);
   auto& tracer = s->pathTracer();
-  if (!tracer.jitWarmupEnabled())
+  if (!s->context().policy().jitWarmup)
     GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
   s->render(1);  // the first pipeline, compiled at its first trace
   // Two more ray tracing pipelines on the render device: its group numbers run ahead of a new device's.
-  for (int i = 0; i < 2; ++i) tracer.swapPipeline(s->library().buildProgram(tracer.program()));
+  for (int i = 0; i < 2; ++i)
+    tracer.swapPipeline(tracer.program(), s->library().buildProgram(tracer.program()));
 
-  // A hot reload of the closest-hit shader through the production path: HotReload's worker prepares the
-  // pipeline and warms it up; poll() commits it.
+  // A hot reload of the closest-hit shader through the production path: HotReload's worker builds the
+  // pipeline and warms it up; poll() installs it.
   const fs::path chit = fs::canonical(root_ / "shaders/pathtracer/closesthit.rchit");
+  wb::render::HotReload::WarmupStats warmup;
   {
     wb::render::HotReload hot(s->library(), {wb::shaderDir()});
-    EXPECT_FALSE(tracer.jitWarmupPresent());
-    tracer.addHotReloadTarget(hot);
-    EXPECT_TRUE(tracer.jitWarmupPresent()) << "made ahead of the first edit, not by it";
+    EXPECT_FALSE(hot.jitWarmup(tracer).present);
+    hot.addRenderer(tracer);
+    EXPECT_TRUE(hot.jitWarmup(tracer).present) << "made ahead of the first edit, not by it";
     hot.start();
     std::this_thread::sleep_for(200ms);
     edit(chit, "const float minCos = 1e-3;", "const float minCos = 1.5e-3;");
     reload(hot);
     hot.stop();
+    warmup = hot.jitWarmup(tracer);
   }
-  EXPECT_EQ(tracer.jitWarmups(), 1u);
-  EXPECT_EQ(tracer.jitWarmupMismatches(), 0u) << "the warm-up's pipeline has other group handles";
+  EXPECT_EQ(warmup.warmups, 1u);
+  EXPECT_EQ(warmup.mismatches, 0u) << "the warm-up's pipeline has other group handles";
   const uint64_t beforeWarmed = settledCacheBytes();
   s->render(1);
   const uint64_t warmedTrace = settledCacheBytes() - beforeWarmed;
@@ -127,7 +130,7 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   // The same kind of edit without the warm-up (as a pipeline swapped on the render thread).
   edit(chit, "const float minCos = 1.5e-3;", "const float minCos = 2.5e-3;");
   s->library().invalidateFiles({chit});
-  tracer.swapPipeline(s->library().buildProgram(tracer.program()));
+  tracer.swapPipeline(tracer.program(), s->library().buildProgram(tracer.program()));
   const uint64_t beforeCold = settledCacheBytes();
   s->render(1);
   const uint64_t coldTrace = settledCacheBytes() - beforeCold;
@@ -148,34 +151,35 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
   auto s = session(wb::render::RenderMode::Reflections);
   auto* hybrid = s->hybrid();
   ASSERT_NE(hybrid, nullptr);
-  if (!hybrid->jitWarmupEnabled())
+  if (!s->context().policy().jitWarmup)
     GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
   s->render(1);  // every pass compiled at its first use (the path tracer's pipeline exists too: more groups)
 
   const fs::path rgen = fs::canonical(root_ / "shaders/hybrid/shadow_ao.rgen");
   const std::string original = "const float phi = 2.0 * kPi * u.y;";
+  wb::render::HotReload::WarmupStats warmup;
   {
     wb::render::HotReload hot(s->library(), {wb::shaderDir()});
-    EXPECT_FALSE(hybrid->jitWarmupPresent());
-    hybrid->addHotReloadTargets(hot);
-    EXPECT_TRUE(hybrid->jitWarmupPresent()) << "made ahead of the first edit, not by it";
+    EXPECT_FALSE(hot.jitWarmup(*hybrid).present);
+    hot.addRenderer(*hybrid);
+    EXPECT_TRUE(hot.jitWarmup(*hybrid).present) << "made ahead of the first edit, not by it";
     hot.start();
     std::this_thread::sleep_for(200ms);
     edit(rgen, original, "const float phi = 2.0 * kPi * u.y * 0.9999;");
     reload(hot);
     hot.stop();
+    warmup = hot.jitWarmup(*hybrid);
   }
-  EXPECT_EQ(hybrid->jitWarmups(), 1u);
-  EXPECT_EQ(hybrid->jitWarmupMismatches(), 0u);
+  EXPECT_EQ(warmup.warmups, 1u);
+  EXPECT_EQ(warmup.mismatches, 0u);
   const uint64_t beforeWarmed = settledCacheBytes();
   s->render(1);
   const uint64_t warmedFrame = settledCacheBytes() - beforeWarmed;
 
   edit(rgen, "u.y * 0.9999;", "u.y * 0.9998;");
   s->library().invalidateFiles({rgen});
-  hybrid->commitPipeline(
-      Pass::ShadowAo,
-      hybrid->preparePipeline(Pass::ShadowAo, s->library().buildProgram(hybrid->program(Pass::ShadowAo))));
+  hybrid->swapPipeline(hybrid->program(Pass::ShadowAo),
+                       s->library().buildProgram(hybrid->program(Pass::ShadowAo)));
   const uint64_t beforeCold = settledCacheBytes();
   s->render(1);
   const uint64_t coldFrame = settledCacheBytes() - beforeCold;

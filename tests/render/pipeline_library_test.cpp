@@ -32,7 +32,8 @@ TEST(PipelineLibrary, AnEditOfOneStageCompilesOneLibrary) {
         lib.compile({dir / "rt.rgen"}), lib.compile({dir / "rt.rmiss"}), lib.compile({dir / "rt.rchit"}),
         lib.compile({dir / "rt.rahit"})};
   };
-  const std::vector<vk::RtShaderGroup> groups = {{0, -1, -1, -1}, {1, -1, -1, -1}, {-1, 2, 3, -1}};
+  vk::RtBindingTable groups;
+  groups.raygen("rt.rgen").miss("rt.rmiss").hitGroup({.closestHit = "rt.rchit", .anyHit = "rt.rahit"});
   const auto stages = compileAll();
   EXPECT_GT(stages[0]->reflection.rayPayloadBytes, 0u);
   EXPECT_GT(stages[2]->reflection.hitAttributeBytes, 0u);
@@ -41,16 +42,15 @@ TEST(PipelineLibrary, AnEditOfOneStageCompilesOneLibrary) {
   vk::RtLibraryCache cache(ctx);
   const std::string layoutId = vk::layoutKey(layoutDesc);
 
-  auto first =
-      std::make_unique<vk::RayTracingPipeline>(ctx, stages, groups, 1, layout.handle(), 1,
-                                               std::vector<vk::SpecializationConstant>{}, &cache, layoutId);
+  auto first = std::make_unique<vk::RayTracingPipeline>(
+      ctx, stages, groups, layout.handle(), 1, std::vector<vk::SpecializationConstant>{}, &cache, layoutId);
   EXPECT_TRUE(first->linked());
   EXPECT_EQ(cache.librariesCreated(), 3u) << "one library per group";
   EXPECT_EQ(first->libraryStats().librariesCompiled, 3u);
   EXPECT_EQ(first->libraryStats().librariesReused, 0u);
   EXPECT_GT(first->libraryStats().libraryMs, 0.0);
   EXPECT_GT(first->libraryStats().linkMs, 0.0);
-  vk::RayTracingPipeline again(ctx, stages, groups, 1, layout.handle(), 1, {}, &cache, layoutId);
+  vk::RayTracingPipeline again(ctx, stages, groups, layout.handle(), 1, {}, &cache, layoutId);
   EXPECT_EQ(cache.librariesCreated(), 3u) << "unchanged stages reuse their libraries";
   EXPECT_EQ(again.libraryStats().librariesCompiled, 0u);
   EXPECT_EQ(again.libraryStats().librariesReused, 3u);
@@ -67,7 +67,7 @@ TEST(PipelineLibrary, AnEditOfOneStageCompilesOneLibrary) {
   const auto edited = compileAll();
   ASSERT_NE(edited[2]->spirv, stages[2]->spirv);
   ASSERT_EQ(edited[0].get(), stages[0].get());
-  vk::RayTracingPipeline afterEdit(ctx, edited, groups, 1, layout.handle(), 1, {}, &cache, layoutId);
+  vk::RayTracingPipeline afterEdit(ctx, edited, groups, layout.handle(), 1, {}, &cache, layoutId);
   EXPECT_EQ(cache.librariesCreated(), 4u);
   EXPECT_EQ(afterEdit.libraryStats().librariesCompiled, 1u);
   EXPECT_EQ(afterEdit.libraryStats().librariesReused, 2u);

@@ -8,8 +8,8 @@
 
 namespace wb::testing {
 
-Estimate estimateMean(app::RenderSession& session, render::RenderSettings settings, int batches, uint32_t spp,
-                      uint32_t seedBase) {
+Estimate estimateMean(render::RenderSession& session, render::RenderSettings settings, int batches,
+                      uint32_t spp, uint32_t seedBase) {
   settings.sampler = render::SamplerKind::Pcg;
   const size_t pixels = size_t(settings.width) * settings.height;
   std::vector<double> sum(pixels, 0.0), sum2(pixels, 0.0);

@@ -51,7 +51,7 @@ int classify(const ShadowScene& s, const render::CameraState& cam, uint32_t w, u
 
 TEST(Render, ShadowFallsWhereGeometryBlocksTheSunAndLambertMatchesAnalytic) {
   ShadowScene s = makeShadowScene();
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = s.scene;
   o.settings.width = 64;
   o.settings.height = 64;
@@ -95,7 +95,7 @@ TEST(Render, ShadowFallsWhereGeometryBlocksTheSunAndLambertMatchesAnalytic) {
 }
 
 TEST(Render, SharedGltfModelIsNotBlackAndFinite) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.scenePath = (sharedDir() / "assets/gltf/Box/glTF-Embedded/Box.gltf").string();
   o.settings.width = 48;
   o.settings.height = 48;
@@ -110,7 +110,7 @@ TEST(Render, SharedGltfModelIsNotBlackAndFinite) {
 TEST(Render, TiledDispatchGivesTheSameImage) {
   // The sample streams depend on the pixel, not on the dispatch: any tiling renders the same pixels.
   auto renderWith = [](uint32_t tw, uint32_t th) {
-    app::SessionOptions o;
+    render::SessionOptions o;
     o.sceneData = makeShadowScene().scene;
     o.settings.width = 40;
     o.settings.height = 24;

@@ -28,7 +28,7 @@ std::filesystem::path sunHdr() {
 
 void renderHardCases(float scale) {
   const auto hdr = sunHdr();
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = scaledScene(makeHardCasesScene(), scale);
   o.settings.width = 48;
   o.settings.height = 48;
@@ -60,7 +60,7 @@ void renderHardCases(float scale) {
 }
 
 double furnace(float scale, glm::vec3 offset = glm::vec3(0.0f)) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   scene::Scene sc = scaledScene(makeFurnaceScene(lambert(glm::vec3(1.0f))), scale);
   sc.instances[0].transform[3] += glm::vec4(offset, 0.0f);
   sc.camera.eye += offset;
@@ -141,7 +141,7 @@ TEST(Alpha, MaskBlendAndOpaque) {
   sc.camera.yfov = 0.9f;
   sc.bounds = {glm::vec3(-20, 0, -20), glm::vec3(20, 1, 20)};
 
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = sc;
   o.settings.width = 96;
   o.settings.height = 48;
@@ -221,7 +221,7 @@ TEST(Aov, AlbedoAndNormalOfALambertPlane) {
   sc.camera.up = glm::vec3(0, 1, 0);
   sc.camera.yfov = 0.8f;
   sc.bounds = {glm::vec3(-100, 0, -100), glm::vec3(100, 0, 100)};
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = sc;
   o.settings.width = 32;
   o.settings.height = 32;
@@ -268,7 +268,7 @@ TEST(NonFiniteSamples, AreCountedAndNeverAccumulated) {
     sc.camera.target = glm::vec3(0.0f, 0.0f, 0.0f);
     sc.camera.yfov = 0.5f;
     sc.bounds = {glm::vec3(-100, 0, -100), glm::vec3(100, 0.1f, 100)};
-    app::SessionOptions o;
+    render::SessionOptions o;
     o.sceneData = sc;
     o.settings.width = 16;
     o.settings.height = 16;

@@ -15,7 +15,7 @@ using namespace wb::testing;
 
 namespace {
 
-eval::ImageRGBA render(app::SessionOptions o, bool generic) {
+eval::ImageRGBA render(render::SessionOptions o, bool generic) {
   o.settings.width = 32;
   o.settings.height = 32;
   o.settings.generic = generic;
@@ -27,14 +27,14 @@ eval::ImageRGBA render(app::SessionOptions o, bool generic) {
 }
 
 eval::ImageRGBA renderScene(const std::string& path, bool generic) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.scenePath = path;
   return render(o, generic);
 }
 
 // A scene built in code, lit by its lights alone.
 eval::ImageRGBA renderSceneData(const scene::Scene& scene, bool generic) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = scene;
   o.settings.envColor = glm::vec3(0.0f);
   return render(o, generic);
@@ -135,7 +135,7 @@ TEST(Specialization, GenericBuildShadesMoreDirectionalLightsThanItsDefaultCapaci
 }
 
 TEST(Specialization, SwitchingVariantsReusesCompiledShaders) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = makeShadowScene().scene;
   o.settings.width = 16;
   o.settings.height = 16;
@@ -175,7 +175,7 @@ TEST(Specialization, CpuDeviceCodeIsAVariantOfItsOwn) {
 TEST(Specialization, CpuAndGpuShapedCodeRenderTheSameImage) {
   auto renderShaped = [](bool cpu) {
     ::setenv("WB_CPU_DEVICE_CODE", cpu ? "1" : "0", 1);
-    app::SessionOptions o;
+    render::SessionOptions o;
     o.settings.width = 32;
     o.settings.height = 32;
     auto session = makeSession(o);

@@ -68,7 +68,7 @@ void expectClean(const char* what, const Estimate& e) {
 // sun.
 TEST(Unbiased, MisLightOnlyAndBrdfOnlyAgree) {
   const auto clamped = clampedGarden(100.0f);
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
   o.settings = envSettings();
   o.settings.envPath = clamped.string();
@@ -98,7 +98,7 @@ TEST(Unbiased, MisLightOnlyAndBrdfOnlyAgree) {
 }
 
 TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
   o.settings = envSettings();
   auto session = makeSession(o);
@@ -116,7 +116,7 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
 // Russian roulette only reweights surviving paths: on, off, and from the first bounce with a tight survival
 // clamp (every path survives with probability 0.3 exactly) estimate the same image.
 TEST(Unbiased, RussianRouletteOnOffAndAggressiveAgree) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
   o.settings = envSettings();
   o.settings.maxBounces = 6;
@@ -142,7 +142,7 @@ TEST(Unbiased, RussianRouletteOnOffAndAggressiveAgree) {
 // every pixel exactly (same samples: importance sampling, MIS and Russian roulette do not depend on
 // intensity).
 TEST(Environment, FullTurnRotationIsIdentityAndIntensityScales) {
-  app::SessionOptions o;
+  render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
   o.settings = envSettings();
   auto session = makeSession(o);

@@ -14,7 +14,7 @@
 
 #include "common/paths.h"
 #include "vk/context.h"
-#include "vk/driver_env.h"
+#include "vk/driver_policy.h"
 
 using namespace wb::vk;
 
@@ -125,13 +125,13 @@ TEST(Context, WhatAnInstanceLoadedStaysLoadedAfterIt) {
   for (const auto& n : loadedByContext) EXPECT_TRUE(after.count(n)) << n << " was unloaded";
 }
 
-// The workbench's llvmpipe default (vk/driver_env.h) reaches the driver: set before the driver reads it, at
-// the process's first instance, with a Mesa cache folder of its own width.
+// The workbench's llvmpipe default (vk/driver_policy.h) reaches the driver: set before the driver reads it,
+// at the process's first instance, with a Mesa cache folder of its own width.
 TEST(Context, LlvmpipeCompilesFourLanesWideUnlessTheUserChoseAWidth) {
   const auto applied = applyDriverDefaults(wb::shaderCacheDir());
   const bool ours = std::find(applied.begin(), applied.end(), "LP_NATIVE_VECTOR_WIDTH=128") != applied.end();
   Context ctx;
-  if (!ctx.cpuDevice()) GTEST_SKIP() << "not lavapipe: " << ctx.deviceName();
+  if (!ctx.policy().compilesAtFirstDispatch) GTEST_SKIP() << "not lavapipe: " << ctx.deviceName();
   if (!ours) {
     GTEST_SKIP() << "LP_NATIVE_VECTOR_WIDTH or MESA_SHADER_CACHE_DIR set by the user";
   }

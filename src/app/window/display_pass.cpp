@@ -5,10 +5,6 @@
 
 namespace wb::app {
 
-PreparedDisplayPipeline::~PreparedDisplayPipeline() {
-  if (pipeline) vkDestroyPipeline(device, pipeline, nullptr);
-}
-
 std::vector<shader::ShaderKey> DisplayPass::stageKeys() {
   const auto dir = shaderDir() / "display";
   return {{dir / "fullscreen.vert", std::nullopt, {}}, {dir / "display.frag", std::nullopt, {}}};
@@ -17,7 +13,7 @@ std::vector<shader::ShaderKey> DisplayPass::stageKeys() {
 DisplayPass::DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRenderPass renderPass)
     : ctx_(ctx), renderPass_(renderPass) {
   program_ = library.registerProgram("display", stageKeys());
-  commit(prepare(library.buildProgram(program_)));
+  install(build(library.buildProgram(program_)));
 }
 
 DisplayPass::~DisplayPass() {
@@ -26,11 +22,10 @@ DisplayPass::~DisplayPass() {
   current_.reset();
 }
 
-std::unique_ptr<PreparedDisplayPipeline> DisplayPass::prepare(
+std::unique_ptr<vk::BuiltPipeline> DisplayPass::build(
     const shader::ShaderLibrary::ProgramBuild& build) const {
-  auto prepared = std::make_unique<PreparedDisplayPipeline>();
-  prepared->device = ctx_.device();
-  prepared->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
+  auto built = std::make_unique<vk::BuiltPipeline>();
+  built->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
 
   std::vector<vk::ShaderModule> modules;  // only needed while the pipeline is created
   std::vector<VkPipelineShaderStageCreateInfo> stages;
@@ -72,16 +67,18 @@ std::unique_ptr<PreparedDisplayPipeline> DisplayPass::prepare(
   ci.pMultisampleState = &ms;
   ci.pColorBlendState = &blend;
   ci.pDynamicState = &dyn;
-  ci.layout = prepared->layout->handle();
+  ci.layout = built->layout->handle();
   ci.renderPass = renderPass_;
-  WB_VK(vkCreateGraphicsPipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &prepared->pipeline));
-  return prepared;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  WB_VK(vkCreateGraphicsPipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &pipeline));
+  built->other = vk::OwnedPipeline(ctx_.device(), pipeline);
+  return built;
 }
 
-void DisplayPass::commit(std::unique_ptr<PreparedDisplayPipeline> prepared) {
+void DisplayPass::install(std::unique_ptr<vk::BuiltPipeline> pipeline) {
   vkDeviceWaitIdle(ctx_.device());
   sets_.reset();
-  current_ = std::move(prepared);
+  current_ = std::move(pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *current_->layout);
   writeDescriptors();
 }
@@ -108,7 +105,7 @@ void DisplayPass::record(VkCommandBuffer cmd, const gpu::DisplayPush& push) cons
                    {uint32_t(push.viewRect.z), uint32_t(push.viewRect.w)}};
   vkCmdSetViewport(cmd, 0, 1, &vp);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, current_->pipeline);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, current_->handle());
   const auto& sets = sets_->sets();
   if (!sets.empty()) {
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, current_->layout->handle(), 0,

@@ -1,22 +1,15 @@
 // The display pass: a fullscreen triangle whose fragment shader reads the path tracer's accumulation and AOV
 // images and applies exposure, a tonemapper and sRGB (shaders/display/). Its layout is reflected from the
-// shaders; like the path tracer it hot reloads in two steps (prepare off the frame path, commit at a frame
+// shaders; like the renderers it hot reloads in two steps (build off the frame path, install at a frame
 // boundary), so a broken edit keeps the last good pipeline on screen.
 #pragma once
 #include <memory>
 
 #include "display/display_types.h"
 #include "shader/library.h"
-#include "vk/pipeline_layout.h"
+#include "vk/built_pipeline.h"
 
 namespace wb::app {
-
-struct PreparedDisplayPipeline {
-  std::unique_ptr<vk::PipelineLayout> layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;
-  ~PreparedDisplayPipeline();
-};
 
 // The storage images the display reads (all in GENERAL layout).
 struct DisplaySources {
@@ -35,8 +28,8 @@ class DisplayPass {
   static std::vector<shader::ShaderKey> stageKeys();
   shader::ShaderLibrary::ProgramId program() const { return program_; }
 
-  std::unique_ptr<PreparedDisplayPipeline> prepare(const shader::ShaderLibrary::ProgramBuild& build) const;
-  void commit(std::unique_ptr<PreparedDisplayPipeline> prepared);  // waits for the device
+  std::unique_ptr<vk::BuiltPipeline> build(const shader::ShaderLibrary::ProgramBuild& build) const;
+  void install(std::unique_ptr<vk::BuiltPipeline> pipeline);  // waits for the device
 
   // Rewrites the descriptors when an image changed (call between frames, when the last frame finished).
   void setSources(const DisplaySources& sources);
@@ -49,7 +42,7 @@ class DisplayPass {
   vk::Context& ctx_;
   VkRenderPass renderPass_;
   shader::ShaderLibrary::ProgramId program_ = 0;
-  std::unique_ptr<PreparedDisplayPipeline> current_;
+  std::unique_ptr<vk::BuiltPipeline> current_;
   std::unique_ptr<vk::DescriptorSets> sets_;
   DisplaySources sources_;
 };

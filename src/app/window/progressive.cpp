@@ -132,12 +132,12 @@ uint64_t ProgressiveTracer::record(VkCommandBuffer cmd) {
   while (traced + w <= pixelBudget || traced == 0) {
     const uint32_t rows =
         std::min<uint32_t>(h - cursor_, std::max<uint32_t>(1u, uint32_t((pixelBudget - traced) / w)));
-    tracer_.record(cmd, render::PixelRegion{0, cursor_, w, rows});
+    tracer_.recordRegion(cmd, render::PixelRegion{0, cursor_, w, rows});
     traced += uint64_t(rows) * w;
     cursor_ += rows;
     if (cursor_ >= h) {
       cursor_ = 0;
-      tracer_.advanceSample();
+      tracer_.advance();
       ++expectedSamples_;
       if (done() || (inPreview_ && tracer_.samplesAccumulated() >= options_.previewSamples)) break;
       if (options_.stopAtSamples && tracer_.samplesAccumulated() >= options_.stopAtSamples) break;

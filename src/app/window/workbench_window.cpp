@@ -28,14 +28,15 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   uint32_t extCount = 0;
   const char** exts = glfwGetRequiredInstanceExtensions(&extCount);
   if (!exts) throw std::runtime_error("GLFW found no Vulkan surface support on this display");
-  SessionOptions so;
+  render::SessionOptions so;
   so.scenePath = o.render.scene;
   so.settings = state_.settings;
   so.settings.width = so.settings.height = 64;  // resized to the view once the window is laid out
   so.context.deviceName = o.render.device;
   so.context.instanceExtensions.assign(exts, exts + extCount);
   so.context.presentation = true;
-  session_ = std::make_unique<RenderSession>(so);
+  so.hybrid = o.render.hybrid;  // the mode is applied with the first frame, at the trace size
+  session_ = std::make_unique<render::RenderSession>(so);
   auto& ctx = session_->context();
 
   VkSurfaceKHR surface = VK_NULL_HANDLE;
@@ -58,6 +59,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   hot_ = std::make_unique<render::HotReload>(session_->library(),
                                              std::vector<std::filesystem::path>{shaderDir()});
   registerHotReload();
+  session_->attachHotReload(hot_.get());  // every renderer, the modes made later too
   hot_->start();
 
   VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -103,38 +105,17 @@ WorkbenchWindow::~WorkbenchWindow() {
   display_.reset();
   swapchain_.reset();
   progressive_.reset();
-  hot_.reset();
-  for (auto& h : hybrids_) h.reset();
-  auto& tracer = session_->pathTracer();
-  (void)tracer;
-  session_.reset();  // the tracer goes before environment_
-  environment_.reset();
+  session_->attachHotReload(nullptr);
+  hot_.reset();  // its targets point at the session's renderers
+  session_.reset();
 }
 
 void WorkbenchWindow::registerHotReload() {
-  auto& tracer = session_->pathTracer();
-  if (std::find(hotTargets_.begin(), hotTargets_.end(), tracer.program()) == hotTargets_.end()) {
-    tracer.addHotReloadTarget(*hot_);
-    hotTargets_.push_back(tracer.program());
-  }
   DisplayPass* display = display_.get();
-  if (std::find(hotTargets_.begin(), hotTargets_.end(), display->program()) == hotTargets_.end()) {
-    hot_->addTarget(display->program(),
-                    {"display",
-                     [display](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
-                       return std::shared_ptr<PreparedDisplayPipeline>(display->prepare(b));
-                     },
-                     [display](std::shared_ptr<void> p) {
-                       auto prepared = std::static_pointer_cast<PreparedDisplayPipeline>(p);
-                       auto owned = std::make_unique<PreparedDisplayPipeline>();
-                       owned->layout = std::move(prepared->layout);
-                       owned->pipeline = prepared->pipeline;
-                       owned->device = prepared->device;
-                       prepared->pipeline = VK_NULL_HANDLE;
-                       display->commit(std::move(owned));
-                     }});
-    hotTargets_.push_back(display->program());
-  }
+  hot_->addTarget(
+      display->program(),
+      {"display", [display](const shader::ShaderLibrary::ProgramBuild& b) { return display->build(b); },
+       [display](std::unique_ptr<vk::BuiltPipeline> p) { display->install(std::move(p)); }});
 }
 
 void WorkbenchWindow::scriptCommand(const std::string& name) {
@@ -153,59 +134,21 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
   return {std::floor(view.x + (view.w - w) * 0.5f), std::floor(view.y + (view.h - h) * 0.5f), w, h};
 }
 
-render::HybridRenderer* WorkbenchWindow::activeHybrid() const {
-  switch (state_.mode) {
-    case render::RenderMode::Hybrid:
-      return hybrids_[0].get();
-    case render::RenderMode::Reflections:
-      return hybrids_[1].get();
-    default:
-      return nullptr;
-  }
-}
-
-const render::GpuEnvironment& WorkbenchWindow::currentEnvironment() const {
-  return environment_ ? *environment_ : session_->environment();
-}
-
-render::HybridRenderer* WorkbenchWindow::ensureHybrid() {
-  if (state_.mode == render::RenderMode::PathTrace) return nullptr;
-  auto& slot = hybrids_[state_.mode == render::RenderMode::Hybrid ? 0 : 1];
-  if (!slot) {
-    render::RenderSettings s = state_.settings;
-    s.width = progressive_->targetWidth();
-    s.height = progressive_->targetHeight();
-    slot = std::make_unique<render::HybridRenderer>(session_->context(), session_->library(),
-                                                    session_->gpuScene(), session_->scene(),
-                                                    currentEnvironment(), s, state_.mode, state_.hybrid);
-    slot->setCamera(camera_.state());
-    slot->setLights(state_.lights);
-    slot->addHotReloadTargets(*hot_);
-  }
-  return slot.get();
+void WorkbenchWindow::applyMode() {
+  if (session_->mode() == state_.mode) return;
+  render::RenderSettings s = state_.settings;
+  s.width = progressive_->targetWidth();
+  s.height = progressive_->targetHeight();
+  session_->setMode(state_.mode, s);
 }
 
 uint32_t WorkbenchWindow::currentSamples() const {
-  if (const auto* h = activeHybrid()) return h->framesAccumulated();
+  if (const auto* h = activeHybrid()) return h->samplesAccumulated();
   return progressive_->samples();
 }
 
 eval::ImageRGBA WorkbenchWindow::currentImage() {
-  if (auto* h = activeHybrid()) {
-    eval::ImageRGBA img;
-    img.width = h->settings().width;
-    img.height = h->settings().height;
-    img.pixels = h->readOutput();
-    for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-    return img;
-  }
-  eval::ImageRGBA img;
-  const auto& tracer = session_->pathTracer();
-  img.width = tracer.settings().width;
-  img.height = tracer.settings().height;
-  img.pixels = tracer.readAccumulation();
-  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-  return img;
+  return session_->image();
 }
 
 void WorkbenchWindow::updateLiveError() {
@@ -213,8 +156,8 @@ void WorkbenchWindow::updateLiveError() {
   // a sample has just finished (the progressive tracer stops at sample ends when a checkpoint is due).
   auto* h = activeHybrid();
   if (!h && (progressive_->inPreview() || progressive_->cursorRow() != 0)) return;
-  if (h && h->framesAccumulated() < hybridFramesSeen_) ++hybridGeneration_;  // reset by a pipeline commit
-  if (h) hybridFramesSeen_ = h->framesAccumulated();
+  if (h && h->samplesAccumulated() < hybridFramesSeen_) ++hybridGeneration_;  // reset by a pipeline install
+  if (h) hybridFramesSeen_ = h->samplesAccumulated();
   const uint64_t generation = h ? hybridGeneration_ * 2 + 1 : progressive_->generation() * 2;
   if (generation != errorGeneration_) {
     liveError_.restart();

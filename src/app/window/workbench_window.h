@@ -16,7 +16,6 @@
 #include <nlohmann/json.hpp>
 
 #include "app/render_options.h"
-#include "app/render_session.h"
 #include "app/window/camera_controller.h"
 #include "app/window/capture.h"
 #include "app/window/display_pass.h"
@@ -29,6 +28,7 @@
 #include "app/window/workbench_state.h"
 #include "eval/live_error.h"
 #include "render/hot_reload.h"
+#include "render/render_session.h"
 #include "vk/swapchain.h"
 
 namespace wb::app {
@@ -73,7 +73,7 @@ class WorkbenchWindow : public ScriptHost {
   void scriptResize(int width, int height) override { glfwSetWindowSize(window_, width, height); }
   size_t reloadCount() const override { return hot_->history().size(); }
   uint32_t samples() const override {
-    if (activeHybrid()) return activeHybrid()->framesAccumulated();
+    if (activeHybrid()) return activeHybrid()->samplesAccumulated();
     return progressive_->inPreview() ? 0 : progressive_->samples();
   }
 
@@ -88,10 +88,10 @@ class WorkbenchWindow : public ScriptHost {
   Rect imageRect(const Rect& view) const;
   void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const Rect& image);
   void readTimestamps();
-  // The hybrid renderer of the current mode (nullptr when path tracing); made on first use.
-  render::HybridRenderer* activeHybrid() const;
-  render::HybridRenderer* ensureHybrid();
-  const render::GpuEnvironment& currentEnvironment() const;
+  // The hybrid renderer of the current mode (nullptr when path tracing).
+  render::HybridRenderer* activeHybrid() const { return session_->hybrid(); }
+  // Makes the state's mode the session's (its renderer is made on first use, at the trace size).
+  void applyMode();
   uint32_t currentSamples() const;  // finished samples (path tracer) or frames (hybrid modes)
   eval::ImageRGBA currentImage();   // linear radiance of what is shown (waits for the device)
   void updateLiveError();
@@ -100,16 +100,13 @@ class WorkbenchWindow : public ScriptHost {
   WindowOptions options_;
   WorkbenchState state_;
   WorkbenchState applied_;  // what the renderer has
-  std::unique_ptr<RenderSession> session_;
+  std::unique_ptr<render::RenderSession> session_;
   std::unique_ptr<vk::Swapchain> swapchain_;
   std::unique_ptr<DisplayPass> display_;
   std::unique_ptr<GuiLayer> gui_;
   std::unique_ptr<render::HotReload> hot_;
   std::unique_ptr<ProgressiveTracer> progressive_;
-  std::unique_ptr<render::GpuEnvironment> environment_;  // replaces the session's after an env change
   std::unique_ptr<SwapchainCapture> capture_;
-  // [0] hybrid, [1] reflections; kept once made (their hot reload targets point at them).
-  std::array<std::unique_ptr<render::HybridRenderer>, 2> hybrids_;
   uint64_t hybridGeneration_ = 0;
   uint64_t hybridResets_ = 0;  // accumulation restarts while a hybrid mode was shown
   uint32_t hybridFramesSeen_ = 0;
@@ -118,7 +115,6 @@ class WorkbenchWindow : public ScriptHost {
   eval::LiveError liveError_;
   std::string referenceTried_;
   uint64_t errorGeneration_ = ~0ull;
-  std::vector<shader::ShaderLibrary::ProgramId> hotTargets_;
   CameraController camera_;
   bool cameraChanged_ = true;
   std::optional<PickResult> pick_;

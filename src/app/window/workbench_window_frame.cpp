@@ -36,11 +36,11 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
   lastFrameHybrid_ = hybrid != nullptr;
   if (hybrid) {
     const bool run =
-        !state_.paused && (state_.targetSpp == 0 || hybrid->framesAccumulated() < state_.targetSpp);
+        !state_.paused && (state_.targetSpp == 0 || hybrid->samplesAccumulated() < state_.targetSpp);
     tracedPixels_ = 0;
     if (run) {
       hybrid->record(cmd);
-      hybrid->advanceFrame();
+      hybrid->advance();
       tracedPixels_ = uint64_t(hybrid->settings().width) * hybrid->settings().height;
     }
   } else {
@@ -91,7 +91,7 @@ int WorkbenchWindow::run() {
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
   // cores (render/hot_reload.h): the panel and the present cost ~20 ms per frame on lavapipe besides the
   // trace budget, and without rests an edit took 2.6-3.0 s to reach the window instead of 1.3-1.6 s.
-  const double restRatio = render::rebuildRestRatio(ctx.cpuDevice(), render::kWindowShareWhileCompiling);
+  const double restRatio = ctx.policy().windowRestRatio;
   int exitCode = 0;
   while (!glfwWindowShouldClose(window_) && !state_.quit) {
     glfwPollEvents();
@@ -108,7 +108,7 @@ int WorkbenchWindow::run() {
         for (auto t = end; hot_->compiling() && t < until; t = Clock::now())
           glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
       }
-      counters_ = session_->pathTracer().readCounters();
+      counters_ = session_->renderer().readCounters();
       updateLiveError();
       if (!captureTarget_.empty()) {
         capture_->write(captureTarget_);
@@ -257,7 +257,7 @@ int WorkbenchWindow::run() {
   if (frameInFlight_) {
     vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
     readTimestamps();
-    counters_ = session_->pathTracer().readCounters();
+    counters_ = session_->renderer().readCounters();
     if (!captureTarget_.empty()) {
       capture_->write(captureTarget_);
       std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());

@@ -18,9 +18,7 @@ void WorkbenchWindow::applyState() {
     st.resetCamera = false;
   }
   if (cameraChanged_) {
-    tracer.setCamera(camera_.state());
-    for (auto& h : hybrids_)
-      if (h) h->setCamera(camera_.state());
+    session_->setCamera(camera_.state());
     cameraChanged_ = false;
     restart = true;
   }
@@ -38,9 +36,7 @@ void WorkbenchWindow::applyState() {
     restart = true;
   }
   if (st.lightsDirty) {
-    session_->gpuScene().updateLights(st.lights);
-    for (auto& h : hybrids_)
-      if (h) h->setLights(st.lights);
+    session_->setLights(st.lights);
     st.lightsDirty = false;
     restart = true;
   }
@@ -49,11 +45,7 @@ void WorkbenchWindow::applyState() {
   const bool envChanged = s.envPath != a.envPath || (s.envPath.empty() && s.envColor != a.envColor);
   if (envChanged) {
     try {
-      auto env = std::make_unique<render::GpuEnvironment>(session_->context(), loadEnvironmentData(s));
-      tracer.setEnvironment(*env);
-      for (auto& h : hybrids_)
-        if (h) h->setEnvironment(*env);
-      environment_ = std::move(env);  // the previous one is no longer referenced (setEnvironment waited)
+      session_->setEnvironment(s);
       st.envError.clear();
     } catch (const std::exception& e) {
       st.envError = e.what();
@@ -67,10 +59,11 @@ void WorkbenchWindow::applyState() {
       s.seed != a.seed || s.envIntensity != a.envIntensity || s.envRotationDeg != a.envRotationDeg ||
       s.envColor != a.envColor || s.envPath != a.envPath || s.generic != a.generic || s.defines != a.defines;
   if (settingsChanged) {
-    const auto features = featuresFor(session_->scene(), s);
-    if (tracer.setFeatures(features)) registerHotReload();
+    const auto features = render::featuresFor(session_->scene(), s);
+    if (tracer.setFeatures(features)) hot_->addRenderer(tracer);  // the new variant's program
     progressive_->setSettings(s);
-    for (auto& h : hybrids_) {
+    for (auto mode : {render::RenderMode::Hybrid, render::RenderMode::Reflections}) {
+      auto* h = session_->rendererFor(mode);
       if (!h) continue;
       render::RenderSettings hs = s;
       hs.width = h->settings().width;
@@ -85,12 +78,11 @@ void WorkbenchWindow::applyState() {
       hy.temporal != ha.temporal || hy.reflectionDepth != ha.reflectionDepth ||
       hy.reflectionMaxRoughness != ha.reflectionMaxRoughness ||
       hy.reflectionMinMetallic != ha.reflectionMinMetallic) {
-    for (auto& h : hybrids_)
-      if (h) h->setHybridSettings(hy);
+    session_->setHybridSettings(hy);
     restart = true;
   }
   if (st.mode != applied_.mode) restart = true;
-  if (st.mode != render::RenderMode::PathTrace) ensureHybrid();
+  applyMode();
   if (st.referencePath != referenceTried_) {
     referenceTried_ = st.referencePath;
     if (st.referencePath.empty()) {
@@ -118,9 +110,9 @@ void WorkbenchWindow::applyState() {
   opts.paused = st.paused;
   opts.preview = st.preview;
   opts.budgetMs = st.budgetMs;
-  // A rebuild compiling on a CPU device gets most of the cores (render/hot_reload.h).
-  if (session_->context().cpuDevice() && hot_ && hot_->compiling())
-    opts.budgetMs = st.budgetMs * render::kCpuRenderShareWhileCompiling;
+  // A rebuild compiling gets the share of the cores the device's policy gives it.
+  if (hot_ && hot_->compiling())
+    opts.budgetMs = st.budgetMs * session_->context().policy().windowTraceShareWhileCompiling;
   if (restart) {
     progressive_->invalidate();
     if (auto* h = activeHybrid()) {

@@ -7,7 +7,6 @@
 
 #include "common/half.h"
 #include "common/paths.h"
-#include "render/jit_warmup.h"
 #include "vk/shader_module.h"
 
 namespace wb::render {
@@ -32,39 +31,6 @@ glm::mat4 reversedInfinitePerspective(float yfov, float aspect, float znear) {
 }
 
 }  // namespace
-
-const char* renderModeName(RenderMode m) {
-  switch (m) {
-    case RenderMode::Hybrid:
-      return "hybrid";
-    case RenderMode::Reflections:
-      return "reflections";
-    default:
-      return "pathtrace";
-  }
-}
-
-std::optional<RenderMode> parseRenderMode(const std::string& text) {
-  if (text == "pathtrace") return RenderMode::PathTrace;
-  if (text == "hybrid") return RenderMode::Hybrid;
-  if (text == "reflections") return RenderMode::Reflections;
-  return std::nullopt;
-}
-
-// A built pipeline of any kind with its layout.
-struct HybridRenderer::Prepared {
-  vk::Context* ctx = nullptr;
-  std::unique_ptr<vk::PipelineLayout> layout;
-  std::unique_ptr<vk::GraphicsPipeline> graphics;
-  std::unique_ptr<vk::RayTracingPipeline> rayTracing;
-  VkPipeline compute = VK_NULL_HANDLE;
-  ~Prepared() {
-    if (compute) vkDestroyPipeline(ctx->device(), compute, nullptr);
-  }
-  VkPipeline handle() const {
-    return graphics ? graphics->handle() : rayTracing ? rayTracing->handle() : compute;
-  }
-};
 
 const char* HybridRenderer::passName(Pass p) {
   switch (p) {
@@ -97,19 +63,18 @@ std::vector<shader::ShaderKey> HybridRenderer::stageKeys(Pass pass, const std::f
   }
 }
 
-HybridRenderer::HybridRenderer(vk::Context& ctx, shader::ShaderLibrary& library, const GpuScene& gpuScene,
-                               const scene::Scene& scene, const GpuEnvironment& env,
-                               const RenderSettings& settings, RenderMode mode, const HybridSettings& hybrid,
-                               const std::filesystem::path& shaderRoot)
-    : ctx_(ctx),
-      library_(library),
-      gpuScene_(gpuScene),
-      env_(&env),
+HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings& settings, RenderMode mode,
+                               const HybridSettings& hybrid, const std::filesystem::path& shaderRoot)
+    : ctx_(r.ctx),
+      library_(r.library),
+      gpuScene_(r.gpuScene),
+      env_(&r.environment),
       settings_(settings),
       mode_(mode == RenderMode::PathTrace ? RenderMode::Hybrid : mode),
       hybrid_(hybrid),
       shaderRoot_(shaderRoot.empty() ? shaderDir() : shaderRoot) {
   // One draw per (instance, primitive); GpuScene made one GeometryInfo per primitive, meshes in order.
+  const scene::Scene& scene = r.scene;
   std::vector<uint32_t> firstGeometry;
   uint32_t geometryCount = 0;
   for (const auto& mesh : scene.meshes) {
@@ -138,8 +103,8 @@ HybridRenderer::HybridRenderer(vk::Context& ctx, shader::ShaderLibrary& library,
   sci.minFilter = VK_FILTER_NEAREST;
   sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  WB_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &nearest_));
-  uniforms_ = vk::Buffer(ctx, sizeof(gpu::HybridUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  WB_VK(vkCreateSampler(ctx_.device(), &sci, nullptr, &nearest_));
+  uniforms_ = vk::Buffer(ctx_, sizeof(gpu::HybridUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   createImages();
 
   static const char* programNames[kPassCount] = {"hybrid-gbuffer", "hybrid-shadow-ao", "hybrid-reflections",
@@ -148,18 +113,8 @@ HybridRenderer::HybridRenderer(vk::Context& ctx, shader::ShaderLibrary& library,
     const Pass pass = static_cast<Pass>(i);
     if (!hasPass(pass)) continue;
     programs_[i] = library_.registerProgram(programNames[i], stageKeys(pass, shaderRoot_));
-    commitPipeline(pass, preparePipeline(pass, library_.buildProgram(programs_[i])));
+    installPipeline(programs_[i], buildPipeline(programs_[i], library_.buildProgram(programs_[i])));
   }
-  warmupEnabled_ = jitWarmupWanted(ctx);
-}
-
-std::vector<uint8_t> HybridRenderer::groupHandles(Pass p) const {
-  const auto& pl = pipelines_[size_t(p)];
-  return pl && pl->rayTracing ? pl->rayTracing->sbt().groupHandles() : std::vector<uint8_t>{};
-}
-
-uint32_t HybridRenderer::jitWarmups() const {
-  return warmup_.warmups();
 }
 
 HybridRenderer::~HybridRenderer() {
@@ -226,12 +181,26 @@ void HybridRenderer::writeDescriptors(Pass pass) {
   s.writeStorageImage(0, WB_BIND_HYBRID_OUTPUT, output_.view());
 }
 
-std::shared_ptr<void> HybridRenderer::preparePipeline(
-    Pass pass, const shader::ShaderLibrary::ProgramBuild& build) const {
-  auto p = std::make_shared<Prepared>();
-  p->ctx = &ctx_;
+std::optional<HybridRenderer::Pass> HybridRenderer::passOf(shader::ShaderLibrary::ProgramId program) const {
+  for (size_t i = 0; i < kPassCount; ++i)
+    if (hasPass(Pass(i)) && programs_[i] == program) return Pass(i);
+  return std::nullopt;
+}
+
+std::vector<RendererProgram> HybridRenderer::programs() const {
+  std::vector<RendererProgram> out;
+  for (size_t i = 0; i < kPassCount; ++i)
+    if (hasPass(Pass(i))) out.push_back({programs_[i], passName(Pass(i))});
+  return out;
+}
+
+std::unique_ptr<vk::BuiltPipeline> HybridRenderer::buildPipeline(
+    shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const {
+  const auto pass = passOf(program);
+  if (!pass) throw std::invalid_argument("program " + std::to_string(program) + " is not a hybrid pass");
+  auto p = std::make_unique<vk::BuiltPipeline>();
   p->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
-  switch (pass) {
+  switch (*pass) {
     case Pass::GBuffer: {
       vk::GraphicsPipelineDesc desc;
       desc.colorFormats = {kAlbedoFormat, kNormalFormat, kEmissiveFormat};
@@ -243,82 +212,75 @@ std::shared_ptr<void> HybridRenderer::preparePipeline(
       break;
     }
     case Pass::ShadowAo: {
-      // raygen; miss 0 = shadow rays, miss 1 = AO rays (the same "nothing hit" shader); one hit group with
-      // only the alpha any-hit (occlusion rays skip closest-hit).
-      const std::vector<vk::RtShaderGroup> groups = {
-          {0, -1, -1, -1}, {1, -1, -1, -1}, {1, -1, -1, -1}, {-1, -1, 2, -1}};
+      // Miss 0 = shadow rays, miss 1 = AO rays (the same "nothing hit" shader); one hit group with only the
+      // alpha any-hit (occlusion rays skip closest-hit).
+      vk::RtBindingTable table;
+      table.raygen("shadow_ao.rgen")
+          .miss("occlusion.rmiss")
+          .miss("occlusion.rmiss")
+          .hitGroup({.anyHit = "alpha.rahit"});
       p->rayTracing =
-          std::make_unique<vk::RayTracingPipeline>(ctx_, build.stages, groups, 2, p->layout->handle(), 1);
+          std::make_unique<vk::RayTracingPipeline>(ctx_, build.stages, table, p->layout->handle(), 1);
       break;
     }
     case Pass::Reflection: {
-      const std::vector<vk::RtShaderGroup> groups = {
-          {0, -1, -1, -1}, {1, -1, -1, -1}, {2, -1, -1, -1}, {-1, 3, 4, -1}};
+      // Miss 0 = reflected environment, miss 1 = occlusion (shadow rays of reflected hits).
+      vk::RtBindingTable table;
+      table.raygen("reflect.rgen")
+          .miss("reflect.rmiss")
+          .miss("occlusion.rmiss")
+          .hitGroup({.closestHit = "reflect.rchit", .anyHit = "alpha.rahit"});
       p->rayTracing = std::make_unique<vk::RayTracingPipeline>(
-          ctx_, build.stages, groups, 2, p->layout->handle(), 1,
+          ctx_, build.stages, table, p->layout->handle(), 1,
           std::vector<vk::SpecializationConstant>{{0, hybrid_.reflectionDepth}});
       break;
     }
     case Pass::Composite: {
-      const auto& s = build.stages.at(0);
-      const vk::ShaderModule module(ctx_.device(), *s);
+      const vk::ShaderModule module(ctx_.device(), *build.stages.at(0));
       VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
       ci.stage = module.stageInfo();
       ci.layout = p->layout->handle();
-      WB_VK(vkCreateComputePipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &p->compute));
+      VkPipeline compute = VK_NULL_HANDLE;
+      WB_VK(vkCreateComputePipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &compute));
+      p->other = vk::OwnedPipeline(ctx_.device(), compute);
       break;
     }
   }
   return p;
 }
 
-void HybridRenderer::commitPipeline(Pass pass, std::shared_ptr<void> prepared) {
-  auto p = std::static_pointer_cast<Prepared>(prepared);
+void HybridRenderer::installPipeline(shader::ShaderLibrary::ProgramId program,
+                                     std::unique_ptr<vk::BuiltPipeline> pipeline) {
+  const auto pass = passOf(program);
+  if (!pass) return;
   vkDeviceWaitIdle(ctx_.device());  // the old pipeline and descriptor sets may still be in flight
-  const size_t i = size_t(pass);
+  const size_t i = size_t(*pass);
   sets_[i].reset();
-  pipelines_[i] = std::make_unique<Prepared>();
-  pipelines_[i]->ctx = p->ctx;
-  pipelines_[i]->layout = std::move(p->layout);
-  pipelines_[i]->graphics = std::move(p->graphics);
-  pipelines_[i]->rayTracing = std::move(p->rayTracing);
-  pipelines_[i]->compute = std::exchange(p->compute, VK_NULL_HANDLE);
+  pipelines_[i] = std::move(pipeline);
   sets_[i] = std::make_unique<vk::DescriptorSets>(ctx_, *pipelines_[i]->layout);
-  writeDescriptors(pass);
+  writeDescriptors(*pass);
   builds_[i]++;
   frameIndex_ = 0;
 }
 
-void HybridRenderer::addHotReloadTargets(HotReload& hot) {
-  auto makeWarmup = [this] {
-    return std::make_unique<HybridJitWarmup>(ctx_, library_.options(), mode_, hybrid_, shaderRoot_);
-  };
-  if (warmupEnabled_) warmup_.makeAhead(makeWarmup);
-  for (size_t i = 0; i < kPassCount; ++i) {
-    const Pass pass = static_cast<Pass>(i);
-    if (!hasPass(pass)) continue;
-    hot.addTarget(programs_[i],
-                  {passName(pass),
-                   [this, pass, makeWarmup](const shader::ShaderLibrary::ProgramBuild& b) {
-                     // As the path tracer's: the warm-up device compiles the pipeline beside this one's
-                     // creation.
-                     const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
-                     std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran (or a raster pass)
-                     auto prepared = prepareBesideWarmup(
-                         warmupEnabled_, [&] { return preparePipeline(pass, b); },
-                         [&] {
-                           if (auto* w = warmup_.warmOrRenew(makeWarmup, [&](HybridJitWarmup& x) {
-                                 return x.warm(pass, b, hybrid_, handlesBefore);
-                               }))
-                             warmedHandles = w->groupHandles(pass);
-                         });
-                     const auto* p = static_cast<const Prepared*>(prepared.get());
-                     if (!warmedHandles.empty() && p->rayTracing &&
-                         warmedHandles != p->rayTracing->sbt().groupHandles())
-                       ++warmupMismatches_;
-                     return prepared;
-                   },
-                   [this, pass](std::shared_ptr<void> p) { commitPipeline(pass, std::move(p)); }});
+uint32_t HybridRenderer::pipelineInstalls() const {
+  uint32_t n = 0;
+  for (uint32_t b : builds_) n += b;
+  return n;
+}
+
+std::unique_ptr<Renderer> HybridRenderer::makeLike(const RendererResources& resources,
+                                                   const RenderSettings& settings) const {
+  return std::make_unique<HybridRenderer>(resources, settings, mode_, hybrid_, shaderRoot_);
+}
+
+void HybridRenderer::matchCompiledParameters(const Renderer& other) {
+  // The reflection depth is a specialisation constant: a new one rebuilds the reflection pipeline.
+  const auto& o = dynamic_cast<const HybridRenderer&>(other).hybrid_;
+  if (o.reflectionDepth != hybrid_.reflectionDepth) {
+    HybridSettings h = hybrid_;
+    h.reflectionDepth = o.reflectionDepth;
+    setHybridSettings(h);
   }
 }
 
@@ -361,7 +323,7 @@ void HybridRenderer::setHybridSettings(const HybridSettings& hybrid) {
   hybrid_ = hybrid;
   if (depthChanged && hasPass(Pass::Reflection)) {
     const auto id = programs_[size_t(Pass::Reflection)];
-    commitPipeline(Pass::Reflection, preparePipeline(Pass::Reflection, library_.buildProgram(id)));
+    installPipeline(id, buildPipeline(id, library_.buildProgram(id)));
   }
   frameIndex_ = 0;
 }
@@ -499,15 +461,13 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
   vk::memoryBarrier(cmd);
 }
 
-std::vector<double> HybridRenderer::render(uint32_t frames) {
-  std::vector<double> times;
-  for (uint32_t i = 0; i < frames; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
-    advanceFrame();
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  return times;
+eval::ImageRGBA HybridRenderer::readImage() const {
+  eval::ImageRGBA img;
+  img.width = settings_.width;
+  img.height = settings_.height;
+  img.pixels = readOutput();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
 }
 
 std::vector<float> HybridRenderer::readOutput() const {

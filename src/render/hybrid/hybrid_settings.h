@@ -1,14 +1,8 @@
-// Render modes and the parameters of the two fast, biased counterparts of the path tracer.
+// The parameters of the path tracer's two fast, biased counterparts (the hybrid modes).
 #pragma once
 #include <cstdint>
-#include <optional>
-#include <string>
 
 namespace wb::render {
-
-enum class RenderMode { PathTrace, Hybrid, Reflections };
-const char* renderModeName(RenderMode m);                            // "pathtrace" | "hybrid" | "reflections"
-std::optional<RenderMode> parseRenderMode(const std::string& text);  // nullopt when unknown
 
 struct HybridSettings {
   // Angular diameter of the sun in degrees for the cone jitter of shadow rays (0 = hard shadows); negative =

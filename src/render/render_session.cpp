@@ -1,0 +1,178 @@
+#include "render/render_session.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "common/paths.h"
+#include "shader/hash.h"
+#include "sampling/environment.h"
+#include "vk/driver_policy.h"
+
+namespace wb::render {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+EnvironmentData loadEnvironmentData(const RenderSettings& settings) {
+  const bool isMap = !settings.envPath.empty();
+  EnvironmentMap env = isMap ? loadHdrEnvironment(settings.envPath) : constantEnvironment(settings.envColor);
+  EnvironmentData d;
+  d.width = uint32_t(env.width);
+  d.height = uint32_t(env.height);
+  d.rgb = std::move(env.rgb);
+  d.alias = std::move(env.alias);
+  d.totalWeight = env.totalWeight;
+  d.isMap = isMap;
+  return d;
+}
+
+scene::SceneFeatures featuresFor(const scene::Scene& scene, const RenderSettings& settings) {
+  std::vector<shader::Define> extra;
+  for (const auto& [k, v] : settings.defines) extra.push_back({k, v});
+  if (settings.generic) {
+    auto f = scene::genericFeatures(static_cast<uint32_t>(scene.lights.size()));
+    f.extraDefines = extra;
+    return f;
+  }
+  const bool black = settings.envColor == glm::vec3(0.0f) || settings.envIntensity == 0.0f;
+  const auto env = !settings.envPath.empty() ? scene::EnvironmentKind::Map
+                   : black                   ? scene::EnvironmentKind::None
+                                             : scene::EnvironmentKind::Constant;
+  auto f = scene::analyzeFeatures(scene, env);
+  f.extraDefines = extra;
+  return f;
+}
+
+std::string shaderSourceFingerprint() {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(shaderDir(), ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_regular_file(ec)) files.push_back(it->path());
+  }
+  std::sort(files.begin(), files.end());
+  shader::Hasher h;
+  for (const auto& f : files) {
+    h.add(std::filesystem::relative(f, shaderDir(), ec).string());
+    h.add(shader::readFile(f).value_or(std::string()));
+  }
+  return h.finish().hex();
+}
+
+RenderSession::RenderSession(const SessionOptions& options) : mode_(options.mode), hybrid_(options.hybrid) {
+  auto t0 = std::chrono::steady_clock::now();
+  const std::filesystem::path scenePath =
+      options.scenePath.empty() ? defaultScenePath() : std::filesystem::path(options.scenePath);
+  scene_ =
+      options.sceneData ? *options.sceneData : scene::loadGltf(scenePath);  // before the device: fail fast
+  const auto envData = loadEnvironmentData(options.settings);
+
+  const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;
+  vk::applyDriverDefaults(cacheDir);  // before the first instance of the process (vk/driver_policy.h)
+  vk::ContextOptions contextOptions = options.context;
+  if (contextOptions.pipelineCacheDir.empty()) contextOptions.pipelineCacheDir = cacheDir.string();
+  ctx_ = std::make_unique<vk::Context>(contextOptions);
+  shader::ShaderLibrary::Options lo;
+  lo.includeRoots = {shaderDir()};
+  lo.cacheDir = cacheDir;
+  library_ = std::make_unique<shader::ShaderLibrary>(lo);
+  gpuScene_ = std::make_unique<GpuScene>(*ctx_, scene_);
+  env_ = std::make_unique<GpuEnvironment>(*ctx_, envData);
+  lights_ = scene_.lights;
+  sceneCamera_ = camera_ = cameraFromScene(scene_.camera);
+  renderers_[0] = makeRenderer(RenderMode::PathTrace, options.settings);
+  if (mode_ != RenderMode::PathTrace) renderers_[size_t(mode_)] = makeRenderer(mode_, options.settings);
+  setupSeconds_ = secondsSince(t0);
+}
+
+RenderSession::~RenderSession() {
+  if (ctx_) vkDeviceWaitIdle(ctx_->device());
+  for (auto& r : renderers_) r.reset();
+  env_.reset();
+  gpuScene_.reset();
+}
+
+RendererResources RenderSession::resources() const {
+  return {*ctx_, *library_, scene_, *gpuScene_, *env_};
+}
+
+std::unique_ptr<Renderer> RenderSession::makeRenderer(RenderMode mode, const RenderSettings& settings) {
+  std::unique_ptr<Renderer> r;
+  if (mode == RenderMode::PathTrace) {
+    r = std::make_unique<PathTracer>(resources(), settings, featuresFor(scene_, settings));
+  } else {
+    r = std::make_unique<HybridRenderer>(resources(), settings, mode, hybrid_);
+  }
+  r->setCamera(camera_);
+  r->setLights(lights_);
+  if (hot_) hot_->addRenderer(*r);
+  return r;
+}
+
+Renderer& RenderSession::setMode(RenderMode mode, const RenderSettings& settings) {
+  auto& slot = renderers_[size_t(mode)];
+  if (!slot) slot = makeRenderer(mode, settings);
+  mode_ = mode;
+  return *slot;
+}
+
+void RenderSession::forEachRenderer(const std::function<void(Renderer&)>& f) {
+  for (auto& r : renderers_)
+    if (r) f(*r);
+}
+
+HybridRenderer* RenderSession::hybrid() {
+  return mode_ == RenderMode::PathTrace ? nullptr
+                                        : static_cast<HybridRenderer*>(renderers_[size_t(mode_)].get());
+}
+
+void RenderSession::setCamera(const CameraState& camera) {
+  camera_ = camera;
+  forEachRenderer([&](Renderer& r) { r.setCamera(camera); });
+}
+
+void RenderSession::setEnvironment(const RenderSettings& settings) {
+  auto env = std::make_unique<GpuEnvironment>(*ctx_, loadEnvironmentData(settings));
+  forEachRenderer([&](Renderer& r) { r.setEnvironment(*env); });  // each waits for the device
+  env_ = std::move(env);                                          // the previous one is no longer referenced
+}
+
+void RenderSession::setLights(const std::vector<gpu::DirectionalLight>& lights) {
+  lights_ = lights;
+  gpuScene_->updateLights(lights);
+  forEachRenderer([&](Renderer& r) { r.setLights(lights); });
+}
+
+void RenderSession::setHybridSettings(const HybridSettings& hybrid) {
+  hybrid_ = hybrid;
+  for (size_t m = 1; m < renderers_.size(); ++m)
+    if (renderers_[m]) static_cast<HybridRenderer&>(*renderers_[m]).setHybridSettings(hybrid);
+}
+
+void RenderSession::attachHotReload(HotReload* hot) {
+  hot_ = hot;
+  if (hot_) forEachRenderer([&](Renderer& r) { hot_->addRenderer(r); });
+}
+
+double RenderSession::render(uint32_t spp) {
+  auto t0 = std::chrono::steady_clock::now();
+  Renderer& r = renderer();
+  r.resetAccumulation();
+  r.resetCounters();
+  frameSeconds_ = r.render(spp);
+  return secondsSince(t0);
+}
+
+eval::ImageRGBA RenderSession::aov(Aov which) const {
+  eval::ImageRGBA img;
+  img.width = pathTracer().settings().width;
+  img.height = pathTracer().settings().height;
+  img.pixels = pathTracer().readAov(which);
+  return img;
+}
+
+}  // namespace wb::render

@@ -1,0 +1,109 @@
+// What every renderer is to the code that drives it (the commands, the window, the bench, the tests and hot
+// reload): parameters, camera, environment, render N samples, the output image, its pipelines' programs for
+// hot reload, and statistics. The path tracer and the hybrid renderer implement it; RenderSession holds one
+// per mode.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+#include "eval/image.h"
+#include "render/environment.h"
+#include "render/gpu_scene.h"
+#include "render/settings.h"
+#include "scene/scene.h"
+#include "shader/library.h"
+#include "shared/gpu_types.h"
+#include "vk/built_pipeline.h"
+
+namespace wb::render {
+
+struct CameraState {
+  glm::mat4 view{1.0f};  // world to camera
+  float yfov = 0.7f;
+  float znear = 0.01f;
+};
+CameraState cameraFromScene(const scene::Camera& camera);
+
+// What a renderer is made on: the device, the shader library, the scene (on the host and on the device) and
+// the environment. All must outlive the renderer (the environment: or the next setEnvironment).
+struct RendererResources {
+  vk::Context& ctx;
+  shader::ShaderLibrary& library;
+  const scene::Scene& scene;
+  const GpuScene& gpuScene;
+  const GpuEnvironment& environment;
+};
+
+// One program of a renderer, as hot reload and the Shaders panel name it.
+struct RendererProgram {
+  shader::ShaderLibrary::ProgramId id = 0;
+  std::string name;
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual RenderMode mode() const = 0;
+  virtual vk::Context& context() const = 0;
+
+  // Parameters; each change restarts accumulation. setSettings resizes the images when the size changed.
+  virtual void setSettings(const RenderSettings& settings) = 0;
+  virtual const RenderSettings& settings() const = 0;
+  virtual void setCamera(const CameraState& camera) = 0;
+  // Points at another environment (waits for the device); it must outlive the renderer or the next call.
+  virtual void setEnvironment(const GpuEnvironment& env) = 0;
+  // The scene's directional lights changed (GpuScene's buffer holds them already).
+  virtual void setLights(const std::vector<gpu::DirectionalLight>& lights) = 0;
+  virtual void resetAccumulation() = 0;
+
+  // Records one sample (the path tracer) or frame (the hybrid modes) of the whole image into cmd; advance()
+  // once it ran.
+  virtual void record(VkCommandBuffer cmd) = 0;
+  virtual void advance() = 0;
+  // Records the dispatches of one sample with as little work as the renderer allows (the path tracer traces
+  // zero rays): on a driver that compiles at the first dispatch this compiles every pipeline the sample uses
+  // without running the shaders (the JIT warm-up).
+  virtual void recordCompileOnly(VkCommandBuffer cmd) { record(cmd); }
+  // Samples (frames) in the current accumulation.
+  virtual uint32_t samplesAccumulated() const = 0;
+  // Renders `samples` samples, submitting and waiting for each; returns each one's wall time in seconds.
+  std::vector<double> render(uint32_t samples);
+
+  // Linear radiance (RGBA32F storage image, GENERAL layout), for a display pass.
+  virtual const vk::Image& outputImage() const = 0;
+  // The same read back (waits for the device); alpha = 1.
+  virtual eval::ImageRGBA readImage() const = 0;
+
+  // Hot reload: the programs this renderer's pipelines are built from, a pipeline built from one (any
+  // thread; the device's pipeline creation) and installed (render thread, at a frame boundary; restarts
+  // accumulation). A build for a program the renderer no longer uses is dropped by installPipeline.
+  virtual std::vector<RendererProgram> programs() const = 0;
+  virtual std::unique_ptr<vk::BuiltPipeline> buildPipeline(
+      shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const = 0;
+  virtual void installPipeline(shader::ShaderLibrary::ProgramId program,
+                               std::unique_ptr<vk::BuiltPipeline> pipeline) = 0;
+  // Both at once, on the calling (render) thread.
+  void swapPipeline(shader::ShaderLibrary::ProgramId program,
+                    const shader::ShaderLibrary::ProgramBuild& build) {
+    installPipeline(program, buildPipeline(program, build));
+  }
+  // Pipelines installed since construction (the initial builds count).
+  virtual uint32_t pipelineInstalls() const = 0;
+  // A renderer of the same kind, mode and shader variant on other resources, with `settings` (the JIT
+  // warm-up's stand-in on a second device). Its programs() come in the same order as this one's.
+  virtual std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
+                                             const RenderSettings& settings) const = 0;
+  // Copies from `other` (of the same kind) the parameters that are compiled into pipelines (specialisation
+  // constants), before a pipeline of this renderer is built to match one of `other`'s.
+  virtual void matchCompiledParameters(const Renderer& other) { (void)other; }
+
+  // What the shaders counted since resetCounters() (paths, rays, NaN/Inf samples dropped); all zero for a
+  // renderer that does not count.
+  virtual gpu::Counters readCounters() const { return {}; }
+  virtual void resetCounters() {}
+};
+
+}  // namespace wb::render

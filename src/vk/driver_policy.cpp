@@ -1,0 +1,69 @@
+#include "vk/driver_policy.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "common/env.h"
+
+namespace wb::vk {
+namespace {
+
+// The CPU share `watch` and the window keep for their frames while a rebuild compiles on a CPU device.
+constexpr double kWatchShareWhileCompiling = 0.1;
+constexpr double kWindowShareWhileCompiling = 0.25;
+
+double restRatio(double share) {
+  return (1.0 - share) / share;
+}
+
+}  // namespace
+
+PolicyOverrides PolicyOverrides::fromEnvironment() {
+  PolicyOverrides o;
+  o.jitWarmup = env::choice("WB_JIT_WARMUP");
+  o.pipelineLibraries = env::choice("WB_PIPELINE_LIBRARY");
+  if (env::choice("WB_DEFERRED_HOST_OPS") == false) o.deferredHostOps = false;
+  if (const auto v = env::get("WB_CPU_DEVICE_CODE")) o.cpuShapedShaderCode = *v == "1";
+  o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
+  return o;
+}
+
+DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides) {
+  const bool cpu = device.cpuImplementation;
+  DevicePolicy p;
+  p.compilesAtFirstDispatch = cpu;
+  p.jitWarmup = overrides.jitWarmup.value_or(cpu);
+  p.pipelineLibraries = device.pipelineLibrarySupported && overrides.pipelineLibraries.value_or(!cpu);
+  p.deferredHostOps = device.deferredHostOpsSupported && !cpu && overrides.deferredHostOps.value_or(true);
+  p.cpuShapedShaderCode = overrides.cpuShapedShaderCode.value_or(cpu);
+  if (overrides.rebuildRestRatio) {
+    p.watchRestRatio = p.windowRestRatio = std::max(0.0, *overrides.rebuildRestRatio);
+  } else if (cpu) {
+    p.watchRestRatio = restRatio(kWatchShareWhileCompiling);
+    p.windowRestRatio = restRatio(kWindowShareWhileCompiling);
+  }
+  p.windowTraceShareWhileCompiling = cpu ? kWatchShareWhileCompiling : 1.0;
+  return p;
+}
+
+std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheDir) {
+  static const std::vector<std::string> applied = [&] {
+    std::vector<std::string> set;
+    auto setDefault = [&](const char* name, const std::string& value) {
+      env::set(name, value);  // unset or empty: ours to set
+      set.push_back(std::string(name) + "=" + value);
+    };
+    const bool usersCache = env::get("MESA_SHADER_CACHE_DIR").has_value();
+    if (!env::get("LP_NATIVE_VECTOR_WIDTH") && !usersCache) setDefault("LP_NATIVE_VECTOR_WIDTH", "128");
+    if (!usersCache) {  // the width is set by now: the user's or ours
+      std::string folder = "lp";
+      for (char c : env::get("LP_NATIVE_VECTOR_WIDTH").value_or(""))
+        folder += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+      setDefault("MESA_SHADER_CACHE_DIR", (cacheDir / "mesa" / folder).string());
+    }
+    return set;
+  }();
+  return applied;
+}
+
+}  // namespace wb::vk

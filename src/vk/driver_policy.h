@@ -1,0 +1,78 @@
+// Driver-specific policy, in one place: what the workbench does differently per Vulkan driver, resolved once
+// per device from what the device is and from the environment's overrides. Nothing else in the code asks
+// which driver it runs on; it reads the resolved DevicePolicy (vk::Context::policy()).
+//
+// A CPU implementation (lavapipe) compiles a pipeline to machine code at its first dispatch, not at
+// vkCreate*Pipelines, and shares the CPU with everything else; GPUs compile at creation, off the frame path.
+// What follows from that is below; docs/bench/README.md has the measurements behind each choice.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wb::vk {
+
+// What the device is, as far as the policy cares.
+struct DeviceTraits {
+  bool cpuImplementation = false;  // VK_PHYSICAL_DEVICE_TYPE_CPU
+  bool pipelineLibrarySupported = false;
+  bool deferredHostOpsSupported = false;
+};
+
+// The environment's overrides (unset: the default for the device). Each maps to a variable of
+// docs/ENVIRONMENT.md.
+struct PolicyOverrides {
+  std::optional<bool> jitWarmup;            // WB_JIT_WARMUP=0|1
+  std::optional<bool> pipelineLibraries;    // WB_PIPELINE_LIBRARY=0|1
+  std::optional<bool> deferredHostOps;      // WB_DEFERRED_HOST_OPS=0 (on by default where supported)
+  std::optional<bool> cpuShapedShaderCode;  // WB_CPU_DEVICE_CODE=0|1
+  std::optional<double> rebuildRestRatio;   // WB_REBUILD_YIELD=R (negative counts as 0)
+  static PolicyOverrides fromEnvironment();
+};
+
+struct DevicePolicy {
+  // Pipelines reach machine code at their first dispatch (the device's first frame with a new pipeline
+  // would stall the render loop for the whole compile).
+  bool compilesAtFirstDispatch = false;
+  // Hot reload has the driver compile a new pipeline ahead, on a second device, before it is installed
+  // (render/jit_warmup.h).
+  bool jitWarmup = false;
+  // Ray tracing pipelines are linked from per-group pipeline libraries, so an edit recompiles one group.
+  // Off on lavapipe: Mesa 25.0 links them without an error but the linked pipeline renders nothing.
+  bool pipelineLibraries = false;
+  // Monolithic ray tracing pipelines are created through a deferred host operation on several threads.
+  // Never on lavapipe: its Mesa 25.0 crashes linking inside a deferred operation, and it compiles later
+  // anyway.
+  bool deferredHostOps = false;
+  // The path tracer's shaders are shaped for a JIT that compiles every inlined copy of a function
+  // (WB_CPU_DEVICE=1, shaders/pathtracer/common.glsl); GPUs keep the straight-line code.
+  bool cpuShapedShaderCode = false;
+  // While a rebuild compiles, render loops rest this many frame times after each frame so the compile gets
+  // the cores (0: never rest). `watch` keeps a tenth of the CPU for its frames, the window a quarter (it
+  // still answers input at that share).
+  double watchRestRatio = 0.0;
+  double windowRestRatio = 0.0;
+  // ... and the window traces with this share of its per-frame budget meanwhile.
+  double windowTraceShareWhileCompiling = 1.0;
+};
+
+DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides);
+
+// Environment variables the workbench sets for the Vulkan drivers unless the user set them (an empty value
+// counts as unset). Drivers read them once, when they load, so this must run before the process's first
+// Vulkan instance: the commands and RenderSession call it (the first call decides, later ones return what it
+// did).
+//
+// - LP_NATIVE_VECTOR_WIDTH=128: llvmpipe (lavapipe) compiles shaders 4 lanes wide instead of its 8-lane AVX2
+//   default: the path tracer's pipeline JITs in ~40% less time while the trace rate and every image stay the
+//   same; the window's raster work takes ~20% longer (docs/bench/lavapipe_vector_width.md). GPU drivers
+//   ignore it. Left alone when the user set a MESA_SHADER_CACHE_DIR of their own (see below).
+// - MESA_SHADER_CACHE_DIR=<cacheDir>/mesa/lp<width> (the user's width or ours): Mesa's shader disk cache
+// under
+//   the workbench's shader cache, one folder per width, because llvmpipe's cache key leaves the width out and
+//   code compiled at another width corrupts memory when loaded.
+// Returns "NAME=value" for each variable it set.
+std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheDir);
+
+}  // namespace wb::vk

@@ -1,0 +1,105 @@
+// The driver policy is a pure function of what the device is and of the environment's overrides: each
+// choice the workbench makes per driver, checked for a CPU implementation (lavapipe) and a GPU.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "vk/driver_policy.h"
+
+using wb::vk::DevicePolicy;
+using wb::vk::DeviceTraits;
+using wb::vk::PolicyOverrides;
+using wb::vk::resolveDevicePolicy;
+
+namespace {
+
+DeviceTraits cpu() {
+  DeviceTraits t;
+  t.cpuImplementation = true;
+  t.pipelineLibrarySupported = true;  // lavapipe exposes VK_KHR_pipeline_library
+  t.deferredHostOpsSupported = true;
+  return t;
+}
+
+DeviceTraits gpu() {
+  DeviceTraits t = cpu();
+  t.cpuImplementation = false;
+  return t;
+}
+
+}  // namespace
+
+TEST(DriverPolicy, ACpuImplementationCompilesAheadAndYieldsToRebuilds) {
+  const DevicePolicy p = resolveDevicePolicy(cpu(), {});
+  EXPECT_TRUE(p.compilesAtFirstDispatch);
+  EXPECT_TRUE(p.jitWarmup);
+  EXPECT_FALSE(p.pipelineLibraries) << "lavapipe's linked pipelines render nothing";
+  EXPECT_FALSE(p.deferredHostOps) << "lavapipe crashes linking inside a deferred operation";
+  EXPECT_TRUE(p.cpuShapedShaderCode);
+  EXPECT_DOUBLE_EQ(p.watchRestRatio, 9.0);   // frames keep a tenth of the CPU
+  EXPECT_DOUBLE_EQ(p.windowRestRatio, 3.0);  // the window a quarter
+  EXPECT_DOUBLE_EQ(p.windowTraceShareWhileCompiling, 0.1);
+}
+
+TEST(DriverPolicy, AGpuLinksLibrariesDefersCreationAndNeverRests) {
+  const DevicePolicy p = resolveDevicePolicy(gpu(), {});
+  EXPECT_FALSE(p.compilesAtFirstDispatch);
+  EXPECT_FALSE(p.jitWarmup);
+  EXPECT_TRUE(p.pipelineLibraries);
+  EXPECT_TRUE(p.deferredHostOps);
+  EXPECT_FALSE(p.cpuShapedShaderCode);
+  EXPECT_EQ(p.watchRestRatio, 0.0);
+  EXPECT_EQ(p.windowRestRatio, 0.0);
+  EXPECT_EQ(p.windowTraceShareWhileCompiling, 1.0);
+  DeviceTraits noLibraries = gpu();
+  noLibraries.pipelineLibrarySupported = false;
+  EXPECT_FALSE(resolveDevicePolicy(noLibraries, {}).pipelineLibraries);
+}
+
+TEST(DriverPolicy, OverridesWinWhereTheDriverAllowsThem) {
+  PolicyOverrides o;
+  o.jitWarmup = false;
+  o.pipelineLibraries = true;
+  o.deferredHostOps = true;
+  o.cpuShapedShaderCode = false;
+  o.rebuildRestRatio = 2.5;
+  const DevicePolicy c = resolveDevicePolicy(cpu(), o);
+  EXPECT_FALSE(c.jitWarmup);
+  EXPECT_TRUE(c.pipelineLibraries);
+  EXPECT_FALSE(c.deferredHostOps) << "never on a CPU implementation, whatever is asked";
+  EXPECT_FALSE(c.cpuShapedShaderCode);
+  EXPECT_DOUBLE_EQ(c.watchRestRatio, 2.5);
+  EXPECT_DOUBLE_EQ(c.windowRestRatio, 2.5);
+  o.rebuildRestRatio = -3.0;
+  EXPECT_EQ(resolveDevicePolicy(gpu(), o).watchRestRatio, 0.0) << "a negative ratio counts as 0";
+  PolicyOverrides on;
+  on.jitWarmup = true;
+  on.cpuShapedShaderCode = true;
+  on.deferredHostOps = false;
+  const DevicePolicy g = resolveDevicePolicy(gpu(), on);
+  EXPECT_TRUE(g.jitWarmup);
+  EXPECT_TRUE(g.cpuShapedShaderCode);
+  EXPECT_FALSE(g.deferredHostOps);
+}
+
+TEST(DriverPolicy, TheEnvironmentIsReadThroughOneReader) {
+  ::setenv("WB_JIT_WARMUP", "0", 1);
+  ::setenv("WB_PIPELINE_LIBRARY", "1", 1);
+  ::setenv("WB_DEFERRED_HOST_OPS", "0", 1);
+  ::setenv("WB_CPU_DEVICE_CODE", "yes", 1);  // anything but 1 means the GPU shape
+  ::setenv("WB_REBUILD_YIELD", "", 1);       // empty: the default
+  const PolicyOverrides o = PolicyOverrides::fromEnvironment();
+  EXPECT_EQ(o.jitWarmup, false);
+  EXPECT_EQ(o.pipelineLibraries, true);
+  EXPECT_EQ(o.deferredHostOps, false);
+  EXPECT_EQ(o.cpuShapedShaderCode, false);
+  EXPECT_FALSE(o.rebuildRestRatio.has_value());
+  ::setenv("WB_REBUILD_YIELD", "4", 1);
+  EXPECT_EQ(PolicyOverrides::fromEnvironment().rebuildRestRatio, 4.0);
+  for (const char* v : {"WB_JIT_WARMUP", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS", "WB_CPU_DEVICE_CODE",
+                        "WB_REBUILD_YIELD"})
+    ::unsetenv(v);
+  const PolicyOverrides none = PolicyOverrides::fromEnvironment();
+  EXPECT_FALSE(none.jitWarmup || none.pipelineLibraries || none.deferredHostOps || none.cpuShapedShaderCode ||
+               none.rebuildRestRatio);
+}
