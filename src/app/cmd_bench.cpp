@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/process.h"
+#include "common/env.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "scene/procedural.h"
@@ -172,8 +173,7 @@ json benchStartup(int repeats, const fs::path& work) {
 
 // Edits of the closest-hit shader while `watch` renders: edit-to-new-pipeline and edit-to-first-frame.
 std::string envOr(const char* name) {
-  const char* v = std::getenv(name);
-  return v ? v : "";
+  return env::get(name).value_or("");
 }
 
 // ownMesaCache: the bench process's MESA_SHADER_CACHE_DIR is the workbench's (not the user's): the child then
@@ -414,7 +414,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
   for (const char* name : {"WB_JIT_WARMUP", "WB_REBUILD_YIELD", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",
                            "GALLIVM_PERF", "LP_NUM_THREADS", "LP_NATIVE_VECTOR_WIDTH",
                            "MESA_SHADER_CACHE_DIR", "VK_DRIVER_FILES", "__GL_SHADER_DISK_CACHE"}) {
-    if (const char* v = std::getenv(name)) environment[name] = v;
+    if (const auto v = env::get(name)) environment[name] = *v;
   }
   result["environment"] = environment;
   result["date"] = isoDate();

@@ -16,6 +16,7 @@
 #include "app/cmd_shaders.h"
 #include "app/cmd_watch.h"
 #include "app/window/window_command.h"
+#include "common/env.h"
 #include "common/paths.h"
 #include "vk/context.h"
 
@@ -50,13 +51,12 @@ void usage() {
 
 int runDefault(const std::vector<std::string>& args) {
   // The live window; without a display, say so and fall back to a headless render of the scene.
-  const char* display = std::getenv("DISPLAY");
-  const char* wayland = std::getenv("WAYLAND_DISPLAY");
-  if ((display && *display) || (wayland && *wayland)) {
+  const auto display = wb::env::get("DISPLAY"), wayland = wb::env::get("WAYLAND_DISPLAY");
+  if (display || wayland) {
     const int code = wb::app::runWindowCommand(args);
     if (code != wb::app::kNoDisplay) return code;
     std::printf("workbench: cannot open a window on display '%s'; rendering headless instead\n",
-                display ? display : wayland);
+                display.value_or(wayland.value_or("")).c_str());
   } else {
     std::printf("workbench: no display (DISPLAY is not set); rendering headless instead\n");
   }

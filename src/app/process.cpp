@@ -1,12 +1,15 @@
 #include "app/process.h"
 
 #include <csignal>
-#include <cstdlib>
+#include <cstring>
 #include <fcntl.h>
+#include <spawn.h>
 #include <filesystem>
 #include <stdexcept>
 #include <sys/wait.h>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace wb::app {
 
@@ -14,25 +17,35 @@ std::string selfExecutable() {
   return std::filesystem::read_symlink("/proc/self/exe").string();
 }
 
+// posix_spawn, not fork + setenv: the parent has threads (Vulkan's, hot reload's), and only
+// async-signal-safe calls are allowed between fork and exec; the child's environment is built here instead.
 ChildProcess ChildProcess::spawn(const std::string& exe, const std::vector<std::string>& args,
                                  const std::map<std::string, std::string>& env, const std::string& logFile) {
+  std::vector<std::string> envStrings;
+  for (char** e = environ; *e; ++e) {
+    const std::string entry(*e);
+    if (!env.count(entry.substr(0, entry.find('=')))) envStrings.push_back(entry);
+  }
+  for (const auto& [k, v] : env) envStrings.push_back(k + "=" + v);
+  std::vector<char*> envp;
+  for (auto& s : envStrings) envp.push_back(s.data());
+  envp.push_back(nullptr);
+  std::vector<std::string> argStrings = {exe};
+  argStrings.insert(argStrings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argStrings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
   ChildProcess c;
-  c.pid = fork();
-  if (c.pid < 0) throw std::runtime_error("fork failed");
-  if (c.pid == 0) {
-    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
-    int fd = open(logFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(exe.c_str()));
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(exe.c_str(), argv.data());
-    _exit(127);
+  const int rc = posix_spawn(&c.pid, exe.c_str(), &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    c.pid = -1;
+    throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
   }
   return c;
 }
