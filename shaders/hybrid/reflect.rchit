@@ -10,7 +10,7 @@ hitAttributeEXT vec2 attribs;
 void main() {
   const GeometryInfo g = geometries[gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT];
   const Material m = materials[g.materialIndex];
-  const HybridHit h = fetchHybridHit(g, gl_PrimitiveID, attribs);
+  const TriangleHit h = fetchTriangle(g, gl_PrimitiveID, attribs);
   const HybridSurface s = evalSurface(m, h.uv);
   const vec3 wo = -gl_WorldRayDirectionEXT;
   vec3 ng = normalize((h.geoNormal * gl_WorldToObjectEXT).xyz);

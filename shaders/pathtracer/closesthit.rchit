@@ -19,7 +19,7 @@ void main() {
   initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, pc.sampleIndex);
   const GeometryInfo g = hitGeometry();
   const Material m = materials[g.materialIndex];
-  const HitVertexData h = fetchHit(g, gl_PrimitiveID, attribs);
+  const TriangleHit h = fetchTriangle(g, gl_PrimitiveID, attribs);
 
   const vec3 wo = -gl_WorldRayDirectionEXT;
   const vec3 position = gl_ObjectToWorldEXT * vec4(h.position, 1.0);
@@ -37,18 +37,12 @@ void main() {
   if (nsFlipped) ns = -ns;
 
   // Material inputs, textures applied.
-  vec4 baseColor = m.baseColorFactor;
-  if (m.baseColorTexture >= 0) baseColor *= sampleTexture(m.baseColorTexture, h.uv);
-  float metallic = m.metallic;
-  float roughness = m.roughness;
-  if (m.metallicRoughnessTexture >= 0) {
-    const vec4 mr = sampleTexture(m.metallicRoughnessTexture, h.uv);
-    roughness *= mr.g;
-    metallic *= mr.b;
-  }
+  const MaterialInputs inputs = materialInputs(m, h.uv);
+  const vec4 baseColor = inputs.baseColor;
+  const float metallic = inputs.metallic;
+  const float roughness = inputs.roughness;
 #if WB_HAS_EMISSIVE
-  vec3 emissive = m.emissive;
-  if (m.emissiveTexture >= 0) emissive *= sampleTexture(m.emissiveTexture, h.uv).rgb;
+  const vec3 emissive = inputs.emissive;
 #endif
 
   // Normal mapping with the TBN frame (tangent sign from w); skipped when the tangent is missing or degenerate.

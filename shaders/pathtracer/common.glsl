@@ -3,11 +3,6 @@
 #define WB_PT_COMMON_GLSL
 
 #extension GL_EXT_ray_tracing : require
-#extension GL_EXT_nonuniform_qualifier : require
-#extension GL_EXT_scalar_block_layout : require
-#extension GL_EXT_buffer_reference : require
-#extension GL_EXT_buffer_reference2 : require
-#extension GL_EXT_buffer_reference_uvec2 : require
 #extension GL_GOOGLE_include_directive : require
 
 #include "../shared/gpu_types.h"
@@ -37,22 +32,19 @@
 #define WB_ENV_CONSTANT 1
 #define WB_ENV_MAP 2
 
+// Geometries, materials, textures, the environment map; vertex fetch, material inputs (shared with the hybrid
+// modes).
+#include "../shared/scene.glsl"
+
 layout(set = 0, binding = WB_BIND_TLAS) uniform accelerationStructureEXT tlas;
 layout(set = 0, binding = WB_BIND_FRAME, scalar) uniform FrameBlock { FrameUniforms frame; };
-layout(set = 0, binding = WB_BIND_GEOMETRIES, scalar) readonly buffer GeometryBlock { GeometryInfo geometries[]; };
-layout(set = 0, binding = WB_BIND_MATERIALS, scalar) readonly buffer MaterialBlock { Material materials[]; };
 layout(set = 0, binding = WB_BIND_LIGHTS, scalar) readonly buffer LightBlock { DirectionalLight lights[]; };
-layout(set = 0, binding = WB_BIND_TEXTURES) uniform sampler2D textures[];
-layout(set = 0, binding = WB_BIND_ENV_MAP) uniform sampler2D envMap;
 layout(set = 0, binding = WB_BIND_ENV_ALIAS, scalar) readonly buffer EnvAliasBlock { EnvAliasEntry entries[]; } envAliasBuffer;
 layout(set = 0, binding = WB_BIND_COUNTERS, scalar) buffer CounterBlock { Counters counters; };
 layout(set = 0, binding = WB_BIND_BLUE_NOISE, scalar) readonly buffer BlueNoiseBlock { uint texels[]; } blueNoiseBuffer;
 layout(set = 0, binding = WB_BIND_SOBOL, scalar) readonly buffer SobolBlock { uint dirs[]; } sobolBuffer;
 
 layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
-
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer VertexBuffer { Vertex v[]; };
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer IndexBuffer { uint i[]; };
 
 // Table accessors the shared sampling headers use (shared/random.h, shared/env_sampling.h).
 #define WB_ENV_ALIAS(i) envAliasBuffer.entries[(i)]
@@ -62,13 +54,5 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Ind
 #define PATH_PAYLOAD_LOCATION 0
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u
-
-// Texture fetch in ray tracing stages: no derivatives, so the base level. Without textures in the scene the
-// binding is not even referenced (white).
-#if WB_HAS_TEXTURES
-vec4 sampleTexture(int index, vec2 uv) { return textureLod(textures[nonuniformEXT(index)], uv, 0.0); }
-#else
-vec4 sampleTexture(int index, vec2 uv) { return vec4(1.0); }
-#endif
 
 #endif

@@ -10,8 +10,7 @@ vec3 envRadiance(vec3 dir) {
 #elif WB_ENV_MODE == WB_ENV_CONSTANT
   return frame.envColor.rgb * frame.envIntensity;
 #else
-  const vec2 uv = directionToEquirect(dir, frame.envRotation);
-  return textureLod(envMap, uv, 0.0).rgb * frame.envIntensity;
+  return envMapRadiance(dir, frame.envRotation, frame.envIntensity);
 #endif
 }
 

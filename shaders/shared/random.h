@@ -24,6 +24,7 @@
 // independent estimates), or pass the frame number for animated 1-spp noise.
 #ifndef WB_RANDOM_H
 #define WB_RANDOM_H
+#include "hash.h"
 #include "sampling_math.h"
 
 #define WB_DIMS_PER_BOUNCE 10u
@@ -53,12 +54,6 @@ WB_FN uint sampleDimension(uint bounce, uint k) { return WB_DIM_BOUNCE_BASE + bo
 // 32 random bits -> float in [0,1) (strictly below 1: uses the top 24 bits).
 WB_FN float uintToUnitFloat(uint x) { return float(x >> 8u) * (1.0f / 16777216.0f); }
 
-// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering", JCGT 9(3): the PCG hash (RXS-M-XS output).
-WB_FN uint pcgHash(uint v) {
-  uint state = v * 747796405u + 2891336453u;
-  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  return (word >> 22u) ^ word;
-}
 // PCG-RXS-M-XS 32-bit generator step (state advances by the PCG LCG): a sequential RNG when one is needed.
 WB_FN uint pcgNext(INOUT(uint) state) {
   uint s = state;

@@ -1,0 +1,84 @@
+// One definition of every host/shader struct (shaders/shared/gpu_types.h) only holds if the shaders lay the
+// structs out as C++ does: the block and element sizes that SPIRV-Cross reflects from the real shaders equal
+// sizeof(gpu::...) on the host. A member added on one side only, or a layout qualifier changed, fails here.
+#include <gtest/gtest.h>
+
+#include <spirv_cross/spirv_cross.hpp>
+
+#include <map>
+#include <string>
+
+#include "common/paths.h"
+#include "display/display_types.h"
+#include "shader/library.h"
+#include "shared/gpu_types.h"
+
+namespace {
+
+// Sizes in a module by block name: a block whose only member is a runtime array reports its element stride,
+// any other block its declared size. Buffer-reference blocks (VertexBuffer) count too.
+std::map<std::string, size_t> blockSizes(const std::vector<uint32_t>& spirv) {
+  spirv_cross::Compiler c(spirv);
+  std::map<std::string, size_t> sizes;
+  const uint32_t bound = spirv.at(3);  // SPIR-V header: every id is below it
+  for (uint32_t id = 1; id < bound; ++id) {
+    const spirv_cross::SPIRType* t = nullptr;
+    try {
+      t = &c.get_type(id);
+    } catch (const spirv_cross::CompilerError&) {
+      continue;  // not a type
+    }
+    if (t->basetype != spirv_cross::SPIRType::Struct || t->pointer || id != t->self) continue;
+    const std::string name = c.get_name(id);
+    if (name.empty() || t->member_types.size() != 1) continue;
+    const auto& member = c.get_type(t->member_types[0]);
+    if (!member.array.empty() && member.array.back() == 0) {
+      sizes[name] = c.get_decoration(t->member_types[0], spv::DecorationArrayStride);
+    } else if (member.basetype == spirv_cross::SPIRType::Struct) {
+      sizes[name] = c.get_declared_struct_size(member);
+    }
+  }
+  return sizes;
+}
+
+std::map<std::string, size_t> moduleBlocks(const std::string& rel) {
+  wb::shader::ShaderLibrary lib({.includeRoots = {wb::shaderDir()}, .cacheDir = {}, .printWarnings = false});
+  const auto compiled = lib.compile({wb::shaderDir() / rel});
+  return blockSizes(compiled->spirv);
+}
+
+}  // namespace
+
+TEST(GpuTypesLayout, PathTracerBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  const auto chit = moduleBlocks("pathtracer/closesthit.rchit");
+  const std::map<std::string, size_t> expected = {
+      {"FrameBlock", sizeof(FrameUniforms)},    {"GeometryBlock", sizeof(GeometryInfo)},
+      {"MaterialBlock", sizeof(Material)},      {"LightBlock", sizeof(DirectionalLight)},
+      {"EnvAliasBlock", sizeof(EnvAliasEntry)}, {"EmitterBlock", sizeof(EmissiveTriangle)},
+      {"PushBlock", sizeof(PushConstants)},     {"VertexBuffer", sizeof(Vertex)},
+  };
+  for (const auto& [block, size] : expected) {
+    ASSERT_TRUE(chit.count(block)) << "closesthit.rchit has no block " << block;
+    EXPECT_EQ(chit.at(block), size) << block;
+  }
+  const auto raygen = moduleBlocks("pathtracer/raygen.rgen");
+  ASSERT_TRUE(raygen.count("CounterBlock"));
+  EXPECT_EQ(raygen.at("CounterBlock"), sizeof(Counters));
+}
+
+TEST(GpuTypesLayout, HybridAndDisplayBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  const auto vert = moduleBlocks("hybrid/gbuffer.vert");
+  ASSERT_TRUE(vert.count("HybridFrameBlock") && vert.count("DrawBlock") && vert.count("VertexBuffer"));
+  EXPECT_EQ(vert.at("HybridFrameBlock"), sizeof(HybridUniforms));
+  EXPECT_EQ(vert.at("DrawBlock"), sizeof(HybridDrawConstants));
+  EXPECT_EQ(vert.at("VertexBuffer"), sizeof(Vertex));
+  EXPECT_EQ(vert.at("GeometryBlock"), sizeof(GeometryInfo));
+  const auto frag = moduleBlocks("hybrid/gbuffer.frag");
+  ASSERT_TRUE(frag.count("MaterialBlock"));
+  EXPECT_EQ(frag.at("MaterialBlock"), sizeof(Material));
+  const auto display = moduleBlocks("display/display.frag");
+  ASSERT_TRUE(display.count("Push"));
+  EXPECT_EQ(display.at("Push"), sizeof(DisplayPush));
+}
