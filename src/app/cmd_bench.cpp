@@ -366,37 +366,40 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
 
 }  // namespace
 
-int runBenchCommand(const std::vector<std::string>& args) {
-  CLI::App cli("Performance suite: path tracer rates, start-up, hot reload (not a test)", "workbench bench");
-  bool quick = false;
-  std::string out, device, size;
-  int repeats = 0;
+const std::vector<std::string>& BenchCommand::sectionNames() {
+  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes"};
+  return names;
+}
+
+void BenchCommand::addFlags(CLI::App& cli) {
   cli.add_flag("--quick", quick, "small sizes and few repeats (a smoke run)");
   cli.add_option("--out", out, "write the results as JSON");
   cli.add_option("--device", device, "Vulkan device name (substring)");
   cli.add_option("--size", size, "trace size WxH (default 512x512, 128x128 with --quick)");
   cli.add_option("--repeats", repeats, "repeats per measurement (median reported)");
-  std::vector<std::string> sections = {"pathtracer", "startup", "reload", "modes"};
-  int edits = 0;
   cli.add_option("--edits", edits, "reload: number of closest-hit edits (default 20, 4 with --quick)");
-  cli.add_option("--only", sections, "sections to run: pathtracer startup reload modes");
-  try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    cli.parse(reversed);
-  } catch (const CLI::CallForHelp&) {
-    std::printf("%s", cli.help().c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
-    return 2;
-  }
+  cli.add_option("--only", sections,
+                 "sections to run, comma or space separated: pathtracer,startup,reload,modes")
+      ->delimiter(',')
+      ->check(CLI::IsMember(sectionNames()));
+}
+
+void BenchCommand::finish() {
   if (size.empty()) size = quick ? "128x128" : "512x512";
   if (repeats <= 0) repeats = quick ? 1 : 3;
   unsigned w = 0, h = 0;
-  if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h) {
-    std::fprintf(stderr, "workbench bench: error: --size: expected WxH, got '%s'\n", size.c_str());
-    return 2;
-  }
+  if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h)
+    throw std::invalid_argument("--size: expected WxH, got '" + size + "'");
+}
+
+int runBenchCommand(const std::vector<std::string>& args) {
+  BenchCommand c;
+  return runCommand(c, args);
+}
+
+int BenchCommand::run() {
+  unsigned w = 0, h = 0;
+  std::sscanf(size.c_str(), "%ux%u", &w, &h);
   const uint32_t spp = quick ? 1 : 4;
   const auto has = [&](const char* s) {
     return std::find(sections.begin(), sections.end(), s) != sections.end();

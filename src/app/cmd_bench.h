@@ -1,12 +1,32 @@
+// `workbench bench [--quick] [--only SECTIONS] [--out FILE.json]`: the performance suite (path tracer rates
+// per scene, specialised vs generic; acceleration-structure builds; memory; cold/warm start-up; hot-reload
+// latency; the modes' speed against error). Not a test.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "app/command.h"
+
 namespace wb::app {
 
-// `workbench bench [--quick] [--out FILE.json]`: the performance suite (path tracer rates per scene,
-// specialised vs generic; acceleration-structure builds; memory; cold/warm start-up; hot-reload latency). Not
-// a test.
+class BenchCommand : public Command {
+ public:
+  const char* name() const override { return "bench"; }
+  const char* description() const override {
+    return "Performance suite: path tracer rates, start-up, hot reload, modes (not a test)";
+  }
+  void addFlags(CLI::App& app) override;
+  void finish() override;
+  int run() override;
+
+  static const std::vector<std::string>& sectionNames();
+  bool quick = false;
+  std::string out, device, size;
+  int repeats = 0;
+  int edits = 0;
+  std::vector<std::string> sections = sectionNames();
+};
+
 int runBenchCommand(const std::vector<std::string>& args);
 
 }  // namespace wb::app

@@ -14,6 +14,7 @@
 #include "app/converge_report.h"
 #include "app/render_options.h"
 #include "render/render_session.h"
+#include "shader/hash.h"
 #include "common/paths.h"
 #include "eval/hard_cases.h"
 #include "eval/metrics.h"
@@ -23,11 +24,7 @@ namespace fs = std::filesystem;
 namespace wb::app {
 namespace {
 
-struct Config {
-  std::string name;
-  std::vector<std::string> flags;
-  RenderOptions options;
-};
+constexpr uint32_t kReferenceSeed = 0x5eed0000u;  // never one of the runs' seeds
 
 std::vector<std::string> splitFlags(const std::string& text) {
   std::vector<std::string> out;
@@ -90,25 +87,6 @@ RenderOptions parseRenderFlags(const std::vector<std::string>& args, const std::
   return ro;
 }
 
-// FNV-1a, stable across runs and builds (the reference cache key).
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-std::string settingsKey(const render::RenderSettings& s) {
-  std::ostringstream k;
-  k << s.width << "x" << s.height << " bounces " << s.maxBounces << " rr " << s.russianRoulette << " "
-    << s.rrStart << " " << s.rrMin << " " << s.rrMax << " nee " << s.nee << " mis " << s.mis << " sampler "
-    << int(s.sampler) << " env '" << s.envPath << "' " << s.envColor.x << "," << s.envColor.y << ","
-    << s.envColor.z << " rot " << s.envRotationDeg << " int " << s.envIntensity;
-  return k.str();
-}
-
 std::string mtimeOf(const fs::path& p) {
   std::error_code ec;
   auto t = fs::last_write_time(p, ec);
@@ -148,18 +126,18 @@ double timedRender(render::RenderSession& session, uint32_t samples) {
 render::SessionOptions sessionOptions(const RenderOptions& ro) {
   render::SessionOptions so;
   so.scenePath = ro.scene;
-  so.settings = ro.settings;
+  so.settings = ro.params.render;
   so.context.deviceName = ro.device;
   so.quiet = true;
-  so.mode = ro.mode;
-  so.hybrid = ro.hybrid;
+  so.mode = ro.params.mode;
+  so.hybrid = ro.params.hybrid;
   return so;
 }
 
 // The reference: a file (downsampled to the render size when needed), or a cached long render.
 eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base, Progress& progress,
                                       std::string& description) {
-  const auto& s = base.settings;
+  const auto& s = base.params.render;
   if (!c.reference.empty()) {
     eval::ImageRGBA ref = eval::readExr(c.reference);
     if (ref.width != s.width || ref.height != s.height) {
@@ -175,21 +153,25 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
   const fs::path scene = base.scene.empty() ? defaultScenePath() : fs::path(base.scene);
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(scene, ec);
-  std::string key = "scene " + canonical.string() + " mtime " + mtimeOf(scene) + " " + settingsKey(s) +
-                    " spp " + std::to_string(spp) + " shaders " + render::shaderSourceFingerprint() + " v2";
+  // The reference renders the path tracer with its own seed: the key holds what it renders with.
+  render::Parameters refParams = base.params;
+  refParams.render.seed = kReferenceSeed;
+  refParams.mode = render::RenderMode::PathTrace;
+  std::string key = "scene " + canonical.string() + " mtime " + mtimeOf(scene) + " " +
+                    std::to_string(s.width) + "x" + std::to_string(s.height) + " " +
+                    render::imageKey(refParams) + " spp " + std::to_string(spp) + " shaders " +
+                    render::shaderSourceFingerprint() + " v3";
   if (!s.envPath.empty()) key += " envmtime " + mtimeOf(s.envPath);
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+  const std::string hex = shader::Hasher().add(key).finish().hex();
   const fs::path dir = shaderCacheDir() / "references";
-  const fs::path file = dir / (std::string(hex) + ".exr");
+  const fs::path file = dir / (hex + ".exr");
   if (fs::exists(file)) {
     description = "cached render of the same scene and base flags, " + std::to_string(spp) + " spp (`" +
                   file.string() + "`)";
     return eval::readExr(file);
   }
   RenderOptions ro = base;
-  ro.settings.seed = 0x5eed0000u;           // never one of the runs' seeds
-  ro.mode = render::RenderMode::PathTrace;  // the reference is always the path tracer
+  ro.params = refParams;
   render::RenderSession session(sessionOptions(ro));
   session.renderer().resetAccumulation();
   double t = 0;
@@ -205,14 +187,14 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
   eval::ImageRGBA ref = session.image();
   fs::create_directories(dir);
   eval::writeExr(file, ref);
-  std::ofstream(dir / (std::string(hex) + ".txt")) << key << "\n";
+  std::ofstream(dir / (hex + ".txt")) << key << "\n";
   description = "rendered now by this command and cached: " + std::to_string(spp) +
                 " spp of the same scene " + "with the base flags (`" + file.string() + "`, " +
                 std::to_string(t) + " s)";
   return ref;
 }
 
-ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
+ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
                        Progress& progress, size_t index, size_t count) {
   ConfigResult result;
   result.name = cfg.name;
@@ -221,8 +203,8 @@ ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::
   result.setupSeconds = session.setupSeconds();
   std::vector<uint32_t> schedule;  // spp of the checkpoints, set by run 0
   for (uint32_t run = 0; run < c.runs; ++run) {
-    render::RenderSettings s = cfg.options.settings;
-    s.seed = cfg.options.settings.seed + 1 + run * 7919u;
+    render::RenderSettings s = cfg.options.params.render;
+    s.seed = cfg.options.params.render.seed + 1 + run * 7919u;
     session.forEachRenderer([&](render::Renderer& r) {
       r.setSettings(s);
       r.resetAccumulation();
@@ -296,26 +278,21 @@ ConfigResult runConfig(const Config& cfg, const ConvergeOptions& c, const eval::
   return result;
 }
 
-int fail(const char* what, const std::string& msg, int code) {
-  std::fprintf(stderr, "workbench converge: error: %s%s\n", what, msg.c_str());
-  return code;
-}
-
 }  // namespace
 
-int runHardCases(const std::vector<std::string>& args, const ConvergeOptions& c);
+void ConvergeCommand::addFlags(CLI::App& cli) {
+  addRenderOptions(cli, base);
+  addConvergeOptions(cli, converge);
+}
 
 int runConvergeCommand(const std::vector<std::string>& args) {
-  CLI::App cli("Render configurations progressively and measure error against a reference over time",
-               "workbench converge");
-  RenderOptions base;
-  ConvergeOptions c;
-  addRenderOptions(cli, base);
-  addConvergeOptions(cli, c);
-  std::vector<Config> configs;
-  try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    cli.parse(reversed);
+  ConvergeCommand c;
+  return runCommand(c, args);
+}
+
+void ConvergeCommand::finish() {
+  auto& c = converge;
+  {
     base = parseRenderFlags(args, {});
     if (!c.reference.empty() && c.referenceSpp) {
       throw std::invalid_argument("give --reference or --reference-spp, not both");
@@ -327,7 +304,7 @@ int runConvergeCommand(const std::vector<std::string>& args) {
       if (colon == std::string::npos || colon == 0) {
         throw std::invalid_argument("--config: expected NAME:FLAGS, got '" + text + "'");
       }
-      Config cfg;
+      ConvergeConfig cfg;
       cfg.name = text.substr(0, colon);
       cfg.flags = splitFlags(text.substr(colon + 1));
       try {
@@ -335,25 +312,22 @@ int runConvergeCommand(const std::vector<std::string>& args) {
       } catch (const CLI::ParseError& e) {
         throw std::invalid_argument("--config '" + cfg.name + "': " + e.what());
       }
-      if (cfg.options.settings.width != base.settings.width ||
-          cfg.options.settings.height != base.settings.height || cfg.options.scene != base.scene) {
+      if (cfg.options.params.render.width != base.params.render.width ||
+          cfg.options.params.render.height != base.params.render.height || cfg.options.scene != base.scene) {
         throw std::invalid_argument("--config '" + cfg.name +
                                     "': a configuration cannot change SCENE or --size");
       }
       configs.push_back(std::move(cfg));
     }
-  } catch (const CLI::CallForHelp&) {
-    std::printf("%s", cli.help().c_str());
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    return fail("", e.what(), 2);
-  } catch (const std::invalid_argument& e) {
-    return fail("", e.what(), 2);
   }
+}
+
+int ConvergeCommand::run() {
+  const auto& c = converge;
   try {
     const fs::path dir(c.out);
     fs::create_directories(dir);
-    if (c.hardCases) return runHardCases(args, c);
+    if (c.hardCases) return runHardCases();
     Progress progress;
     std::string refDescription;
     const eval::ImageRGBA reference = loadOrRenderReference(c, base, progress, refDescription);
@@ -378,21 +352,23 @@ int runConvergeCommand(const std::vector<std::string>& args) {
     std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)\n", results.size(),
                 dir.string().c_str(), plotNote.empty() ? ", converge.png" : "");
   } catch (const std::exception& e) {
-    return fail("", e.what(), 1);
+    std::fprintf(stderr, "workbench converge: error: %s\n", e.what());
+    return 1;
   }
   return 0;
 }
 
 // ---- Hard cases ----
 
-int runHardCases(const std::vector<std::string>& args, const ConvergeOptions& c) {
+int ConvergeCommand::runHardCases() {
+  const auto& c = converge;
   const fs::path dir(c.out);
-  RenderOptions base = parseRenderFlags(args, {});
-  const uint32_t spp = base.settings.spp;
+  const uint32_t spp = base.params.render.spp;
   std::ofstream md(dir / "hard_cases.md");
   md << "# Hard cases\n\n";
-  md << "Each scene isolates one numerical risk. " << base.settings.width << "x" << base.settings.height
-     << ", " << spp << " spp per configuration, max bounces " << base.settings.maxBounces
+  md << "Each scene isolates one numerical risk. " << base.params.render.width << "x"
+     << base.params.render.height << ", " << spp << " spp per configuration, max bounces "
+     << base.params.render.maxBounces
      << " (furnaces: at least 64; the mirror corridor 256). Energy error: image mean against the analytic "
         "furnace value where "
         "the scene is a furnace (white, energy-preserving materials in a uniform environment of radiance 1: "
@@ -407,7 +383,7 @@ int runHardCases(const std::vector<std::string>& args, const ConvergeOptions& c)
     const auto& hc = cases[i];
     for (const auto& variant : hc.variants) {
       RenderOptions ro = parseRenderFlags(args, splitFlags(variant));
-      render::RenderSettings s = ro.settings;
+      render::RenderSettings s = ro.params.render;
       hc.adjust(s);
       render::SessionOptions so = sessionOptions(ro);
       so.sceneData = hc.scene;

@@ -7,6 +7,7 @@
 
 #include "app/render_options.h"
 #include "app/hybrid_json.h"
+#include "app/parameter_json.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "render/render_session.h"
@@ -22,50 +23,45 @@ std::filesystem::path aovPath(const std::filesystem::path& out, const std::strin
 
 }  // namespace
 
-int runRenderCommand(const std::vector<std::string>& args) {
-  CLI::App cli("Render a scene headless and write the image", "workbench render");
-  RenderOptions ro;
-  std::string out, stats, reference;
-  addRenderOptions(cli, ro);
+void RenderCommand::addFlags(CLI::App& cli) {
+  addRenderOptions(cli, options);
   cli.add_option("--out", out, "output image (.png tonemapped, .exr linear)")->required();
   cli.add_option("--stats", stats, "write statistics as JSON");
   cli.add_option(
       "--reference", reference,
       "converged reference .exr of the same view: adds error_vs_reference (RMSE, relative MSE) to --stats");
-  try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    cli.parse(reversed);
-    finishRenderOptions(ro);
-  } catch (const CLI::CallForHelp&) {
-    std::printf("%s", cli.help().c_str());
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "workbench render: error: %s\n", e.what());
-    return 2;
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "workbench render: error: %s\n", e.what());
-    return 2;
-  }
+}
+
+void RenderCommand::finish() {
+  finishRenderOptions(options);
+  if (options.params.render.spp == 0) throw std::invalid_argument("--spp: at least 1 sample per pixel");
+  const std::string ext = std::filesystem::path(out).extension().string();
+  if (ext != ".png" && ext != ".exr")
+    throw std::invalid_argument("--out must end in .png or .exr, got '" + out + "'");
+}
+
+int runRenderCommand(const std::vector<std::string>& args) {
+  RenderCommand c;
+  return runCommand(c, args);
+}
+
+int RenderCommand::run() {
+  const RenderOptions& ro = options;
   const std::filesystem::path outPath(out);
-  const std::string ext = outPath.extension().string();
-  if (ext != ".png" && ext != ".exr") {
-    std::fprintf(stderr, "workbench render: error: --out must end in .png or .exr, got '%s'\n", out.c_str());
-    return 2;
-  }
   try {
     render::SessionOptions so;
     so.scenePath = ro.scene;
-    so.settings = ro.settings;
+    so.settings = ro.params.render;
     so.context.deviceName = ro.device;
-    so.mode = ro.mode;
-    so.hybrid = ro.hybrid;
+    so.mode = ro.params.mode;
+    so.hybrid = ro.params.hybrid;
     std::optional<eval::ImageRGBA> referenceImage;
     if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
     render::RenderSession session(so);
     for (const auto& w : session.scene().warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    const double seconds = session.render(ro.settings.spp);
+    const double seconds = session.render(ro.params.render.spp);
     const auto image = session.image();
-    eval::writeImage(outPath, image);
+    eval::writeImage(outPath, image, ro.params.display.exposure, ro.params.display.tonemap);
     if (ro.aovAlbedo) eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));
     if (ro.aovNormal) eval::writeImage(aovPath(outPath, "normal"), session.aov(render::Aov::Normal));
     const auto counters = session.renderer().readCounters();
@@ -75,11 +71,11 @@ int runRenderCommand(const std::vector<std::string>& args) {
     }
     const double pixels = double(image.width) * image.height;
     for (double& m : mean) m /= pixels;
-    const double samples = pixels * ro.settings.spp;
+    const double samples = pixels * ro.params.render.spp;
     std::printf("rendered %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
                 session.scene().sourcePath.string().c_str(), unsigned(session.scene().triangleCount()),
-                image.width, image.height, ro.settings.spp, seconds, session.context().deviceName().c_str(),
-                outPath.string().c_str());
+                image.width, image.height, ro.params.render.spp, seconds,
+                session.context().deviceName().c_str(), outPath.string().c_str());
     if (!stats.empty()) {
       nlohmann::json j;
       j["device"] = session.context().deviceName();
@@ -89,7 +85,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
       j["width"] = image.width;
       j["height"] = image.height;
       j["size"] = std::to_string(image.width) + "x" + std::to_string(image.height);
-      j["spp"] = ro.settings.spp;
+      j["spp"] = ro.params.render.spp;
       j["mode"] = render::renderModeName(session.mode());
       const auto& frames = session.frameSeconds();
       j["frames"] = frames.size();
@@ -117,12 +113,13 @@ int runRenderCommand(const std::vector<std::string>& args) {
       j["shadow_rays"] = counters.shadowRayCount;
       j["nan_inf_dropped"] = counters.droppedSamples;
       j["mean_rgb"] = {mean[0], mean[1], mean[2]};
-      j["max_bounces"] = ro.settings.maxBounces;
-      j["rr_start"] = ro.settings.rrStart;
-      j["rr_min"] = ro.settings.rrMin;
-      j["rr_max"] = ro.settings.rrMax;
-      j["sampler"] = ro.sampler;
-      j["seed"] = ro.settings.seed;
+      j["max_bounces"] = ro.params.render.maxBounces;
+      j["rr_start"] = ro.params.render.rrStart;
+      j["rr_min"] = ro.params.render.rrMin;
+      j["rr_max"] = ro.params.render.rrMax;
+      j["sampler"] = render::samplerNames().at(size_t(ro.params.render.sampler));
+      j["seed"] = ro.params.render.seed;
+      j["parameters"] = parametersJson(ro.params);  // every parameter, the schema of every JSON writer
       const auto st = session.library().stats();
       j["shader_cache"] = {
           {"hits", st.hits}, {"misses", st.misses}, {"compiles", st.compiles}, {"compile_ms", st.compileMs}};

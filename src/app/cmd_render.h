@@ -1,10 +1,26 @@
+// `workbench render [SCENE] --size WxH --spp N --out FILE.png|FILE.exr [--stats FILE.json] ...`: a headless
+// render to an image file.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "app/command.h"
+#include "app/render_options.h"
+
 namespace wb::app {
 
-// `workbench render [SCENE] --size WxH --spp N --out FILE.png|FILE.exr [--stats FILE.json] ...`
+class RenderCommand : public Command {
+ public:
+  const char* name() const override { return "render"; }
+  const char* description() const override { return "Render a scene headless and write the image"; }
+  void addFlags(CLI::App& app) override;
+  void finish() override;
+  int run() override;
+
+  RenderOptions options;
+  std::string out, stats, reference;
+};
+
 int runRenderCommand(const std::vector<std::string>& args);
 
 }  // namespace wb::app

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <iostream>
 
-namespace wb {
+namespace wb::app {
 
 namespace fs = std::filesystem;
 using namespace wb::shader;
@@ -45,23 +45,20 @@ nlohmann::json bindingJson(const DescriptorBinding& b) {
 
 }  // namespace
 
-int runShadersCommand(const std::vector<std::string>& args) {
-  CLI::App app{"Compile and reflect shaders (files, or directories searched recursively for stage files)",
-               "workbench shaders"};
-  std::vector<std::string> defines, paths;
-  bool json = false, noCache = false, optimize = false;
+void ShadersCommand::addFlags(CLI::App& app) {
   app.add_option("--define,-D", defines, "preprocessor define K=V (or K)");
   app.add_flag("--json", json, "machine-readable output on stdout");
   app.add_flag("--no-cache", noCache, "do not use the disk cache");
   app.add_flag("--optimize,-O", optimize, "run the SPIR-V optimizer");
   app.add_option("paths", paths, "shader files or directories")->required();
-  try {
-    std::vector<std::string> rev(args.rbegin(), args.rend());
-    app.parse(rev);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+}
 
+int runShadersCommand(const std::vector<std::string>& args) {
+  ShadersCommand c;
+  return runCommand(c, args);
+}
+
+int ShadersCommand::run() {
   std::vector<Define> defs;
   for (const auto& d : defines) {
     const auto eq = d.find('=');
@@ -147,4 +144,4 @@ int runShadersCommand(const std::vector<std::string>& args) {
   return failures ? 1 : 0;
 }
 
-}  // namespace wb
+}  // namespace wb::app

@@ -22,31 +22,21 @@ std::atomic<bool> gInterrupted{false};
 
 }  // namespace
 
-int runWatchCommand(const std::vector<std::string>& args) {
-  CLI::App cli("Render continuously offscreen while watching the shaders; log every reload",
-               "workbench watch");
-  RenderOptions ro;
-  ro.size = "256x256";
-  bool headless = false;
-  uint64_t frames = 0;
-  double seconds = 0;
-  std::string logPath;
-  addRenderOptions(cli, ro);
+void WatchCommand::addFlags(CLI::App& cli) {
+  addRenderOptions(cli, options);
   cli.add_flag("--headless", headless, "render offscreen (no window)");
   auto* framesOpt = cli.add_option("--frames", frames, "stop after N frames");
   cli.add_option("--seconds", seconds, "stop after S seconds")->excludes(framesOpt);
   cli.add_option("--log", logPath, "append one JSON line per reload to this file");
-  try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    cli.parse(reversed);
-    finishRenderOptions(ro);
-  } catch (const CLI::CallForHelp&) {
-    std::printf("%s", cli.help().c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "workbench watch: error: %s\n", e.what());
-    return 2;
-  }
+}
+
+int runWatchCommand(const std::vector<std::string>& args) {
+  WatchCommand c;
+  return runCommand(c, args);
+}
+
+int WatchCommand::run() {
+  const RenderOptions& ro = options;
   if (!headless)
     std::printf("workbench watch: rendering headless (the live window is the plain `workbench`)\n");
 
@@ -61,10 +51,10 @@ int runWatchCommand(const std::vector<std::string>& args) {
   try {
     render::SessionOptions so;
     so.scenePath = ro.scene;
-    so.settings = ro.settings;
+    so.settings = ro.params.render;
     so.context.deviceName = ro.device;
-    so.mode = ro.mode;
-    so.hybrid = ro.hybrid;
+    so.mode = ro.params.mode;
+    so.hybrid = ro.params.hybrid;
     render::RenderSession session(so);
     render::HotReload hot(session.library(), {shaderDir()});
     session.attachHotReload(&hot);  // every renderer's pipelines, the hybrid modes' raster ones too
@@ -72,7 +62,7 @@ int runWatchCommand(const std::vector<std::string>& args) {
     std::signal(SIGINT, [](int) { gInterrupted = true; });
     std::signal(SIGTERM, [](int) { gInterrupted = true; });
     std::printf("watching %s; rendering %s at %ux%u on %s\n", shaderDir().string().c_str(),
-                session.scene().sourcePath.string().c_str(), ro.settings.width, ro.settings.height,
+                session.scene().sourcePath.string().c_str(), ro.params.render.width, ro.params.render.height,
                 session.context().deviceName().c_str());
     std::fflush(stdout);
 

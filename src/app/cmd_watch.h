@@ -1,11 +1,32 @@
+// `workbench watch [SCENE] --headless [--frames N | --seconds S] [--log FILE.jsonl]`: renders continuously
+// offscreen while watching the shaders; one JSON line per reload.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "app/command.h"
+#include "app/render_options.h"
+
 namespace wb::app {
 
-// `workbench watch [SCENE] --headless [--frames N | --seconds S] [--log FILE.jsonl]`: renders continuously
-// offscreen while watching the shaders; one JSON line per reload.
+class WatchCommand : public Command {
+ public:
+  WatchCommand() { options.size = "256x256"; }
+  const char* name() const override { return "watch"; }
+  const char* description() const override {
+    return "Render continuously offscreen while watching the shaders; log every reload";
+  }
+  void addFlags(CLI::App& app) override;
+  void finish() override { finishRenderOptions(options); }
+  int run() override;
+
+  RenderOptions options;
+  bool headless = false;
+  uint64_t frames = 0;
+  double seconds = 0;
+  std::string logPath;
+};
+
 int runWatchCommand(const std::vector<std::string>& args);
 
 }  // namespace wb::app

@@ -131,8 +131,9 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
                   const std::string& device, const std::string& plotNote, const eval::ImageRGBA& reference) {
   std::ofstream md(dir / "converge.md");
   md << "# Convergence: " << (base.scene.empty() ? defaultScenePath().string() : base.scene) << "\n\n";
-  md << "- Size " << base.settings.width << "x" << base.settings.height << ", " << c.seconds << " s per run, "
-     << c.runs << " independent run(s) (seeds) per configuration, device " << device << ".\n";
+  md << "- Size " << base.params.render.width << "x" << base.params.render.height << ", " << c.seconds
+     << " s per run, " << c.runs << " independent run(s) (seeds) per configuration, device " << device
+     << ".\n";
   md << "- Reference: " << refDescription << "; mean RGB " << fmt("%.5f", refMean[0]) << " "
      << fmt("%.5f", refMean[1]) << " " << fmt("%.5f", refMean[2]) << ".\n";
   md << "- Errors are averaged over the runs; variance is the mean per-pixel variance between runs (the "

@@ -1,12 +1,11 @@
-// workbench: the Vulkan ray tracing shader workbench. Subcommands: render, shaders (and the live window when
-// run with no subcommand).
+// workbench: the Vulkan ray tracing shader workbench. One command line: the live window without a
+// subcommand; render, shaders, watch, converge and bench as subcommands (app/command.h).
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 
 #include <execinfo.h>
 #include <unistd.h>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -16,8 +15,6 @@
 #include "app/cmd_shaders.h"
 #include "app/cmd_watch.h"
 #include "app/window/window_command.h"
-#include "common/env.h"
-#include "common/paths.h"
 #include "vk/context.h"
 
 namespace {
@@ -37,41 +34,6 @@ void crashHandler(int sig) {
 }
 #endif
 
-void usage() {
-  std::printf(
-      "usage: workbench [SCENE] [render flags]        the live workbench (headless render without a "
-      "display)\n"
-      "       workbench render [SCENE] --out FILE ...  headless render (PNG tonemapped, EXR linear)\n"
-      "       workbench shaders [--json] PATH...       compile and reflect shaders\n"
-      "       workbench watch [SCENE] --headless ...   render while hot-reloading shaders; log reloads\n"
-      "       workbench converge [SCENE] --out DIR ... error against a reference over time, per config\n"
-      "       workbench bench [--quick] [--out FILE]   performance suite (not a test)\n"
-      "run 'workbench COMMAND --help' for a command's flags\n");
-}
-
-int runDefault(const std::vector<std::string>& args) {
-  // The live window; without a display, say so and fall back to a headless render of the scene.
-  const auto display = wb::env::get("DISPLAY"), wayland = wb::env::get("WAYLAND_DISPLAY");
-  if (display || wayland) {
-    const int code = wb::app::runWindowCommand(args);
-    if (code != wb::app::kNoDisplay) return code;
-    std::printf("workbench: cannot open a window on display '%s'; rendering headless instead\n",
-                display.value_or(wayland.value_or("")).c_str());
-  } else {
-    std::printf("workbench: no display (DISPLAY is not set); rendering headless instead\n");
-  }
-  std::vector<std::string> renderArgs = wb::app::renderArgsOnly(args);
-  bool hasOut = false;
-  for (const auto& a : renderArgs) hasOut = hasOut || a == "--out" || a.rfind("--out=", 0) == 0;
-  const std::string out = (wb::projectRoot() / "out" / "workbench.png").string();
-  if (!hasOut) {
-    std::filesystem::create_directories(wb::projectRoot() / "out");
-    renderArgs.push_back("--out");
-    renderArgs.push_back(out);
-  }
-  return wb::app::runRenderCommand(renderArgs);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,28 +43,19 @@ int main(int argc, char** argv) {
   std::signal(SIGILL, crashHandler);
   std::signal(SIGFPE, crashHandler);
 #endif
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (!args.empty() && (args[0] == "--help" || args[0] == "-h" || args[0] == "help")) {
-    usage();
-    return 0;
-  }
-  const std::string cmd = args.empty() ? "" : args[0];
-  std::vector<std::string> rest =
-      args.empty() ? args : std::vector<std::string>(args.begin() + 1, args.end());
-  int code = 0;
-  if (cmd == "render") {
-    code = wb::app::runRenderCommand(rest);
-  } else if (cmd == "shaders") {
-    code = wb::runShadersCommand(rest);
-  } else if (cmd == "watch") {
-    code = wb::app::runWatchCommand(rest);
-  } else if (cmd == "converge") {
-    code = wb::app::runConvergeCommand(rest);
-  } else if (cmd == "bench") {
-    code = wb::app::runBenchCommand(rest);
-  } else {
-    code = runDefault(args);
-  }
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  wb::app::WindowCommand window;
+  wb::app::RenderCommand render;
+  wb::app::ShadersCommand shaders;
+  wb::app::WatchCommand watch;
+  wb::app::ConvergeCommand converge;
+  wb::app::BenchCommand bench;
+  const std::vector<wb::app::Command*> subcommands = {&render, &shaders, &watch, &converge, &bench};
+  CLI::App app(window.description(), "workbench");
+  window.addFlags(app);
+  for (auto* c : subcommands) c->addFlags(*app.add_subcommand(c->name(), c->description()));
+  app.require_subcommand(0, 1);
+  int code = wb::app::parseAndRun(app, args, &window, subcommands);
   // With the validation layer on (WB_VALIDATION=1, as in the tests), a validation error is a bug: the exit
   // status says so even when the command itself succeeded.
   const uint32_t validationErrors = wb::vk::Context::processValidationErrors();

@@ -1,40 +1,36 @@
-// Command-line flags shared by `render`, the window and the other commands that render (a contract with
-// scripts outside the project: names are stable).
+// What a command that renders takes from its command line (a contract with scripts outside the project:
+// names are stable): the scene, the launch options (size, tiles, defines, AOVs, device) and every parameter's
+// flag (render/parameters.h).
 #pragma once
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "render/hybrid/hybrid_settings.h"
-#include "render/settings.h"
+#include "app/parameter_cli.h"
+#include "render/parameters.h"
 
 namespace wb::app {
 
 struct RenderOptions {
   std::string scene;  // empty = the default scene
   std::string size = "512x512";
-  render::RenderSettings settings;
-  std::string envColor;  // "R,G,B"
-  std::string sampler = "sobol";
+  // Every parameter; its render settings also carry the launch options below once finished.
+  render::Parameters params;
   std::string aov;                            // "albedo,normal"
   bool aovAlbedo = false, aovNormal = false;  // which --aov images to write
   std::vector<std::string> defines;           // --define K=V
   std::string device;
   std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)
-  bool noRussianRoulette = false;
-  bool noNee = false;
-  bool noMis = false;
-  // --mode pathtrace|hybrid|reflections and the hybrid modes' parameters.
-  std::string modeName = "pathtrace";
-  render::RenderMode mode = render::RenderMode::PathTrace;
-  render::HybridSettings hybrid;
-  bool noTemporal = false;
+  ParameterFlags flags;
+
+  const render::RenderSettings& settings() const { return params.render; }
 };
 
-// Adds SCENE and the render parameter flags to a CLI11 command.
+// Adds SCENE, the launch options and every parameter's flag to a CLI11 command.
 void addRenderOptions(CLI::App& app, RenderOptions& o);
-// Validates and converts the parsed strings into o.settings; throws std::invalid_argument with a one-line
-// reason.
+// Validates and converts the parsed strings into o.params; throws std::invalid_argument with a one-line
+// reason naming the flag.
 void finishRenderOptions(RenderOptions& o);
 
 }  // namespace wb::app

@@ -2,6 +2,11 @@
 
 namespace wb::render {
 
+const std::vector<std::string>& samplerNames() {
+  static const std::vector<std::string> names = {"sobol", "pcg"};
+  return names;
+}
+
 const char* renderModeName(RenderMode m) {
   switch (m) {
     case RenderMode::Hybrid:

@@ -10,6 +10,8 @@
 namespace wb::render {
 
 enum class SamplerKind { Sobol, Pcg };
+// Their names, indexed by SamplerKind ("sobol", "pcg").
+const std::vector<std::string>& samplerNames();
 
 // The path tracer, or one of its fast, biased counterparts.
 enum class RenderMode { PathTrace, Hybrid, Reflections };

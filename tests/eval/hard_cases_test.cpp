@@ -29,8 +29,8 @@ render::RenderSettings settingsFor(const std::string& variant) {
   cli.parse(args);
   ro.size = "16x16";
   app::finishRenderOptions(ro);
-  ro.settings.spp = 16;
-  return ro.settings;
+  ro.params.render.spp = 16;
+  return ro.params.render;
 }
 
 }  // namespace

@@ -8,15 +8,11 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app/window/parameter_panel.h"
 #include "common/paths.h"
 
 namespace wb::app {
 namespace {
-
-const char* const kTonemapNames[] = {"clamp", "reinhard", "aces"};
-const char* const kViewLabels[WB_VIEW_COUNT] = {"Beauty",           "Albedo", "Shading normal",
-                                                "Geometric normal", "Depth",  "Bounce count (heat map)",
-                                                "NaN/Inf dropped"};
 
 std::string relativeToRoot(const std::filesystem::path& p) {
   std::error_code ec;
@@ -24,63 +20,21 @@ std::string relativeToRoot(const std::filesystem::path& p) {
   return ec || rel.empty() ? p.string() : rel.string();
 }
 
-void hybridControls(PanelContext& c) {
-  auto& h = c.state.hybrid;
-  const bool sceneSun = h.sunAngleDeg < 0.0f;
-  float sunAngle = c.hybrid ? 2.0f * glm::degrees(std::acos(std::clamp(c.hybrid->sunCosAngle(), -1.0f, 1.0f)))
-                            : std::max(h.sunAngleDeg, 0.0f);
-  if (ImGui::SliderFloat(sceneSun ? "sun angle (deg, scene)" : "sun angle (deg)", &sunAngle, 0.0f, 10.0f,
-                         "%.2f")) {
-    h.sunAngleDeg = sunAngle;
-  }
-  int aoRays = int(h.aoRays);
-  if (ImGui::SliderInt("AO rays", &aoRays, 0, 16)) h.aoRays = uint32_t(aoRays);
-  float aoRadius = c.hybrid ? c.hybrid->aoRadius() : h.aoRadius;
-  if (ImGui::DragFloat("AO radius", &aoRadius, 0.01f, 0.001f, 1000.0f, "%.3f")) h.aoRadius = aoRadius;
-  ImGui::Checkbox("temporal accumulation", &h.temporal);
-  if (c.state.mode == render::RenderMode::Reflections) {
-    int depth = int(h.reflectionDepth);
-    if (ImGui::SliderInt("reflection depth", &depth, 0, 8)) h.reflectionDepth = uint32_t(depth);
-    ImGui::SliderFloat("reflect below roughness", &h.reflectionMaxRoughness, 0.0f, 1.0f, "%.2f");
-    ImGui::SliderFloat("reflect from metallic", &h.reflectionMinMetallic, 0.0f, 1.0f, "%.2f");
-  }
-  ImGui::TextDisabled("frames %u; debug views need the path tracer", c.samples);
-}
-
+// The parameters of the active mode (render/parameters.h), then the window's own controls.
 void renderPanel(PanelContext& c) {
   auto& st = c.state;
-  auto& s = st.settings;
-  int mode = int(st.mode);
-  if (ImGui::Combo("mode", &mode,
-                   "path tracer (reference)\0hybrid (raster + RT shadows, AO)\0hybrid + RT reflections\0")) {
-    st.mode = render::RenderMode(mode);
-  }
-  if (st.mode != render::RenderMode::PathTrace) {
-    hybridControls(c);
+  const render::RenderMode mode = st.params.mode;
+  drawParameterGroup("Render", st.params, mode);
+  if (mode != render::RenderMode::PathTrace) {
     ImGui::Separator();
+    drawParameterGroup("Hybrid", st.params, mode);
+    if (c.hybrid) {
+      ImGui::TextDisabled("in use: sun angle %.2f deg, AO radius %.3g",
+                          2.0 * glm::degrees(std::acos(std::clamp(c.hybrid->sunCosAngle(), -1.0f, 1.0f))),
+                          c.hybrid->aoRadius());
+    }
   }
-  int bounces = int(s.maxBounces);
-  if (ImGui::SliderInt("max bounces", &bounces, 0, 32)) s.maxBounces = uint32_t(bounces);
-  int rrStart = int(s.rrStart);
-  if (ImGui::SliderInt("RR start bounce", &rrStart, 0, 16)) s.rrStart = uint32_t(rrStart);
-  ImGui::Checkbox("Russian roulette", &s.russianRoulette);
-  float rr[2] = {s.rrMin, s.rrMax};
-  if (ImGui::SliderFloat2("RR clamp", rr, 0.01f, 1.0f, "%.2f")) {
-    s.rrMin = std::min(rr[0], rr[1]);
-    s.rrMax = std::max(rr[0], rr[1]);
-  }
-  ImGui::Checkbox("NEE", &s.nee);
-  ImGui::SameLine();
-  ImGui::Checkbox("MIS", &s.mis);
-  int sampler = s.sampler == render::SamplerKind::Pcg ? 1 : 0;
-  if (ImGui::Combo("sampler", &sampler, "Sobol + blue noise\0PCG\0")) {
-    s.sampler = sampler ? render::SamplerKind::Pcg : render::SamplerKind::Sobol;
-  }
-  int seed = int(s.seed);
-  if (ImGui::InputInt("seed", &seed)) s.seed = uint32_t(std::max(seed, 0));
   ImGui::Separator();
-  int spp = int(st.targetSpp);
-  if (ImGui::InputInt("target spp (0 = endless)", &spp, 1, 16)) st.targetSpp = uint32_t(std::max(spp, 0));
   if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
   ImGui::SameLine();
   if (ImGui::Button("Reset accumulation")) st.resetAccumulation = true;
@@ -90,15 +44,14 @@ void renderPanel(PanelContext& c) {
     ImGui::Text("trace size %ux%u (--size)", c.traceWidth, c.traceHeight);
   }
   ImGui::SliderFloat("resolution scale", &st.resolutionScale, 0.1f, 1.0f, "%.2f");
-  ImGui::Checkbox("preview after changes", &st.preview);
+  if (mode == render::RenderMode::PathTrace) ImGui::Checkbox("preview after changes", &st.preview);
   ImGui::SliderFloat("trace budget ms", &st.budgetMs, 5.0f, 200.0f, "%.0f");
   ImGui::Checkbox("vsync", &st.vsync);
   ImGui::SameLine();
   ImGui::TextDisabled("%s", c.presentMode.c_str());
   ImGui::Separator();
-  ImGui::SliderFloat("exposure (stops)", &st.display.exposure, -8.0f, 8.0f, "%.2f");
-  int tm = int(st.display.tonemap);
-  if (ImGui::Combo("tonemapper", &tm, kTonemapNames, 3)) st.display.tonemap = eval::Tonemap(tm);
+  for (const char* name : {"exposure", "tonemap"})
+    drawParameter(*render::findParameter(name).info, st.params);
   int cameraMode = c.camera.mode() == CameraMode::Fly ? 1 : 0;
   if (ImGui::Combo("camera", &cameraMode,
                    "orbit (drag, wheel, shift/middle pan)\0fly (right-drag look, WASD QE)\0")) {
@@ -114,9 +67,11 @@ void renderPanel(PanelContext& c) {
 
 void inspectPanel(PanelContext& c) {
   auto& st = c.state;
-  int view = int(st.display.view);
-  ImGui::Combo("debug view", &view, kViewLabels, WB_VIEW_COUNT);
-  st.display.view = uint32_t(view);
+  if (st.params.mode == render::RenderMode::PathTrace) {
+    drawParameter(*render::findParameter("view").info, st.params);
+  } else {
+    ImGui::TextDisabled("debug views are the path tracer's");
+  }
   ImGui::TextDisabled("hover the image to pick; click to pin");
   if (!c.pick) {
     ImGui::TextUnformatted("no hit under the cursor");
@@ -154,7 +109,6 @@ void inspectPanel(PanelContext& c) {
 
 void lightsPanel(PanelContext& c) {
   auto& st = c.state;
-  auto& s = st.settings;
   if (st.lights.empty()) ImGui::TextDisabled("the scene has no directional light");
   for (size_t i = 0; i < st.lights.size(); ++i) {
     ImGui::PushID(int(i));
@@ -185,20 +139,9 @@ void lightsPanel(PanelContext& c) {
     ImGui::PopID();
   }
   ImGui::Separator();
-  ImGui::TextUnformatted("environment (.hdr path; empty = constant colour)");
-  static std::string pathEdit;
-  static bool pathInit = false;
-  if (!pathInit) {
-    pathEdit = s.envPath;
-    pathInit = true;
-  }
-  ImGui::InputText("##envpath", &pathEdit);
-  ImGui::SameLine();
-  if (ImGui::Button("Load")) s.envPath = pathEdit;
+  ImGui::TextUnformatted("environment");
+  drawParameterGroup("Environment", st.params, st.params.mode);
   if (!st.envError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", st.envError.c_str());
-  if (s.envPath.empty()) ImGui::ColorEdit3("constant colour", &s.envColor.x, ImGuiColorEditFlags_Float);
-  ImGui::SliderFloat("rotation", &s.envRotationDeg, -180.0f, 180.0f, "%.1f deg");
-  ImGui::DragFloat("intensity##env", &s.envIntensity, 0.01f, 0.0f, 100.0f);
 }
 
 void shadersPanel(PanelContext& c) {
@@ -317,7 +260,7 @@ void errorSection(PanelContext& c) {
 void statsPanel(PanelContext& c) {
   const auto& pt = c.progressive;
   std::string target;
-  if (c.state.targetSpp) target.append(" / ").append(std::to_string(c.state.targetSpp));
+  if (c.state.params.render.spp) target.append(" / ").append(std::to_string(c.state.params.render.spp));
   const bool preview = !c.hybrid && pt.inPreview();
   ImGui::Text("%s %u%s%s", c.hybrid ? "frames" : "samples", c.samples, target.c_str(),
               preview ? "  (preview)" : "");
@@ -376,10 +319,11 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const auto& pt = c.progressive;
   char status[192];
-  const bool done = c.hybrid ? c.state.targetSpp > 0 && c.samples >= c.state.targetSpp : pt.done();
+  const bool done =
+      c.hybrid ? c.state.params.render.spp > 0 && c.samples >= c.state.params.render.spp : pt.done();
   std::snprintf(
       status, sizeof status, "%s%u %s%s  %ux%u  %.1f s  frame %.1f ms%s",
-      c.hybrid ? (c.state.mode == render::RenderMode::Reflections ? "reflections  " : "hybrid  ") : "",
+      c.hybrid ? (c.state.params.mode == render::RenderMode::Reflections ? "reflections  " : "hybrid  ") : "",
       c.samples, c.hybrid ? "frames" : "spp", !c.hybrid && pt.inPreview() ? " (preview)" : "", c.traceWidth,
       c.traceHeight, c.secondsSinceReset, c.frames.last(),
       c.state.paused ? "  PAUSED" : (done ? "  done" : ""));

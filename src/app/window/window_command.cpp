@@ -1,18 +1,20 @@
 #include "app/window/window_command.h"
 
 #include <cstdio>
+#include <filesystem>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 
-#include "app/window/workbench_window.h"
+#include "app/cmd_render.h"
+#include "common/env.h"
+#include "common/paths.h"
 
 namespace wb::app {
 namespace {
 
-const std::vector<std::string> kWindowValueFlags = {"--frames", "--screenshot", "--stats", "--script",
-                                                    "--set",    "--window",     "--scale", "--imgui-ini"};
-const std::vector<std::string> kWindowBoolFlags = {"--no-vsync"};
+// Exit status of openWindow() when no window can be opened (no display): run() then renders headless.
+constexpr int kNoDisplay = 75;
 
 bool parseWindowSize(const std::string& text, uint32_t& w, uint32_t& h) {
   unsigned a = 0, b = 0;
@@ -24,62 +26,7 @@ bool parseWindowSize(const std::string& text, uint32_t& w, uint32_t& h) {
   return true;
 }
 
-}  // namespace
-
-std::vector<std::string> renderArgsOnly(const std::vector<std::string>& args) {
-  std::vector<std::string> out;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const auto& a = args[i];
-    bool skip = false;
-    for (const auto& f : kWindowValueFlags) {
-      if (a == f) {
-        skip = true;
-        ++i;  // its value too
-      } else if (a.rfind(f + "=", 0) == 0) {
-        skip = true;
-      }
-    }
-    for (const auto& f : kWindowBoolFlags) skip = skip || a == f;
-    if (!skip) out.push_back(a);
-  }
-  return out;
-}
-
-int runWindowCommand(const std::vector<std::string>& args) {
-  CLI::App cli(
-      "The live workbench: progressive path tracing in a window with inspection panels and shader hot "
-      "reload",
-      "workbench");
-  WindowOptions o;
-  addRenderOptions(cli, o.render);
-  cli.add_option("--window", o.windowSize, "window size WxH")->capture_default_str();
-  cli.add_option("--scale", o.scale, "trace resolution relative to the view (0.1..2)")->capture_default_str();
-  cli.add_option("--frames", o.frames, "render N frames, then exit (with --screenshot: save the last one)");
-  cli.add_option("--screenshot", o.screenshot, "PNG of the window (panel included) at exit");
-  cli.add_option("--stats", o.statsPath,
-                 "JSON statistics at exit (samples, resets, frame times, shader errors)");
-  cli.add_option("--reference", o.reference,
-                 "converged .exr of the same view: the Stats panel shows the running error against it");
-  cli.add_option("--script", o.scriptPath, "run scripted commands (see src/app/window/script.h)");
-  cli.add_option("--set", o.sets, std::string("NAME=VALUE setting at start; names: ") + settingNamesHelp());
-  cli.add_option("--imgui-ini", o.imguiIni, "read and write the panel layout in this file (default: none)");
-  cli.add_flag("--no-vsync", o.noVsync, "present with MAILBOX/IMMEDIATE instead of FIFO");
-  try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
-    cli.parse(reversed);
-    o.sizeGiven = cli.get_option("--size")->count() > 0;
-    finishRenderOptions(o.render);
-    if (!parseWindowSize(o.windowSize, o.windowWidth, o.windowHeight))
-      throw std::invalid_argument("--window: expected WxH (at least 64x64), got '" + o.windowSize + "'");
-    if (!(o.scale > 0.0f && o.scale <= 2.0f)) throw std::invalid_argument("--scale: expected 0 < scale <= 2");
-  } catch (const CLI::CallForHelp&) {
-    std::printf("%s", cli.help().c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "workbench: error: %s\n", e.what());
-    return 2;
-  }
-
+int openWindow(const WindowOptions& o) {
   if (!glfwInit()) return kNoDisplay;
   if (!glfwVulkanSupported()) {
     glfwTerminate();
@@ -103,6 +50,75 @@ int runWindowCommand(const std::vector<std::string>& args) {
   glfwDestroyWindow(window);
   glfwTerminate();
   return code;
+}
+
+}  // namespace
+
+void WindowCommand::addFlags(CLI::App& cli) {
+  app_ = &cli;
+  WindowOptions& o = options;
+  addRenderOptions(cli, o.render);
+  cli.add_option("--window", o.windowSize, "window size WxH")->capture_default_str();
+  cli.add_option("--scale", o.scale, "trace resolution relative to the view (0.1..2)")->capture_default_str();
+  cli.add_option("--frames", o.frames, "render N frames, then exit (with --screenshot: save the last one)");
+  cli.add_option("--screenshot", o.screenshot, "PNG of the window (panel included) at exit");
+  cli.add_option("--stats", o.statsPath,
+                 "JSON statistics at exit (samples, resets, frame times, shader errors)");
+  cli.add_option("--reference", o.reference,
+                 "converged .exr of the same view: the Stats panel shows the running error against it");
+  cli.add_option("--script", o.scriptPath, "run scripted commands (see src/app/window/script.h)");
+  cli.add_option("--set", o.sets, "NAME=VALUE setting at start; names: " + settingNamesHelp());
+  cli.add_option("--imgui-ini", o.imguiIni, "read and write the panel layout in this file (default: none)");
+  cli.add_flag("--no-vsync", o.noVsync, "present with MAILBOX/IMMEDIATE instead of FIFO");
+  cli.add_option("--out", headlessOut_,
+                 "without a display: the image the headless render writes "
+                 "(default out/workbench.png)");
+}
+
+void WindowCommand::checkFirstWord(const std::string& word) {
+  // A first word that is neither a flag, a command nor a file: a mistyped command, not a scene.
+  static const char* const kCommands[] = {"render", "shaders", "watch", "converge", "bench"};
+  if (word.empty() || word[0] == '-') return;
+  for (const char* c : kCommands)
+    if (word == c) return;
+  std::error_code ec;
+  if (!std::filesystem::exists(word, ec) && word.find('/') == std::string::npos &&
+      word.find('.') == std::string::npos) {
+    throw std::invalid_argument("unknown command '" + word +
+                                "' (commands: render, shaders, watch, converge, bench; or a scene file)");
+  }
+}
+
+void WindowCommand::finish() {
+  WindowOptions& o = options;
+  o.sizeGiven = app_ && app_->get_option("--size")->count() > 0;
+  finishRenderOptions(o.render);
+  if (!parseWindowSize(o.windowSize, o.windowWidth, o.windowHeight))
+    throw std::invalid_argument("--window: expected WxH (at least 64x64), got '" + o.windowSize + "'");
+  if (!(o.scale > 0.0f && o.scale <= 2.0f)) throw std::invalid_argument("--scale: expected 0 < scale <= 2");
+}
+
+int WindowCommand::run() {
+  const auto display = env::get("DISPLAY"), wayland = env::get("WAYLAND_DISPLAY");
+  if (!display && !wayland) return runHeadless("no display (DISPLAY is not set)");
+  const int code = openWindow(options);
+  if (code != kNoDisplay) return code;
+  return runHeadless("cannot open a window on display '" + display.value_or(wayland.value_or("")) + "'");
+}
+
+int WindowCommand::runHeadless(const std::string& why) {
+  std::printf("workbench: %s; rendering headless instead\n", why.c_str());
+  std::fflush(stdout);
+  RenderCommand render;
+  render.options = options.render;
+  render.args = args;
+  if (headlessOut_.empty()) {
+    std::filesystem::create_directories(projectRoot() / "out");
+    render.out = (projectRoot() / "out" / "workbench.png").string();
+  } else {
+    render.out = headlessOut_;
+  }
+  return render.run();
 }
 
 }  // namespace wb::app

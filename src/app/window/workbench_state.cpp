@@ -8,9 +8,6 @@
 namespace wb::app {
 namespace {
 
-const char* const kViewNames[WB_VIEW_COUNT] = {"beauty", "albedo",  "shading_normal", "geometric_normal",
-                                               "depth",  "bounces", "dropped"};
-
 float toFloat(const std::string& name, const std::string& v) {
   size_t used = 0;
   float f = 0;
@@ -20,7 +17,7 @@ float toFloat(const std::string& name, const std::string& v) {
     used = 0;
   }
   if (used != v.size() || !std::isfinite(f))
-    throw std::invalid_argument(name + ": '" + v + "' is not a number");
+    throw std::invalid_argument(name + ": '" + v + "' is not a finite number");
   return f;
 }
 
@@ -52,122 +49,44 @@ glm::vec3 toVec3(const std::string& name, const std::string& v) {
   return {c[0], c[1], c[2]};
 }
 
-}  // namespace
+const char* kWindowSettings =
+    "scale, preview, budget_ms, vsync, panel, paused, reference PATH.exr (empty = noise estimate), "
+    "sun_direction X,Y,Z, sun_intensity, material.N.roughness|metallic|base_color R,G,B";
 
-const char* viewName(uint32_t view) {
-  return view < WB_VIEW_COUNT ? kViewNames[view] : "?";
-}
-
-std::optional<uint32_t> viewFromName(const std::string& name) {
-  for (uint32_t i = 0; i < WB_VIEW_COUNT; ++i)
-    if (name == kViewNames[i]) return i;
-  return std::nullopt;
-}
-
-std::optional<eval::Tonemap> tonemapFromName(const std::string& name) {
-  for (auto t : {eval::Tonemap::Clamp, eval::Tonemap::Reinhard, eval::Tonemap::Aces})
-    if (name == eval::tonemapName(t)) return t;
-  return std::nullopt;
-}
-
-const char* settingNamesHelp() {
-  return "exposure, tonemap (clamp|reinhard|aces), view (beauty|albedo|shading_normal|geometric_normal|depth|"
-         "bounces|dropped), max_bounces, rr_start, rr_min, rr_max, sampler (sobol|pcg), seed, spp (target, 0 "
-         "= endless), paused, scale, preview, budget_ms, vsync, env_intensity, env_rotation, env_color "
-         "R,G,B, "
-         "env PATH, sun_direction X,Y,Z, sun_intensity, panel, material.N.roughness|metallic|base_color "
-         "R,G,B, "
-         "mode (pathtrace|hybrid|reflections), sun_angle, ao_rays, ao_radius, temporal, reflection_depth, "
-         "reflection_roughness, reflection_metallic, reference PATH.exr (empty = noise estimate)";
-}
-
-void applySetting(WorkbenchState& st, const std::string& name, const std::string& value) {
-  auto& s = st.settings;
-  if (name == "exposure") {
-    st.display.exposure = toFloat(name, value);
-  } else if (name == "tonemap") {
-    auto t = tonemapFromName(value);
-    if (!t) throw std::invalid_argument("tonemap: expected clamp, reinhard or aces, got '" + value + "'");
-    st.display.tonemap = *t;
-  } else if (name == "view") {
-    auto v = viewFromName(value);
-    if (!v) throw std::invalid_argument("view: unknown debug view '" + value + "'");
-    st.display.view = *v;
-  } else if (name == "max_bounces") {
-    s.maxBounces = toUint(name, value);
-  } else if (name == "rr_start") {
-    s.rrStart = toUint(name, value);
-  } else if (name == "rr_min") {
-    s.rrMin = toFloat(name, value);
-  } else if (name == "rr_max") {
-    s.rrMax = toFloat(name, value);
-  } else if (name == "sampler") {
-    if (value != "sobol" && value != "pcg") throw std::invalid_argument("sampler: expected sobol or pcg");
-    s.sampler = value == "pcg" ? render::SamplerKind::Pcg : render::SamplerKind::Sobol;
-  } else if (name == "seed") {
-    s.seed = toUint(name, value);
-  } else if (name == "spp") {
-    st.targetSpp = toUint(name, value);
-  } else if (name == "paused") {
-    st.paused = toBool(name, value);
-  } else if (name == "scale") {
+// The window's own settings (not render parameters). False when `name` is none of them.
+bool applyWindowSetting(WorkbenchState& st, const std::string& name, const std::string& value) {
+  if (name == "scale") {
     const float f = toFloat(name, value);
     if (f <= 0.0f || f > 2.0f) throw std::invalid_argument("scale: expected 0 < scale <= 2");
     st.resolutionScale = f;
   } else if (name == "preview") {
     st.preview = toBool(name, value);
   } else if (name == "budget_ms") {
-    st.budgetMs = toFloat(name, value);
+    const float f = toFloat(name, value);
+    if (f < 1.0f || f > 10000.0f) throw std::invalid_argument("budget_ms: expected 1 .. 10000");
+    st.budgetMs = f;
   } else if (name == "vsync") {
     st.vsync = toBool(name, value);
   } else if (name == "panel") {
     st.showPanel = toBool(name, value);
-  } else if (name == "env_intensity") {
-    s.envIntensity = toFloat(name, value);
-  } else if (name == "env_rotation") {
-    s.envRotationDeg = toFloat(name, value);
-  } else if (name == "env_color") {
-    s.envColor = toVec3(name, value);
-  } else if (name == "env") {
-    s.envPath = value;
+  } else if (name == "paused") {
+    st.paused = toBool(name, value);
+  } else if (name == "reference") {
+    st.referencePath = value;
   } else if (name == "sun_direction" || name == "sun_intensity") {
     if (st.lights.empty()) throw std::invalid_argument(name + ": the scene has no directional light");
     auto& l = st.lights[0];
     if (name == "sun_direction") {
-      l.direction = glm::normalize(toVec3(name, value));
+      const glm::vec3 d = toVec3(name, value);
+      if (!(glm::length(d) > 0.0f)) throw std::invalid_argument("sun_direction: must not be zero");
+      l.direction = glm::normalize(d);
     } else {
       const float old = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
       const float want = toFloat(name, value);
+      if (want < 0.0f) throw std::invalid_argument("sun_intensity: must be non-negative");
       l.radiance = old > 0.0f ? l.radiance * (want / old) : glm::vec3(want);
     }
     st.lightsDirty = true;
-  } else if (name == "mode") {
-    const auto m = render::parseRenderMode(value);
-    if (!m)
-      throw std::invalid_argument("mode: expected pathtrace, hybrid or reflections, got '" + value + "'");
-    st.mode = *m;
-  } else if (name == "sun_angle") {
-    const float f = toFloat(name, value);
-    if (f > 90.0f) throw std::invalid_argument("sun_angle: must be at most 90 degrees");
-    st.hybrid.sunAngleDeg = f;
-  } else if (name == "ao_rays") {
-    st.hybrid.aoRays = toUint(name, value);
-  } else if (name == "ao_radius") {
-    const float f = toFloat(name, value);
-    if (f < 0.0f) throw std::invalid_argument("ao_radius: must be non-negative");
-    st.hybrid.aoRadius = f;
-  } else if (name == "temporal") {
-    st.hybrid.temporal = toBool(name, value);
-  } else if (name == "reflection_depth") {
-    const uint32_t d = toUint(name, value);
-    if (d > 16) throw std::invalid_argument("reflection_depth: at most 16");
-    st.hybrid.reflectionDepth = d;
-  } else if (name == "reflection_roughness") {
-    st.hybrid.reflectionMaxRoughness = toFloat(name, value);
-  } else if (name == "reflection_metallic") {
-    st.hybrid.reflectionMinMetallic = toFloat(name, value);
-  } else if (name == "reference") {
-    st.referencePath = value;
   } else if (name.rfind("material.", 0) == 0) {
     const auto dot = name.find('.', 9);
     if (dot == std::string::npos) throw std::invalid_argument(name + ": expected material.N.FIELD");
@@ -176,20 +95,42 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
       throw std::invalid_argument(name + ": no material " + std::to_string(index));
     auto& m = st.materials[index];
     const std::string field = name.substr(dot + 1);
+    auto unit = [&](float f) {
+      if (f < 0.0f || f > 1.0f) throw std::invalid_argument(name + ": expected 0 .. 1");
+      return f;
+    };
     if (field == "roughness") {
-      m.roughness = toFloat(name, value);
+      m.roughness = unit(toFloat(name, value));
     } else if (field == "metallic") {
-      m.metallic = toFloat(name, value);
+      m.metallic = unit(toFloat(name, value));
     } else if (field == "base_color") {
       const glm::vec3 c = toVec3(name, value);
+      if (c.x < 0.0f || c.y < 0.0f || c.z < 0.0f)
+        throw std::invalid_argument(name + ": must be non-negative");
       m.baseColorFactor = glm::vec4(c, m.baseColorFactor.w);
     } else {
       throw std::invalid_argument(name + ": unknown material field '" + field + "'");
     }
     st.materialsDirty = true;
   } else {
-    throw std::invalid_argument("unknown setting '" + name + "' (known: " + settingNamesHelp() + ")");
+    return false;
   }
+  return true;
+}
+
+}  // namespace
+
+std::string settingNamesHelp() {
+  return render::parameterNames() + " (as their flags too: no_rr, no_nee, ...); " + kWindowSettings;
+}
+
+void applySetting(WorkbenchState& st, const std::string& name, const std::string& value) {
+  if (render::findParameter(name).info) {
+    render::setParameter(st.params, name, value);
+    return;
+  }
+  if (!applyWindowSetting(st, name, value))
+    throw std::invalid_argument("unknown setting '" + name + "' (known: " + settingNamesHelp() + ")");
 }
 
 }  // namespace wb::app

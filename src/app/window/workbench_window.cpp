@@ -13,16 +13,15 @@ float sceneRadius(const scene::Scene& s) {
 }
 
 WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : window_(window), options_(o) {
-  state_.settings = o.render.settings;
-  state_.settings.aov = true;  // the debug views read the AOV images
+  state_.params = o.render.params;
+  state_.params.render.aov = true;  // the debug views read the AOV images
+  // The target spp: --spp when given, else keep refining.
+  state_.params.render.spp = o.render.flags.given("spp") ? o.render.params.render.spp : 0;
   state_.resolutionScale = o.scale;
   state_.fixedSize = o.sizeGiven;
-  state_.fixedWidth = o.render.settings.width;
-  state_.fixedHeight = o.render.settings.height;
+  state_.fixedWidth = o.render.params.render.width;
+  state_.fixedHeight = o.render.params.render.height;
   state_.vsync = !o.noVsync;
-  state_.targetSpp = 0;
-  state_.mode = o.render.mode;
-  state_.hybrid = o.render.hybrid;
   state_.referencePath = o.reference;
 
   uint32_t extCount = 0;
@@ -30,12 +29,12 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   if (!exts) throw std::runtime_error("GLFW found no Vulkan surface support on this display");
   render::SessionOptions so;
   so.scenePath = o.render.scene;
-  so.settings = state_.settings;
+  so.settings = state_.params.render;
   so.settings.width = so.settings.height = 64;  // resized to the view once the window is laid out
   so.context.deviceName = o.render.device;
   so.context.instanceExtensions.assign(exts, exts + extCount);
   so.context.presentation = true;
-  so.hybrid = o.render.hybrid;  // the mode is applied with the first frame, at the trace size
+  so.hybrid = o.render.params.hybrid;  // the mode is applied with the first frame, at the trace size
   session_ = std::make_unique<render::RenderSession>(so);
   auto& ctx = session_->context();
 
@@ -135,11 +134,11 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
 }
 
 void WorkbenchWindow::applyMode() {
-  if (session_->mode() == state_.mode) return;
-  render::RenderSettings s = state_.settings;
+  if (session_->mode() == state_.params.mode) return;
+  render::RenderSettings s = state_.params.render;
   s.width = progressive_->targetWidth();
   s.height = progressive_->targetHeight();
-  session_->setMode(state_.mode, s);
+  session_->setMode(state_.params.mode, s);
 }
 
 uint32_t WorkbenchWindow::currentSamples() const {

@@ -35,8 +35,8 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
   render::HybridRenderer* hybrid = activeHybrid();
   lastFrameHybrid_ = hybrid != nullptr;
   if (hybrid) {
-    const bool run =
-        !state_.paused && (state_.targetSpp == 0 || hybrid->samplesAccumulated() < state_.targetSpp);
+    const bool run = !state_.paused && (state_.params.render.spp == 0 ||
+                                        hybrid->samplesAccumulated() < state_.params.render.spp);
     tracedPixels_ = 0;
     if (run) {
       hybrid->record(cmd);
@@ -65,9 +65,10 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
   push.previewSize =
       usePreview ? glm::uvec2(progressive_->previewImage().width(), progressive_->previewImage().height())
                  : glm::uvec2(0u);
-  push.exposureScale = std::exp2(state_.display.exposure);
-  push.tonemap = uint32_t(state_.display.tonemap);
-  push.view = hybrid ? WB_VIEW_BEAUTY : state_.display.view;  // the debug views are the path tracer's AOVs
+  push.exposureScale = std::exp2(state_.params.display.exposure);
+  push.tonemap = uint32_t(state_.params.display.tonemap);
+  push.view =
+      hybrid ? WB_VIEW_BEAUTY : state_.params.display.view;  // the debug views are the path tracer's AOVs
   push.encodeSrgb = swapchain_->formatIsSrgb() ? 0u : 1u;
   push.tracedRows = progressive_->samples() == 0 ? progressive_->cursorRow() : tracer.settings().height;
   if (hybrid) {
@@ -195,7 +196,7 @@ int WorkbenchWindow::run() {
     render::HybridRenderer* hybrid = activeHybrid();
     if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||
                    hybrid->settings().height != progressive_->targetHeight())) {
-      render::RenderSettings hs = state_.settings;
+      render::RenderSettings hs = state_.params.render;
       hs.width = progressive_->targetWidth();
       hs.height = progressive_->targetHeight();
       hybrid->setSettings(hs);

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "app/hybrid_json.h"
+#include "app/parameter_json.h"
 #include "app/reload_log.h"
 #include "common/paths.h"
 
@@ -33,26 +34,20 @@ nlohmann::json WorkbenchWindow::parametersJson() {
   j["height"] = s.height;
   j["samples"] = currentSamples();
   j["preview"] = !activeHybrid() && progressive_->inPreview();
-  j["mode"] = render::renderModeName(state_.mode);
+  j["mode"] = render::renderModeName(state_.params.mode);
   if (const auto* h = activeHybrid()) {
     j["width"] = h->settings().width;
     j["height"] = h->settings().height;
     j["hybrid"] = hybridSettingsJson(*h);
   }
-  j["max_bounces"] = s.maxBounces;
+  // Every parameter under its own name (the schema of every JSON writer), and the older grouped keys.
+  j.update(app::parametersJson(state_.params));
   j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};
-  j["nee"] = s.nee;
-  j["mis"] = s.mis;
-  j["sampler"] = s.sampler == render::SamplerKind::Pcg ? "pcg" : "sobol";
-  j["seed"] = s.seed;
   j["generic_shaders"] = s.generic;
   j["environment"] = {{"path", s.envPath},
                       {"color", {s.envColor.x, s.envColor.y, s.envColor.z}},
                       {"rotation_deg", s.envRotationDeg},
                       {"intensity", s.envIntensity}};
-  j["exposure"] = state_.display.exposure;
-  j["tonemap"] = eval::tonemapName(state_.display.tonemap);
-  j["view"] = viewName(state_.display.view);
   const glm::vec3 eye = camera_.eye(), fwd = camera_.forward();
   j["camera"] = {{"eye", {eye.x, eye.y, eye.z}}, {"forward", {fwd.x, fwd.y, fwd.z}}, {"yfov", cam.yfov}};
   return j;
@@ -64,7 +59,7 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["samples"] = currentSamples();
   j["preview"] = !activeHybrid() && progressive_->inPreview();
   j["resets"] = progressive_->resets() + hybridResets_;
-  j["mode"] = render::renderModeName(state_.mode);
+  j["mode"] = render::renderModeName(state_.params.mode);
   nlohmann::json le;
   le["reference"] = liveError_.referenceName();
   le["error"] = liveError_.error();
@@ -121,7 +116,7 @@ void WorkbenchWindow::saveRender(std::string base) {
     base = (projectRoot() / "out" / ("workbench_" + timestampName())).string();
   }
   auto image = currentImage();
-  eval::writePng(base + ".png", image, state_.display.exposure, state_.display.tonemap);
+  eval::writePng(base + ".png", image, state_.params.display.exposure, state_.params.display.tonemap);
   eval::writeExr(base + ".exr", image);
   std::ofstream f(base + ".json");
   f << parametersJson().dump(2) << "\n";

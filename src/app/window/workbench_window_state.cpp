@@ -31,7 +31,8 @@ void WorkbenchWindow::applyState() {
       specular |= m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
     }
     const auto& f = tracer.features();
-    if (!f.generic && ((emissive && !f.emissive) || (specular && !f.specular))) st.settings.generic = true;
+    if (!f.generic && ((emissive && !f.emissive) || (specular && !f.specular)))
+      st.params.render.generic = true;
     st.materialsDirty = false;
     restart = true;
   }
@@ -40,8 +41,8 @@ void WorkbenchWindow::applyState() {
     st.lightsDirty = false;
     restart = true;
   }
-  auto& s = st.settings;
-  auto& a = applied_.settings;
+  auto& s = st.params.render;
+  auto& a = applied_.params.render;
   const bool envChanged = s.envPath != a.envPath || (s.envPath.empty() && s.envColor != a.envColor);
   if (envChanged) {
     try {
@@ -53,11 +54,15 @@ void WorkbenchWindow::applyState() {
       s.envColor = a.envColor;
     }
   }
-  const bool settingsChanged =
-      s.maxBounces != a.maxBounces || s.rrStart != a.rrStart || s.rrMin != a.rrMin || s.rrMax != a.rrMax ||
-      s.russianRoulette != a.russianRoulette || s.nee != a.nee || s.mis != a.mis || s.sampler != a.sampler ||
-      s.seed != a.seed || s.envIntensity != a.envIntensity || s.envRotationDeg != a.envRotationDeg ||
-      s.envColor != a.envColor || s.envPath != a.envPath || s.generic != a.generic || s.defines != a.defines;
+  // The parameters that restart accumulation (render/parameters.h), by what they belong to.
+  bool settingsChanged = false, hybridChanged = false;
+  for (const auto* p : render::changedParameters(st.params, applied_.params)) {
+    if (p->group == "Hybrid") {
+      hybridChanged = true;
+    } else if (p->name != "mode") {
+      settingsChanged = true;
+    }
+  }
   if (settingsChanged) {
     const auto features = render::featuresFor(session_->scene(), s);
     if (tracer.setFeatures(features)) hot_->addRenderer(tracer);  // the new variant's program
@@ -72,16 +77,11 @@ void WorkbenchWindow::applyState() {
     }
     restart = true;
   }
-  const auto& hy = st.hybrid;
-  const auto& ha = applied_.hybrid;
-  if (hy.sunAngleDeg != ha.sunAngleDeg || hy.aoRadius != ha.aoRadius || hy.aoRays != ha.aoRays ||
-      hy.temporal != ha.temporal || hy.reflectionDepth != ha.reflectionDepth ||
-      hy.reflectionMaxRoughness != ha.reflectionMaxRoughness ||
-      hy.reflectionMinMetallic != ha.reflectionMinMetallic) {
-    session_->setHybridSettings(hy);
+  if (hybridChanged) {
+    session_->setHybridSettings(st.params.hybrid);
     restart = true;
   }
-  if (st.mode != applied_.mode) restart = true;
+  if (st.params.mode != applied_.params.mode) restart = true;
   applyMode();
   if (st.referencePath != referenceTried_) {
     referenceTried_ = st.referencePath;
@@ -106,7 +106,7 @@ void WorkbenchWindow::applyState() {
     gui_->swapchainRecreated(*swapchain_);
   }
   auto& opts = progressive_->options();
-  opts.targetSpp = st.targetSpp;
+  opts.targetSpp = st.params.render.spp;
   opts.paused = st.paused;
   opts.preview = st.preview;
   opts.budgetMs = st.budgetMs;
