@@ -37,6 +37,7 @@
 #define WB_FLAG_NO_BRDF_MIS 4u       // light sampling only for the environment (no MIS with BRDF)
 #define WB_FLAG_NO_RR 8u             // Russian roulette off
 #define WB_FLAG_AOV 16u              // write the AOV images (albedo, normals, depth, bounces, dropped samples)
+#define WB_FLAG_SAMPLER_OWEN 32u     // Owen-scrambled Sobol (shared/random.h) instead of Sobol + blue noise
 
 WB_NAMESPACE_BEGIN
 

@@ -23,7 +23,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_flag("--no-rr", o.noRussianRoulette, "disable Russian roulette");
   app.add_flag("--no-nee", o.noNee, "disable next-event estimation (BRDF sampling only)");
   app.add_flag("--no-mis", o.noMis, "environment by light sampling only (no MIS with BRDF sampling)");
-  app.add_option("--sampler", o.sampler, "sobol|pcg")->capture_default_str();
+  app.add_option("--sampler", o.sampler, "owen (Owen-scrambled Sobol) | sobol (Sobol + blue noise) | pcg")
+      ->capture_default_str();
   app.add_option("--seed", s.seed, "random seed")->capture_default_str();
   app.add_option("--env", s.envPath, "equirectangular .hdr environment map");
   app.add_option("--env-color", o.envColor, "constant environment radiance R,G,B");
@@ -107,13 +108,10 @@ void finishRenderOptions(RenderOptions& o) {
     }
     s.envColor = {c[0], c[1], c[2]};
   }
-  if (o.sampler == "sobol") {
-    s.sampler = render::SamplerKind::Sobol;
-  } else if (o.sampler == "pcg") {
-    s.sampler = render::SamplerKind::Pcg;
-  } else {
-    throw std::invalid_argument("--sampler: expected sobol or pcg, got '" + o.sampler + "'");
-  }
+  const auto sampler = render::parseSamplerKind(o.sampler);
+  if (!sampler)
+    throw std::invalid_argument("--sampler: expected owen, sobol or pcg, got '" + o.sampler + "'");
+  s.sampler = *sampler;
   if (!(s.rrMin > 0.0f && s.rrMin <= s.rrMax && s.rrMax <= 1.0f)) {
     throw std::invalid_argument("--rr-min/--rr-max: need 0 < rr-min <= rr-max <= 1");
   }

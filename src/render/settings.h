@@ -1,6 +1,7 @@
 // Every path tracer parameter, as the command line, the UI and the tests set it.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -8,7 +9,19 @@
 
 namespace wb::render {
 
-enum class SamplerKind { Sobol, Pcg };
+// Sobol: Sobol + blue-noise Cranley-Patterson rotation; Pcg: independent hashed numbers; Owen: Owen-scrambled
+// Sobol sets (shaders/shared/random.h).
+enum class SamplerKind { Sobol, Pcg, Owen };
+// The sampler's name on the command line, in scripts and in JSON: "sobol" | "pcg" | "owen".
+inline const char* samplerName(SamplerKind k) {
+  return k == SamplerKind::Pcg ? "pcg" : k == SamplerKind::Owen ? "owen" : "sobol";
+}
+inline std::optional<SamplerKind> parseSamplerKind(const std::string& text) {
+  for (SamplerKind k : {SamplerKind::Sobol, SamplerKind::Pcg, SamplerKind::Owen}) {
+    if (text == samplerName(k)) return k;
+  }
+  return std::nullopt;
+}
 
 struct RenderSettings {
   uint32_t width = 512, height = 512;

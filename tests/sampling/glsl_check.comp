@@ -35,10 +35,10 @@ void main() {
 #elif defined(WB_CHECK_random)
 #include "shared/random.h"
 void main() {
-  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, false);
+  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, WB_SAMPLER_OWEN);
   uint st = 5u;
   outBuf.v[0] = vec4(samplerGet3D(s, sampleDimension(1u, WB_DIM_LOBE)),
-                     samplerGet2D(s, WB_DIM_PIXEL).x + sobolOwenSample(2u, 3u, 4u) + pcgNextFloat(st));
+                     samplerGet2D(s, WB_DIM_PIXEL).x + float(owenBits(2u, 3u, 4u, 1u)) + float(nestedUniformScramble(5u, 6u)) + pcgNextFloat(st));
 }
 #elif defined(WB_CHECK_env_sampling)
 #include "shared/env_sampling.h"
@@ -52,7 +52,7 @@ void main() {
 #include "shared/env_sampling.h"
 #include "shared/sampling_math.h"
 void main() {
-  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, false);
+  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, WB_SAMPLER_OWEN);
   SurfaceMaterial m = makeSurfaceMaterial(vec3(0.8), 1.0, 0.0);
   BrdfSample bs = brdfSample(m, vec3(0, 0, 1), vec3(0, 0.6, 0.8), samplerGet3D(s, sampleDimension(0u, WB_DIM_LOBE)));
   EnvSample es = envSample(samplerGet3D(s, sampleDimension(0u, WB_DIM_LIGHT)), 64u, 32u, 0.0);

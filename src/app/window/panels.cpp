@@ -72,9 +72,10 @@ void renderPanel(PanelContext& c) {
   ImGui::Checkbox("NEE", &s.nee);
   ImGui::SameLine();
   ImGui::Checkbox("MIS", &s.mis);
-  int sampler = s.sampler == render::SamplerKind::Pcg ? 1 : 0;
-  if (ImGui::Combo("sampler", &sampler, "Sobol + blue noise\0PCG\0")) {
-    s.sampler = sampler ? render::SamplerKind::Pcg : render::SamplerKind::Sobol;
+  // Combo entries in SamplerKind order.
+  int sampler = int(s.sampler);
+  if (ImGui::Combo("sampler", &sampler, "Sobol + blue noise\0PCG\0Owen-scrambled Sobol\0")) {
+    s.sampler = render::SamplerKind(sampler);
   }
   int seed = int(s.seed);
   if (ImGui::InputInt("seed", &seed)) s.seed = uint32_t(std::max(seed, 0));

@@ -72,7 +72,8 @@ std::optional<eval::Tonemap> tonemapFromName(const std::string& name) {
 
 const char* settingNamesHelp() {
   return "exposure, tonemap (clamp|reinhard|aces), view (beauty|albedo|shading_normal|geometric_normal|depth|"
-         "bounces|dropped), max_bounces, rr_start, rr_min, rr_max, sampler (sobol|pcg), seed, spp (target, 0 "
+         "bounces|dropped), max_bounces, rr_start, rr_min, rr_max, sampler (owen|sobol|pcg), seed, spp "
+         "(target, 0 "
          "= endless), paused, scale, preview, budget_ms, vsync, env_intensity, env_rotation, env_color "
          "R,G,B, "
          "env PATH, sun_direction X,Y,Z, sun_intensity, panel, material.N.roughness|metallic|base_color "
@@ -102,8 +103,9 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
   } else if (name == "rr_max") {
     s.rrMax = toFloat(name, value);
   } else if (name == "sampler") {
-    if (value != "sobol" && value != "pcg") throw std::invalid_argument("sampler: expected sobol or pcg");
-    s.sampler = value == "pcg" ? render::SamplerKind::Pcg : render::SamplerKind::Sobol;
+    const auto sampler = render::parseSamplerKind(value);
+    if (!sampler) throw std::invalid_argument("sampler: expected owen, sobol or pcg");
+    s.sampler = *sampler;
   } else if (name == "seed") {
     s.seed = toUint(name, value);
   } else if (name == "spp") {

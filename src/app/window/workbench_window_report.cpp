@@ -43,7 +43,7 @@ nlohmann::json WorkbenchWindow::parametersJson() {
   j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};
   j["nee"] = s.nee;
   j["mis"] = s.mis;
-  j["sampler"] = s.sampler == render::SamplerKind::Pcg ? "pcg" : "sobol";
+  j["sampler"] = render::samplerName(s.sampler);
   j["seed"] = s.seed;
   j["generic_shaders"] = s.generic;
   j["environment"] = {{"path", s.envPath},
