@@ -156,9 +156,9 @@ void main() {
 #endif
       } else {
 #if WB_HAS_EMISSIVE
-        // Area lights: a point on an emissive triangle.
-        const float uRemapped = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
-        const EmitterSample es = sampleEmitter(position, ul.x, ul.y, ul.z, min(uRemapped, 0.99999994));
+        // Area lights: a point on an emissive triangle; the choice's remainder is the alias coin.
+        const float uCoin = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
+        const EmitterSample es = sampleEmitter(position, ul.x, min(uCoin, 0.99999994), vec2(ul.y, ul.z));
         lightPdf = (1.0 - frame.envSelectProbability) * es.pdf;
         if (lightPdf > 0.0) {
           wi = es.wi;

@@ -24,25 +24,42 @@ struct EmitterSample {
   vec3 wi;
 };
 
-// u.x picks the entry, u.y the alias coin, (u.z, w) the point (uniform over the triangle).
-EmitterSample sampleEmitter(vec3 p, float ux, float uy, float uz, float uw) {
+// Emitter counts up to this pick the alias table entry with the point's first number (the remainder keeps at
+// least 16 bits for the point): selection and point are then stratified together, each triangle of a quad light
+// getting its own stratified half of the sampler's 2D points. More emitters use a number of their own.
+#define WB_EMITTER_SELECT_BY_POINT_MAX 256u
+
+// A light sample from point p: uSelect picks the alias table entry (when there are more than
+// WB_EMITTER_SELECT_BY_POINT_MAX emitters), uCoin the alias coin, u the point, uniform over the triangle (the
+// sampler's best-stratified pair, see WB_DIM_LIGHT in shared/random.h).
+EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
   EmitterSample s;
   s.pdf = 0.0;
   s.radiance = vec3(0.0);
   const uint n = frame.emitterCount;
-  uint i = min(uint(ux * float(n)), n - 1u);
+  uint i;
+  if (n <= WB_EMITTER_SELECT_BY_POINT_MAX) {
+    const float scaled = u.x * float(n);
+    i = min(uint(scaled), n - 1u);
+    u.x = min(scaled - float(i), 0.99999994);
+  } else {
+    i = min(uint(uSelect * float(n)), n - 1u);
+  }
   const EnvAliasEntry e = emitterAlias[i];
-  if (uy >= e.prob) i = e.alias;
+  if (uCoin >= e.prob) i = e.alias;
   const EmissiveTriangle t = emitters[i];
-  const float su = sqrt(uz);
-  const vec3 b = vec3(1.0 - su, su * (1.0 - uw), su * uw);
-  s.position = b.x * t.p0 + b.y * t.p1 + b.z * t.p2;
   s.normal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
-  const vec3 d = s.position - p;
-  const float dist2 = dot(d, d);
-  if (!(dist2 > 0.0)) return s;
-  s.dist = sqrt(dist2);
-  s.wi = d / s.dist;
+  vec3 b;
+  {
+    const float su = sqrt(u.x);
+    b = vec3(1.0 - su, su * (1.0 - u.y), su * u.y);
+    s.position = b.x * t.p0 + b.y * t.p1 + b.z * t.p2;
+    const vec3 d = s.position - p;
+    const float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) return s;
+    s.dist = sqrt(dist2);
+    s.wi = d / s.dist;
+  }
   float cosLight = -dot(s.normal, s.wi);
   if (t.doubleSided != 0u) cosLight = abs(cosLight);
   if (!(cosLight > 0.0)) return s;  // the back of a single-sided emitter: black
@@ -53,7 +70,7 @@ EmitterSample sampleEmitter(vec3 p, float ux, float uy, float uz, float uw) {
     le *= sampleTexture(m.emissiveTexture, uv).rgb;
   }
   s.radiance = le;
-  s.pdf = emitterAreaPdf(m.emissive) * dist2 / cosLight;
+  s.pdf = emitterAreaPdf(m.emissive) * s.dist * s.dist / cosLight;
   return s;
 }
 
