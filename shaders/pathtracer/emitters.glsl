@@ -1,7 +1,15 @@
-// Area lights: sampling a point on the scene's emissive triangles (alias table over luminance * area) and the
-// matching solid-angle pdf, also evaluated when a BRDF-sampled ray happens to hit an emitter (for MIS).
+// Area lights: sampling the scene's emissive triangles (alias table over luminance * area; then the triangle's solid
+// angle, Arvo 1995, or a point of its area) and the matching solid-angle pdf, also evaluated when a BRDF-sampled
+// ray happens to hit an emitter (for MIS).
 #ifndef WB_PT_EMITTERS_GLSL
 #define WB_PT_EMITTERS_GLSL
+#include "../shared/spherical_triangle.h"
+
+// Solid-angle sampling of large emitters (1; the default) or uniform area sampling everywhere (0, for comparison:
+// --define WB_EMITTER_SOLID_ANGLE=0).
+#ifndef WB_EMITTER_SOLID_ANGLE
+#define WB_EMITTER_SOLID_ANGLE 1
+#endif
 
 layout(set = 0, binding = WB_BIND_EMITTERS, scalar) readonly buffer EmitterBlock { EmissiveTriangle emitters[]; };
 layout(set = 0, binding = WB_BIND_EMITTER_ALIAS, scalar) readonly buffer EmitterAliasBlock {
@@ -13,6 +21,23 @@ float emitterLuminance(vec3 emissiveFactor) { return luminance(emissiveFactor); 
 // Area-measure pdf of a point on an emitter of this emissive factor (selection * 1 / area: the area cancels).
 float emitterAreaPdf(vec3 emissiveFactor) {
   return frame.emitterTotalPower > 0.0 ? emitterLuminance(emissiveFactor) / frame.emitterTotalPower : 0.0;
+}
+
+// Solid-angle pdf with which sampleEmitter picks the direction from `origin` to a point of emitter triangle
+// (p0, p1, p2) at distance dist, seeing the emitter at cosLight: the triangle's selection probability times the
+// pdf of the technique sampleEmitter uses for this origin and triangle (sphericalTriangleUseSolidAngle):
+// 1 / solid angle, or the area pdf converted to solid angle (d^2 / (area cos)). Next-event estimation and the MIS
+// weight of a BRDF sample that hits the emitter both evaluate this, so they agree.
+float emitterPdf(vec3 origin, vec3 p0, vec3 p1, vec3 p2, vec3 emissiveFactor, float dist, float cosLight) {
+  const float areaPdf = emitterAreaPdf(emissiveFactor);  // selection probability / area
+#if WB_EMITTER_SOLID_ANGLE
+  if (sphericalTriangleUseSolidAngle(origin, p0, p1, p2)) {
+    const float omega = sphericalTriangleSolidAngle(origin, p0, p1, p2);
+    const float area = 0.5 * length(cross(p1 - p0, p2 - p0));
+    return omega > 0.0 ? areaPdf * area / omega : 0.0;
+  }
+#endif
+  return areaPdf * dist * dist / max(cosLight, 1e-8);
 }
 
 struct EmitterSample {
@@ -30,8 +55,9 @@ struct EmitterSample {
 #define WB_EMITTER_SELECT_BY_POINT_MAX 256u
 
 // A light sample from point p: uSelect picks the alias table entry (when there are more than
-// WB_EMITTER_SELECT_BY_POINT_MAX emitters), uCoin the alias coin, u the point, uniform over the triangle (the
-// sampler's best-stratified pair, see WB_DIM_LIGHT in shared/random.h).
+// WB_EMITTER_SELECT_BY_POINT_MAX emitters), uCoin the alias coin, u the direction (the sampler's best-stratified
+// pair, see WB_DIM_LIGHT in shared/random.h): uniform over the triangle's solid angle where it is large from p,
+// else a uniform point of its area (emitterPdf).
 EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
   EmitterSample s;
   s.pdf = 0.0;
@@ -50,6 +76,18 @@ EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
   const EmissiveTriangle t = emitters[i];
   s.normal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
   vec3 b;
+#if WB_EMITTER_SOLID_ANGLE
+  if (sphericalTriangleUseSolidAngle(p, t.p0, t.p1, t.p2)) {
+    const float omega = sphericalTriangleSolidAngle(p, t.p0, t.p1, t.p2);
+    if (!(omega > 0.0)) return s;
+    s.wi = sampleSphericalTriangle(p, t.p0, t.p1, t.p2, u, omega);
+    const vec3 hit = sphericalTriangleHit(p, s.wi, t.p0, t.p1, t.p2);
+    if (!(hit.z > 0.0)) return s;
+    b = vec3(1.0 - hit.x - hit.y, hit.x, hit.y);
+    s.position = b.x * t.p0 + b.y * t.p1 + b.z * t.p2;
+    s.dist = hit.z;
+  } else
+#endif
   {
     const float su = sqrt(u.x);
     b = vec3(1.0 - su, su * (1.0 - u.y), su * u.y);
@@ -70,7 +108,7 @@ EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
     le *= sampleTexture(m.emissiveTexture, uv).rgb;
   }
   s.radiance = le;
-  s.pdf = emitterAreaPdf(m.emissive) * s.dist * s.dist / cosLight;
+  s.pdf = emitterPdf(p, t.p0, t.p1, t.p2, m.emissive, s.dist, cosLight);
   return s;
 }
 

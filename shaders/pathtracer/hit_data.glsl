@@ -8,6 +8,7 @@ struct HitVertexData {
   vec3 normal;      // object space, interpolated (zero when the mesh had degenerate normals)
   vec4 tangent;
   vec2 uv;
+  vec3 p0, p1, p2;  // object space vertex positions (emitters' MIS pdf)
 };
 
 GeometryInfo hitGeometry() { return geometries[gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT]; }
@@ -28,6 +29,9 @@ HitVertexData fetchHit(GeometryInfo g, uint primitive, vec2 bary2) {
   h.normal = b.x * v0.normal + b.y * v1.normal + b.z * v2.normal;
   h.tangent = b.x * v0.tangent + b.y * v1.tangent + b.z * v2.tangent;
   h.uv = b.x * vec2(v0.u, v0.v) + b.y * vec2(v1.u, v1.v) + b.z * vec2(v2.u, v2.v);
+  h.p0 = v0.position;
+  h.p1 = v1.position;
+  h.p2 = v2.position;
   return h;
 }
 

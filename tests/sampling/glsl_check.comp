@@ -46,6 +46,14 @@ void main() {
   EnvSample e = envSample(vec3(0.1, 0.2, 0.3), 1024u, 512u, 0.5);
   outBuf.v[0] = vec4(e.dir, e.pdf + envPdf(e.dir, 1024u, 512u, 0.5));
 }
+#elif defined(WB_CHECK_spherical_triangle)
+#include "shared/spherical_triangle.h"
+void main() {
+  vec3 p = vec3(0.1, 0.2, 0.3), p0 = vec3(1, 0, 0), p1 = vec3(0, 1, 0), p2 = vec3(0, 0, 1);
+  float omega = sphericalTriangleSolidAngle(p, p0, p1, p2);
+  vec3 d = sampleSphericalTriangle(p, p0, p1, p2, vec2(0.3, 0.6), omega);
+  outBuf.v[0] = vec4(d + sphericalTriangleHit(p, d, p0, p1, p2), sphericalTriangleUseSolidAngle(p, p0, p1, p2) ? 1.0 : 0.0);
+}
 #else
 #include "shared/brdf.h"
 #include "shared/random.h"
