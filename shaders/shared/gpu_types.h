@@ -122,6 +122,7 @@ struct PushConstants {
   uint debugView;
   uvec2 tileOffset;  // first pixel of the traced region
   uvec2 imageSize;   // full accumulation image size
+  float rrExponent;  // Russian roulette survival = clamp(max throughput ^ rrExponent, rrMin, rrMax)
 };
 
 // Alias table entry for environment importance sampling (one per env-map pixel).

@@ -103,9 +103,9 @@ uint64_t fnv1a(const std::string& s) {
 std::string settingsKey(const render::RenderSettings& s) {
   std::ostringstream k;
   k << s.width << "x" << s.height << " bounces " << s.maxBounces << " rr " << s.russianRoulette << " "
-    << s.rrStart << " " << s.rrMin << " " << s.rrMax << " nee " << s.nee << " mis " << s.mis << " sampler "
-    << int(s.sampler) << " env '" << s.envPath << "' " << s.envColor.x << "," << s.envColor.y << ","
-    << s.envColor.z << " rot " << s.envRotationDeg << " int " << s.envIntensity;
+    << s.rrStart << " " << s.rrMin << " " << s.rrMax << " " << s.rrExponent << " nee " << s.nee << " mis "
+    << s.mis << " sampler " << int(s.sampler) << " env '" << s.envPath << "' " << s.envColor.x << ","
+    << s.envColor.y << "," << s.envColor.z << " rot " << s.envRotationDeg << " int " << s.envIntensity;
   return k.str();
 }
 

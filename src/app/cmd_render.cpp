@@ -121,6 +121,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
       j["rr_start"] = ro.settings.rrStart;
       j["rr_min"] = ro.settings.rrMin;
       j["rr_max"] = ro.settings.rrMax;
+      j["rr_exponent"] = ro.settings.rrExponent;
       j["sampler"] = ro.sampler;
       j["seed"] = ro.settings.seed;
       const auto st = session.library().stats();

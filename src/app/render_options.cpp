@@ -20,6 +20,10 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
   app.add_option("--rr-min", s.rrMin, "lowest Russian roulette survival probability")->capture_default_str();
   app.add_option("--rr-max", s.rrMax, "highest Russian roulette survival probability")->capture_default_str();
+  app.add_option(
+         "--rr-exponent", s.rrExponent,
+         "Russian roulette survival = clamp(max throughput ^ E, rr-min, rr-max); 0.5: square root (Cycles)")
+      ->capture_default_str();
   app.add_flag("--no-rr", o.noRussianRoulette, "disable Russian roulette");
   app.add_flag("--no-nee", o.noNee, "disable next-event estimation (BRDF sampling only)");
   app.add_flag("--no-mis", o.noMis, "environment by light sampling only (no MIS with BRDF sampling)");
@@ -114,6 +118,9 @@ void finishRenderOptions(RenderOptions& o) {
   s.sampler = *sampler;
   if (!(s.rrMin > 0.0f && s.rrMin <= s.rrMax && s.rrMax <= 1.0f)) {
     throw std::invalid_argument("--rr-min/--rr-max: need 0 < rr-min <= rr-max <= 1");
+  }
+  if (!(s.rrExponent >= 0.0f && s.rrExponent <= 4.0f)) {
+    throw std::invalid_argument("--rr-exponent: need a number in [0, 4]");
   }
   if (!std::isfinite(s.envIntensity) || s.envIntensity < 0) {
     throw std::invalid_argument("--env-intensity: must be a non-negative number");

@@ -260,6 +260,7 @@ void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) 
   pc.rrStart = settings_.rrStart;
   pc.rrMin = settings_.rrMin;
   pc.rrMax = settings_.rrMax;
+  pc.rrExponent = settings_.rrExponent;
   pc.flags = (settings_.sampler == SamplerKind::Pcg ? WB_FLAG_SAMPLER_PCG : 0u) |
              (settings_.sampler == SamplerKind::Owen ? WB_FLAG_SAMPLER_OWEN : 0u) |
              (settings_.nee ? 0u : WB_FLAG_NO_NEE) | (settings_.mis ? 0u : WB_FLAG_NO_BRDF_MIS) |

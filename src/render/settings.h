@@ -29,6 +29,9 @@ struct RenderSettings {
   uint32_t maxBounces = 8;
   uint32_t rrStart = 2;  // first bounce at which Russian roulette may end a path
   float rrMin = 0.05f, rrMax = 0.95f;
+  // Survival probability = clamp(max throughput component ^ rrExponent, rrMin, rrMax): 1 is proportional to
+  // the throughput, 0.5 its square root (Cycles), which ends paths later for less variance per sample.
+  float rrExponent = 1.0f;
   bool russianRoulette = true;
   bool nee = true;  // next-event estimation (lights + environment)
   bool mis = true;  // MIS between environment NEE and BRDF sampling (off: light sampling only)

@@ -113,28 +113,40 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
   expectNoValidationErrors(*session);
 }
 
-// Russian roulette only reweights surviving paths: on, off, and from the first bounce with a tight survival
-// clamp (every path survives with probability 0.3 exactly) estimate the same image.
+// Russian roulette only reweights surviving paths: on, off, from the first bounce with a tight survival clamp
+// (every path survives with probability 0.3 exactly), and with survival proportional to the throughput
+// (exponent 1) or its square root (0.5) estimate the same image.
 TEST(Unbiased, RussianRouletteOnOffAndAggressiveAgree) {
   app::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
   o.settings = envSettings();
   o.settings.maxBounces = 6;
   auto session = makeSession(o);
-  render::RenderSettings on = o.settings, off = o.settings, aggressive = o.settings;
+  render::RenderSettings on = o.settings, off = o.settings, aggressive = o.settings, linear = o.settings,
+                         root = o.settings;
   off.russianRoulette = false;
   aggressive.rrStart = 1;
   aggressive.rrMin = 0.3f;
   aggressive.rrMax = 0.3f;
+  linear.rrStart = 1;
+  linear.rrExponent = 1.0f;
+  root.rrStart = 1;
+  root.rrExponent = 0.5f;
   const Estimate eOn = estimateMean(*session, on, 16, 16, 400);
   const Estimate eOff = estimateMean(*session, off, 16, 16, 500);
   const Estimate eAggr = estimateMean(*session, aggressive, 16, 16, 600);
+  const Estimate eLinear = estimateMean(*session, linear, 16, 16, 700);
+  const Estimate eRoot = estimateMean(*session, root, 16, 16, 800, render::SamplerKind::Owen);
   expectClean("rr on", eOn);
   expectClean("rr off", eOff);
   expectClean("rr start 1 clamp 0.3", eAggr);
+  expectClean("rr exponent 1", eLinear);
+  expectClean("rr exponent 0.5 (owen)", eRoot);
   expectAgree("rr on", eOn, "rr off", eOff);
   expectAgree("rr start 1 clamp 0.3", eAggr, "rr off", eOff);
   expectAgree("rr start 1 clamp 0.3", eAggr, "rr on", eOn);
+  expectAgree("rr exponent 1", eLinear, "rr off", eOff);
+  expectAgree("rr exponent 0.5 (owen)", eRoot, "rr off", eOff);
   expectNoValidationErrors(*session);
 }
 

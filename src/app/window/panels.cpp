@@ -69,6 +69,9 @@ void renderPanel(PanelContext& c) {
     s.rrMin = std::min(rr[0], rr[1]);
     s.rrMax = std::max(rr[0], rr[1]);
   }
+  ImGui::SliderFloat("RR exponent", &s.rrExponent, 0.0f, 1.0f, "%.2f");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("survival = clamp(throughput ^ exponent); 0.5: square root (Cycles)");
   ImGui::Checkbox("NEE", &s.nee);
   ImGui::SameLine();
   ImGui::Checkbox("MIS", &s.mis);

@@ -72,7 +72,8 @@ std::optional<eval::Tonemap> tonemapFromName(const std::string& name) {
 
 const char* settingNamesHelp() {
   return "exposure, tonemap (clamp|reinhard|aces), view (beauty|albedo|shading_normal|geometric_normal|depth|"
-         "bounces|dropped), max_bounces, rr_start, rr_min, rr_max, sampler (owen|sobol|pcg), seed, spp "
+         "bounces|dropped), max_bounces, rr_start, rr_min, rr_max, rr_exponent, sampler (owen|sobol|pcg), "
+         "seed, spp "
          "(target, 0 "
          "= endless), paused, scale, preview, budget_ms, vsync, env_intensity, env_rotation, env_color "
          "R,G,B, "
@@ -102,6 +103,8 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
     s.rrMin = toFloat(name, value);
   } else if (name == "rr_max") {
     s.rrMax = toFloat(name, value);
+  } else if (name == "rr_exponent") {
+    s.rrExponent = toFloat(name, value);
   } else if (name == "sampler") {
     const auto sampler = render::parseSamplerKind(value);
     if (!sampler) throw std::invalid_argument("sampler: expected owen, sobol or pcg");

@@ -40,7 +40,11 @@ nlohmann::json WorkbenchWindow::parametersJson() {
     j["hybrid"] = hybridSettingsJson(*h);
   }
   j["max_bounces"] = s.maxBounces;
-  j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};
+  j["rr"] = {{"enabled", s.russianRoulette},
+             {"start", s.rrStart},
+             {"min", s.rrMin},
+             {"max", s.rrMax},
+             {"exponent", s.rrExponent}};
   j["nee"] = s.nee;
   j["mis"] = s.mis;
   j["sampler"] = render::samplerName(s.sampler);

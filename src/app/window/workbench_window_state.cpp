@@ -63,9 +63,10 @@ void WorkbenchWindow::applyState() {
   }
   const bool settingsChanged =
       s.maxBounces != a.maxBounces || s.rrStart != a.rrStart || s.rrMin != a.rrMin || s.rrMax != a.rrMax ||
-      s.russianRoulette != a.russianRoulette || s.nee != a.nee || s.mis != a.mis || s.sampler != a.sampler ||
-      s.seed != a.seed || s.envIntensity != a.envIntensity || s.envRotationDeg != a.envRotationDeg ||
-      s.envColor != a.envColor || s.envPath != a.envPath || s.generic != a.generic || s.defines != a.defines;
+      s.rrExponent != a.rrExponent || s.russianRoulette != a.russianRoulette || s.nee != a.nee ||
+      s.mis != a.mis || s.sampler != a.sampler || s.seed != a.seed || s.envIntensity != a.envIntensity ||
+      s.envRotationDeg != a.envRotationDeg || s.envColor != a.envColor || s.envPath != a.envPath ||
+      s.generic != a.generic || s.defines != a.defines;
   if (settingsChanged) {
     const auto features = featuresFor(session_->scene(), s);
     if (tracer.setFeatures(features)) registerHotReload();
