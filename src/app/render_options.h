@@ -15,7 +15,7 @@ struct RenderOptions {
   std::string size = "512x512";
   render::RenderSettings settings;
   std::string envColor;  // "R,G,B"
-  std::string sampler = "sobol";
+  std::string sampler = "owen";
   std::string aov;                            // "albedo,normal"
   bool aovAlbedo = false, aovNormal = false;  // which --aov images to write
   std::vector<std::string> defines;           // --define K=V
