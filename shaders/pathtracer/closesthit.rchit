@@ -94,9 +94,11 @@ void main() {
       if ((pc.flags & WB_FLAG_NO_BRDF_MIS) != 0u) {
         w = 0.0;  // light sampling only: emitters are reached through NEE alone
       } else {
-        const float cosLight = abs(dot(ng, wo));
-        const float lightPdf = (1.0 - frame.envSelectProbability) * emitterAreaPdf(m.emissive) * gl_HitTEXT *
-                               gl_HitTEXT / max(cosLight, 1e-8);
+        // The pdf next-event estimation had for this direction, from the previous vertex (the ray's origin).
+        const float lightPdf =
+            (1.0 - frame.envSelectProbability) *
+            emitterPdf(gl_WorldRayOriginEXT, gl_ObjectToWorldEXT * vec4(h.p0, 1.0), gl_ObjectToWorldEXT * vec4(h.p1, 1.0),
+                       gl_ObjectToWorldEXT * vec4(h.p2, 1.0), m.emissive, gl_HitTEXT, abs(dot(ng, wo)));
         w = powerHeuristic(1.0, payload.pdf, 1.0, lightPdf);
       }
     }
@@ -150,9 +152,10 @@ void main() {
 #endif
       } else {
 #if WB_HAS_EMISSIVE
-        // Area lights: a point on an emissive triangle.
-        const float uRemapped = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
-        const EmitterSample es = sampleEmitter(position, ul.x, ul.y, ul.z, min(uRemapped, 0.99999994));
+        // Area lights: a point on an emissive triangle; the choice's remainder is the alias coin.
+        const float uCoin = (uChoice - frame.envSelectProbability) / (1.0 - frame.envSelectProbability);
+        // From the shadow ray's origin, like the continuation ray whose MIS weight closest-hit computes there.
+        const EmitterSample es = sampleEmitter(originOut, ul.x, min(uCoin, 0.99999994), vec2(ul.y, ul.z));
         lightPdf = (1.0 - frame.envSelectProbability) * es.pdf;
         if (lightPdf > 0.0) {
           wi = es.wi;

@@ -1,7 +1,15 @@
-// Area lights: sampling a point on the scene's emissive triangles (alias table over luminance * area) and the
-// matching solid-angle pdf, also evaluated when a BRDF-sampled ray happens to hit an emitter (for MIS).
+// Area lights: sampling the scene's emissive triangles (alias table over luminance * area; then the triangle's solid
+// angle, Arvo 1995, or a point of its area) and the matching solid-angle pdf, also evaluated when a BRDF-sampled
+// ray happens to hit an emitter (for MIS).
 #ifndef WB_PT_EMITTERS_GLSL
 #define WB_PT_EMITTERS_GLSL
+#include "../shared/spherical_triangle.h"
+
+// Solid-angle sampling of large emitters (1; the default) or uniform area sampling everywhere (0, for comparison:
+// --define WB_EMITTER_SOLID_ANGLE=0).
+#ifndef WB_EMITTER_SOLID_ANGLE
+#define WB_EMITTER_SOLID_ANGLE 1
+#endif
 
 layout(set = 0, binding = WB_BIND_EMITTERS, scalar) readonly buffer EmitterBlock { EmissiveTriangle emitters[]; };
 layout(set = 0, binding = WB_BIND_EMITTER_ALIAS, scalar) readonly buffer EmitterAliasBlock {
@@ -15,6 +23,23 @@ float emitterAreaPdf(vec3 emissiveFactor) {
   return frame.emitterTotalPower > 0.0 ? emitterLuminance(emissiveFactor) / frame.emitterTotalPower : 0.0;
 }
 
+// Solid-angle pdf with which sampleEmitter picks the direction from `origin` to a point of emitter triangle
+// (p0, p1, p2) at distance dist, seeing the emitter at cosLight: the triangle's selection probability times the
+// pdf of the technique sampleEmitter uses for this origin and triangle (sphericalTriangleUseSolidAngle):
+// 1 / solid angle, or the area pdf converted to solid angle (d^2 / (area cos)). Next-event estimation and the MIS
+// weight of a BRDF sample that hits the emitter both evaluate this, so they agree.
+float emitterPdf(vec3 origin, vec3 p0, vec3 p1, vec3 p2, vec3 emissiveFactor, float dist, float cosLight) {
+  const float areaPdf = emitterAreaPdf(emissiveFactor);  // selection probability / area
+#if WB_EMITTER_SOLID_ANGLE
+  if (sphericalTriangleUseSolidAngle(origin, p0, p1, p2)) {
+    const float omega = sphericalTriangleSolidAngle(origin, p0, p1, p2);
+    const float area = 0.5 * length(cross(p1 - p0, p2 - p0));
+    return omega > 0.0 ? areaPdf * area / omega : 0.0;
+  }
+#endif
+  return areaPdf * dist * dist / max(cosLight, 1e-8);
+}
+
 struct EmitterSample {
   vec3 position;
   vec3 normal;   // geometric normal of the triangle (winding order)
@@ -24,25 +49,55 @@ struct EmitterSample {
   vec3 wi;
 };
 
-// u.x picks the entry, u.y the alias coin, (u.z, w) the point (uniform over the triangle).
-EmitterSample sampleEmitter(vec3 p, float ux, float uy, float uz, float uw) {
+// Emitter counts up to this pick the alias table entry with the point's first number (the remainder keeps at
+// least 16 bits for the point): selection and point are then stratified together, each triangle of a quad light
+// getting its own stratified half of the sampler's 2D points. More emitters use a number of their own.
+#define WB_EMITTER_SELECT_BY_POINT_MAX 256u
+
+// A light sample from point p: uSelect picks the alias table entry (when there are more than
+// WB_EMITTER_SELECT_BY_POINT_MAX emitters), uCoin the alias coin, u the direction (the sampler's best-stratified
+// pair, see WB_DIM_LIGHT in shared/random.h): uniform over the triangle's solid angle where it is large from p,
+// else a uniform point of its area (emitterPdf).
+EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
   EmitterSample s;
   s.pdf = 0.0;
   s.radiance = vec3(0.0);
   const uint n = frame.emitterCount;
-  uint i = min(uint(ux * float(n)), n - 1u);
+  uint i;
+  if (n <= WB_EMITTER_SELECT_BY_POINT_MAX) {
+    const float scaled = u.x * float(n);
+    i = min(uint(scaled), n - 1u);
+    u.x = min(scaled - float(i), 0.99999994);
+  } else {
+    i = min(uint(uSelect * float(n)), n - 1u);
+  }
   const EnvAliasEntry e = emitterAlias[i];
-  if (uy >= e.prob) i = e.alias;
+  if (uCoin >= e.prob) i = e.alias;
   const EmissiveTriangle t = emitters[i];
-  const float su = sqrt(uz);
-  const vec3 b = vec3(1.0 - su, su * (1.0 - uw), su * uw);
-  s.position = b.x * t.p0 + b.y * t.p1 + b.z * t.p2;
   s.normal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
-  const vec3 d = s.position - p;
-  const float dist2 = dot(d, d);
-  if (!(dist2 > 0.0)) return s;
-  s.dist = sqrt(dist2);
-  s.wi = d / s.dist;
+  vec3 b;
+#if WB_EMITTER_SOLID_ANGLE
+  if (sphericalTriangleUseSolidAngle(p, t.p0, t.p1, t.p2)) {
+    const float omega = sphericalTriangleSolidAngle(p, t.p0, t.p1, t.p2);
+    if (!(omega > 0.0)) return s;
+    s.wi = sampleSphericalTriangle(p, t.p0, t.p1, t.p2, u, omega);
+    const vec3 hit = sphericalTriangleHit(p, s.wi, t.p0, t.p1, t.p2);
+    if (!(hit.z > 0.0)) return s;
+    b = vec3(1.0 - hit.x - hit.y, hit.x, hit.y);
+    s.position = b.x * t.p0 + b.y * t.p1 + b.z * t.p2;
+    s.dist = hit.z;
+  } else
+#endif
+  {
+    const float su = sqrt(u.x);
+    b = vec3(1.0 - su, su * (1.0 - u.y), su * u.y);
+    s.position = b.x * t.p0 + b.y * t.p1 + b.z * t.p2;
+    const vec3 d = s.position - p;
+    const float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) return s;
+    s.dist = sqrt(dist2);
+    s.wi = d / s.dist;
+  }
   float cosLight = -dot(s.normal, s.wi);
   if (t.doubleSided != 0u) cosLight = abs(cosLight);
   if (!(cosLight > 0.0)) return s;  // the back of a single-sided emitter: black
@@ -53,7 +108,7 @@ EmitterSample sampleEmitter(vec3 p, float ux, float uy, float uz, float uw) {
     le *= sampleTexture(m.emissiveTexture, uv).rgb;
   }
   s.radiance = le;
-  s.pdf = emitterAreaPdf(m.emissive) * dist2 / cosLight;
+  s.pdf = emitterPdf(p, t.p0, t.p1, t.p2, m.emissive, s.dist, cosLight);
   return s;
 }
 

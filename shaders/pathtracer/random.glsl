@@ -1,4 +1,4 @@
-// Per-path sample streams: Sobol + blue-noise rotation (or PCG), dimension layout in shared/random.h.
+// Per-path sample streams (owen, Sobol + blue-noise rotation, or PCG), dimension layout in shared/random.h.
 #ifndef WB_PT_RANDOM_GLSL
 #define WB_PT_RANDOM_GLSL
 #include "../shared/random.h"
@@ -8,7 +8,10 @@
 SamplerState gSampler;
 
 void initPathSampler(uvec2 pixel, uint sampleIndex) {
-  gSampler = samplerInit(pixel, sampleIndex, pc.seed, (pc.flags & WB_FLAG_SAMPLER_PCG) != 0u);
+  const uint mode = (pc.flags & WB_FLAG_SAMPLER_PCG) != 0u    ? WB_SAMPLER_PCG
+                    : (pc.flags & WB_FLAG_SAMPLER_OWEN) != 0u ? WB_SAMPLER_OWEN
+                                                               : WB_SAMPLER_SOBOL;
+  gSampler = samplerInit(pixel, sampleIndex, pc.seed, mode);
 }
 
 // Dimensions 0-1: pixel jitter.

@@ -15,6 +15,7 @@
 //
 // Sampling: two lobes, chosen with u.x.
 //   pDiffuseDielectric = 1 - clamp(luminance(specularFactor * F_schlick(F0_d, 1, n.wo)), 0.01, 0.99)
+//                        (1 when specularFactor = 0: without a specular layer there is no lobe to sample)
 //   pDiffuse           = (1 - metallic) * pDiffuseDielectric,   pSpecular = 1 - pDiffuse
 // so a pure metal (metallic = 1) never picks the diffuse lobe (it has none), a dielectric picks the specular lobe
 // with its view-angle Fresnel reflectance, and metallic in (0,1) linearly blends the two probabilities.
@@ -69,7 +70,7 @@ WB_FN vec3 dielectricF0(SurfaceMaterial m) { return min(0.04f * m.specularColor,
 // Probability of the diffuse lobe for a view direction with cos(theta_o) = NdotV (see header comment).
 WB_FN float brdfDiffuseProbability(SurfaceMaterial m, float NdotV) {
   float fd = luminance(m.specularFactor * fresnelSchlick(dielectricF0(m), 1.0f, NdotV));
-  float pDiffDielectric = 1.0f - clamp(fd, 0.01f, 0.99f);
+  float pDiffDielectric = 1.0f - (m.specularFactor > 0.0f ? clamp(fd, 0.01f, 0.99f) : 0.0f);
   return (1.0f - clamp(m.metallic, 0.0f, 1.0f)) * pDiffDielectric;
 }
 

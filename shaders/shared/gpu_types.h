@@ -37,6 +37,7 @@
 #define WB_FLAG_NO_BRDF_MIS 4u       // light sampling only for the environment (no MIS with BRDF)
 #define WB_FLAG_NO_RR 8u             // Russian roulette off
 #define WB_FLAG_AOV 16u              // write the AOV images (albedo, normals, depth, bounces, dropped samples)
+#define WB_FLAG_SAMPLER_OWEN 32u     // Owen-scrambled Sobol (shared/random.h) instead of Sobol + blue noise
 
 WB_NAMESPACE_BEGIN
 
@@ -121,6 +122,7 @@ struct PushConstants {
   uint debugView;
   uvec2 tileOffset;  // first pixel of the traced region
   uvec2 imageSize;   // full accumulation image size
+  float rrExponent;  // Russian roulette survival = clamp(max throughput ^ rrExponent, rrMin, rrMax)
 };
 
 // Alias table entry for environment importance sampling (one per env-map pixel).

@@ -43,6 +43,7 @@ struct TriangleHit {
   vec3 normal;     // interpolated (zero when the mesh had degenerate normals)
   vec4 tangent;
   vec2 uv;
+  vec3 p0, p1, p2;  // the vertex positions (an emitter's solid-angle pdf needs the whole triangle)
 };
 
 TriangleHit fetchTriangle(GeometryInfo g, uint primitive, vec2 bary2) {
@@ -56,6 +57,9 @@ TriangleHit fetchTriangle(GeometryInfo g, uint primitive, vec2 bary2) {
   h.normal = b.x * v0.normal + b.y * v1.normal + b.z * v2.normal;
   h.tangent = b.x * v0.tangent + b.y * v1.tangent + b.z * v2.tangent;
   h.uv = b.x * vec2(v0.u, v0.v) + b.y * vec2(v1.u, v1.v) + b.z * vec2(v2.u, v2.v);
+  h.p0 = v0.position;
+  h.p1 = v1.position;
+  h.p2 = v2.position;
   return h;
 }
 

@@ -117,6 +117,7 @@ int RenderCommand::run() {
       j["rr_start"] = ro.params.render.rrStart;
       j["rr_min"] = ro.params.render.rrMin;
       j["rr_max"] = ro.params.render.rrMax;
+      j["rr_exponent"] = ro.params.render.rrExponent;
       j["sampler"] = render::samplerNames().at(size_t(ro.params.render.sampler));
       j["seed"] = ro.params.render.seed;
       j["parameters"] = parametersJson(ro.params);  // every parameter, the schema of every JSON writer

@@ -120,13 +120,19 @@ std::vector<ParameterInfo> makeList() {
                    1, kPathTraceMode, [](P& p) -> float& { return p.render.rrMin; }));
   l.push_back(real("rr_max", "Render", "RR max", "highest Russian roulette survival probability", 0, 1, 0.01,
                    1, kPathTraceMode, [](P& p) -> float& { return p.render.rrMax; }));
+  l.push_back(real("rr_exponent", "Render", "RR exponent",
+                   "Russian roulette survival = clamp(max throughput ^ E, rr-min, rr-max); 0.5: square root "
+                   "(Cycles), 1: proportional",
+                   0, 4, 0, 1, kPathTraceMode, [](P& p) -> float& { return p.render.rrExponent; }));
   l.push_back(boolean("nee", "--no-nee", false, "Render", "NEE",
                       "next-event estimation (--no-nee: BRDF sampling only)", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.nee; }));
   l.push_back(boolean("mis", "--no-mis", false, "Render", "MIS",
                       "MIS of light and BRDF sampling (--no-mis: light sampling only)", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.mis; }));
-  l.push_back(choice<SamplerKind>("sampler", "Render", "sampler", "sample sequence", samplerNames(),
+  l.push_back(choice<SamplerKind>("sampler", "Render", "sampler",
+                                  "sample sequence: owen (Owen-scrambled Sobol), sobol (Sobol + blue noise), pcg",
+                                  samplerNames(),
                                   kPathTraceMode, [](P& p) -> SamplerKind& { return p.render.sampler; }));
   l.push_back(unsignedInt("seed", "Render", "seed", "random seed", 0, 4294967295.0, 0, 0, kAllModes,
                           [](P& p) -> uint32_t& { return p.render.seed; }));

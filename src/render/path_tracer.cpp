@@ -219,7 +219,9 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   pc.rrStart = settings_.rrStart;
   pc.rrMin = settings_.rrMin;
   pc.rrMax = settings_.rrMax;
+  pc.rrExponent = settings_.rrExponent;
   pc.flags = (settings_.sampler == SamplerKind::Pcg ? WB_FLAG_SAMPLER_PCG : 0u) |
+             (settings_.sampler == SamplerKind::Owen ? WB_FLAG_SAMPLER_OWEN : 0u) |
              (settings_.nee ? 0u : WB_FLAG_NO_NEE) | (settings_.mis ? 0u : WB_FLAG_NO_BRDF_MIS) |
              (settings_.russianRoulette ? 0u : WB_FLAG_NO_RR) | (settings_.aov ? WB_FLAG_AOV : 0u);
   pc.seed = settings_.seed;

@@ -3,8 +3,12 @@
 namespace wb::render {
 
 const std::vector<std::string>& samplerNames() {
-  static const std::vector<std::string> names = {"sobol", "pcg"};
+  static const std::vector<std::string> names = {"sobol", "pcg", "owen"};
   return names;
+}
+
+const char* samplerName(SamplerKind k) {
+  return samplerNames().at(size_t(k)).c_str();
 }
 
 const char* renderModeName(RenderMode m) {

@@ -9,9 +9,12 @@
 
 namespace wb::render {
 
-enum class SamplerKind { Sobol, Pcg };
-// Their names, indexed by SamplerKind ("sobol", "pcg").
+// Sobol: Sobol + blue-noise Cranley-Patterson rotation; Pcg: independent hashed numbers; Owen: Owen-scrambled
+// Sobol sets (shaders/shared/random.h).
+enum class SamplerKind { Sobol, Pcg, Owen };
+// Their names, indexed by SamplerKind ("sobol", "pcg", "owen").
 const std::vector<std::string>& samplerNames();
+const char* samplerName(SamplerKind k);
 
 // The path tracer, or one of its fast, biased counterparts.
 enum class RenderMode { PathTrace, Hybrid, Reflections };
@@ -22,12 +25,16 @@ struct RenderSettings {
   uint32_t width = 512, height = 512;
   uint32_t spp = 16;
   uint32_t maxBounces = 8;
-  uint32_t rrStart = 2;  // first bounce at which Russian roulette may end a path
+  // First bounce at which Russian roulette may end a path (the defaults' choice: docs/reports/error_per_sample.md).
+  uint32_t rrStart = 3;
   float rrMin = 0.05f, rrMax = 0.95f;
+  // Survival probability = clamp(max throughput component ^ rrExponent, rrMin, rrMax): 1 is proportional to
+  // the throughput, 0.5 its square root (Cycles), which ends paths later for less variance per sample.
+  float rrExponent = 0.5f;
   bool russianRoulette = true;
   bool nee = true;  // next-event estimation (lights + environment)
   bool mis = true;  // MIS between environment NEE and BRDF sampling (off: light sampling only)
-  SamplerKind sampler = SamplerKind::Sobol;
+  SamplerKind sampler = SamplerKind::Owen;
   uint32_t seed = 0;
   bool aov = false;  // albedo + normal AOVs
   uint32_t debugView = 0;

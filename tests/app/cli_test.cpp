@@ -258,16 +258,18 @@ TEST(Cli, RenderFlagsReachTheStatsAndFiles) {
   const auto dir = tempDir() / "flags";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  auto r =
-      run("render --size 16x16 --spp 2 --max-bounces 3 --rr-start 1 --rr-min 0.1 --rr-max 0.9 --seed 5 "
-          "--sampler pcg --env-rotation 30 --env-intensity 0.5 --aov albedo --out " +
-          (dir / "a.exr").string() + " --stats " + (dir / "a.json").string());
+  auto r = run(
+      "render --size 16x16 --spp 2 --max-bounces 3 --rr-start 1 --rr-min 0.1 --rr-max 0.9 --rr-exponent 0.25 "
+      "--seed 5 "
+      "--sampler pcg --env-rotation 30 --env-intensity 0.5 --aov albedo --out " +
+      (dir / "a.exr").string() + " --stats " + (dir / "a.json").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const auto a = readJsonFile(dir / "a.json");
   EXPECT_EQ(a["max_bounces"], 3);
   EXPECT_EQ(a["rr_start"], 1);
   EXPECT_NEAR(a["rr_min"].get<double>(), 0.1, 1e-6);
   EXPECT_NEAR(a["rr_max"].get<double>(), 0.9, 1e-6);
+  EXPECT_NEAR(a["rr_exponent"].get<double>(), 0.25, 1e-6);
   EXPECT_EQ(a["seed"], 5);
   EXPECT_EQ(a["sampler"], "pcg");
   EXPECT_EQ(a["mode"], "pathtrace");

@@ -76,7 +76,7 @@ TEST(ParameterJson, EveryParameterUnderItsName) {
         EXPECT_TRUE(j[info.name].is_string()) << info.name;
     }
   }
-  EXPECT_EQ(j["sampler"], "sobol");
+  EXPECT_EQ(j["sampler"], "owen");
   EXPECT_EQ(j["russian_roulette"], true);
   EXPECT_NEAR(j["env_color"][2].get<double>(), 0.3, 1e-6);
 }

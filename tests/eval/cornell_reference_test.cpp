@@ -23,7 +23,7 @@ TEST(CornellReference, AgreesWithCyclesWithinNoise) {
   o.settings.envColor = glm::vec3(0.0f);  // --env-color 0,0,0
   o.settings.maxBounces = 64;             // --max-bounces 64
   auto session = makeSession(o);
-  // 8 runs x 384 spp (~25 s on lavapipe): the standard error of each channel's image mean is ~0.1%.
+  // 8 runs x 384 spp (~25 s on lavapipe), PCG: the standard error of each channel's image mean is ~0.03%.
   const auto runs = downsampleAll(renderRuns(*session, o.settings, 8, 384, 1), 4);
   const auto ours = eval::estimateFromRuns(runs);
   const auto reference = eval::downsampleTo(cycles, 16, 16);
@@ -63,5 +63,19 @@ TEST(CornellReference, AgreesWithCyclesWithinNoise) {
   const double relMse = eval::relMse(ours.mean, reference);
   std::printf("relMSE at 16x16: %.3g\n", relMse);
   EXPECT_LT(relMse, 1e-4);
+
+  // The default configuration (owen sampler, solid-angle light sampling, square-root Russian roulette)
+  // converges to the same means: within 0.3% of Cycles per channel (issue 20's bar). Its runs are so much
+  // less noisy (se ~0.007% from 8 x 384 spp) that the residual above shows at 6-8 se (measured +0.047 +0.045
+  // +0.032%), so the per-pixel test is left to the PCG runs; 8 x 128 spp here.
+  const auto owenRuns = renderRuns(*session, o.settings, 8, 128, 11, render::SamplerKind::Owen);
+  const eval::Rgb mo = eval::meanRgb(eval::estimateFromRuns(owenRuns).mean);
+  const eval::Rgb full = eval::meanRgb(cycles);
+  for (int c = 0; c < 3; ++c) {
+    const double rel = mo[c] / full[c] - 1.0;
+    std::printf("default configuration, channel %d: %.5f vs cycles %.5f: %+.3f%%\n", c, mo[c], full[c],
+                100.0 * rel);
+    EXPECT_LT(std::abs(rel), 0.003) << "channel " << c;
+  }
   expectNoValidationErrors(*session);
 }

@@ -1,6 +1,6 @@
 // The white furnace on the GPU: a closed white Lambertian object in a uniform environment of radiance 1
-// renders 1 everywhere, whatever the sampling strategy (NEE + MIS, BRDF only, light only) and with or without
-// Russian roulette.
+// renders 1 everywhere, whatever the sampler (owen, the default; sobol; pcg) and sampling strategy (NEE +
+// MIS, BRDF only, light only) and with or without Russian roulette.
 #include <gtest/gtest.h>
 
 #include "gpu_fixture.h"
@@ -57,6 +57,20 @@ TEST(Furnace, LightSamplingOnly) {
 TEST(Furnace, WithoutRussianRoulette) {
   render::RenderSettings s;
   s.russianRoulette = false;
+  EXPECT_NEAR(furnaceMean(s, 64), 1.0, 0.005);
+}
+
+TEST(Furnace, SobolSampler) {
+  render::RenderSettings s;
+  s.sampler = render::SamplerKind::Sobol;
+  EXPECT_NEAR(furnaceMean(s, 64), 1.0, 0.005);
+}
+
+TEST(Furnace, OwenSamplerRussianRouletteFromTheFirstBounce) {
+  render::RenderSettings s;
+  s.sampler = render::SamplerKind::Owen;
+  s.rrStart = 1;
+  s.rrExponent = 0.5f;
   EXPECT_NEAR(furnaceMean(s, 64), 1.0, 0.005);
 }
 

@@ -113,28 +113,91 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
   expectNoValidationErrors(*session);
 }
 
-// Russian roulette only reweights surviving paths: on, off, and from the first bounce with a tight survival
-// clamp (every path survives with probability 0.3 exactly) estimate the same image.
+// Russian roulette only reweights surviving paths: on, off, from the first bounce with a tight survival clamp
+// (every path survives with probability 0.3 exactly), and with survival proportional to the throughput
+// (exponent 1) or its square root (0.5) estimate the same image.
 TEST(Unbiased, RussianRouletteOnOffAndAggressiveAgree) {
   render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
   o.settings = envSettings();
   o.settings.maxBounces = 6;
   auto session = makeSession(o);
-  render::RenderSettings on = o.settings, off = o.settings, aggressive = o.settings;
+  render::RenderSettings on = o.settings, off = o.settings, aggressive = o.settings, linear = o.settings,
+                         root = o.settings;
   off.russianRoulette = false;
   aggressive.rrStart = 1;
   aggressive.rrMin = 0.3f;
   aggressive.rrMax = 0.3f;
+  linear.rrStart = 1;
+  linear.rrExponent = 1.0f;
+  root.rrStart = 1;
+  root.rrExponent = 0.5f;
   const Estimate eOn = estimateMean(*session, on, 16, 16, 400);
   const Estimate eOff = estimateMean(*session, off, 16, 16, 500);
   const Estimate eAggr = estimateMean(*session, aggressive, 16, 16, 600);
+  const Estimate eLinear = estimateMean(*session, linear, 16, 16, 700);
+  const Estimate eRoot = estimateMean(*session, root, 16, 16, 800, render::SamplerKind::Owen);
   expectClean("rr on", eOn);
   expectClean("rr off", eOff);
   expectClean("rr start 1 clamp 0.3", eAggr);
+  expectClean("rr exponent 1", eLinear);
+  expectClean("rr exponent 0.5 (owen)", eRoot);
   expectAgree("rr on", eOn, "rr off", eOff);
   expectAgree("rr start 1 clamp 0.3", eAggr, "rr off", eOff);
   expectAgree("rr start 1 clamp 0.3", eAggr, "rr on", eOn);
+  expectAgree("rr exponent 1", eLinear, "rr off", eOff);
+  expectAgree("rr exponent 0.5 (owen)", eRoot, "rr off", eOff);
+  expectNoValidationErrors(*session);
+}
+
+// A large emitter 0.25 above a floor: from the floor it subtends a large solid angle (sampled by solid angle,
+// shared/spherical_triangle.h) and BRDF sampling hits it often, so MIS weighs both strategies heavily. Direct
+// light only (one bounce): MIS, light sampling alone and BRDF sampling alone must agree. If the pdf MIS
+// evaluates for a BRDF sample that hits the emitter were not the pdf next-event estimation sampled with (e.g.
+// the area pdf there), the weights would not sum to one and MIS would be off by several sigma.
+TEST(Emitters, SolidAngleSamplingKeepsMisConsistent) {
+  scene::Scene sc = makeShadowScene().scene;
+  sc.lights.clear();
+  sc.meshes.resize(1);
+  sc.instances.resize(1);
+  gpu::Material emitter = lambert(glm::vec3(0.0f));
+  emitter.emissive = glm::vec3(2.0f);
+  sc.materials.push_back(emitter);
+  sc.meshes.push_back(quadMesh(1.0f, int(sc.materials.size() - 1)));
+  glm::mat4 t(1.0f);
+  t[1][1] = -1.0f, t[2][2] = -1.0f;  // facing the floor
+  t[3] = glm::vec4(0.3f, 0.25f, 0.0f, 1.0f);
+  sc.instances.push_back({1, t, "emitter"});
+  sc.camera.eye = glm::vec3(0.0f, 2.0f, 3.0f);
+  render::SessionOptions o;
+  o.sceneData = sc;
+  o.settings.width = 24;
+  o.settings.height = 24;
+  o.settings.envColor = glm::vec3(0.0f);
+  o.settings.maxBounces = 1;
+  auto session = makeSession(o);
+  render::RenderSettings mis = o.settings, lightOnly = o.settings, brdfOnly = o.settings;
+  lightOnly.mis = false;
+  brdfOnly.nee = false;
+  for (auto sampler : {render::SamplerKind::Pcg, render::SamplerKind::Owen}) {
+    const Estimate eMis = estimateMean(*session, mis, 12, 16, 100, sampler);
+    const Estimate eLight = estimateMean(*session, lightOnly, 12, 16, 200, sampler);
+    const Estimate eBrdf = estimateMean(*session, brdfOnly, 12, 64, 300, sampler);
+    for (const Estimate* e : {&eMis, &eLight, &eBrdf}) {
+      EXPECT_EQ(e->nonFinite, 0u);
+      EXPECT_EQ(e->dropped, 0u);
+      EXPECT_LT(e->sigma, 0.01 * e->mean) << "too noisy to compare";
+    }
+    auto z = [](const Estimate& a, const Estimate& b) {
+      return std::abs(a.mean - b.mean) / std::sqrt(a.sigma * a.sigma + b.sigma * b.sigma);
+    };
+    std::printf("%s: mis %.5f +- %.5f, light only %.5f +- %.5f, brdf only %.5f +- %.5f\n",
+                render::samplerName(sampler), eMis.mean, eMis.sigma, eLight.mean, eLight.sigma, eBrdf.mean,
+                eBrdf.sigma);
+    EXPECT_LT(z(eMis, eLight), 4.0) << render::samplerName(sampler);
+    EXPECT_LT(z(eMis, eBrdf), 4.0) << render::samplerName(sampler);
+    EXPECT_LT(z(eLight, eBrdf), 4.0) << render::samplerName(sampler);
+  }
   expectNoValidationErrors(*session);
 }
 

@@ -35,10 +35,10 @@ void main() {
 #elif defined(WB_CHECK_random)
 #include "shared/random.h"
 void main() {
-  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, false);
+  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, WB_SAMPLER_OWEN);
   uint st = 5u;
   outBuf.v[0] = vec4(samplerGet3D(s, sampleDimension(1u, WB_DIM_LOBE)),
-                     samplerGet2D(s, WB_DIM_PIXEL).x + sobolOwenSample(2u, 3u, 4u) + pcgNextFloat(st));
+                     samplerGet2D(s, WB_DIM_PIXEL).x + float(owenBits(2u, 3u, 4u, 1u)) + float(nestedUniformScramble(5u, 6u)) + pcgNextFloat(st));
 }
 #elif defined(WB_CHECK_env_sampling)
 #include "shared/env_sampling.h"
@@ -46,13 +46,21 @@ void main() {
   EnvSample e = envSample(vec3(0.1, 0.2, 0.3), 1024u, 512u, 0.5);
   outBuf.v[0] = vec4(e.dir, e.pdf + envPdf(e.dir, 1024u, 512u, 0.5));
 }
+#elif defined(WB_CHECK_spherical_triangle)
+#include "shared/spherical_triangle.h"
+void main() {
+  vec3 p = vec3(0.1, 0.2, 0.3), p0 = vec3(1, 0, 0), p1 = vec3(0, 1, 0), p2 = vec3(0, 0, 1);
+  float omega = sphericalTriangleSolidAngle(p, p0, p1, p2);
+  vec3 d = sampleSphericalTriangle(p, p0, p1, p2, vec2(0.3, 0.6), omega);
+  outBuf.v[0] = vec4(d + sphericalTriangleHit(p, d, p0, p1, p2), sphericalTriangleUseSolidAngle(p, p0, p1, p2) ? 1.0 : 0.0);
+}
 #else
 #include "shared/brdf.h"
 #include "shared/random.h"
 #include "shared/env_sampling.h"
 #include "shared/sampling_math.h"
 void main() {
-  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, false);
+  SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, WB_SAMPLER_OWEN);
   SurfaceMaterial m = makeSurfaceMaterial(vec3(0.8), 1.0, 0.0);
   BrdfSample bs = brdfSample(m, vec3(0, 0, 1), vec3(0, 0.6, 0.8), samplerGet3D(s, sampleDimension(0u, WB_DIM_LOBE)));
   EnvSample es = envSample(samplerGet3D(s, sampleDimension(0u, WB_DIM_LIGHT)), 64u, 32u, 0.0);

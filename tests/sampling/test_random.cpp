@@ -1,4 +1,5 @@
-// Tests of shaders/shared/random.h with the project's Sobol direction numbers and blue-noise texture.
+// Tests of shaders/shared/random.h with the project's Sobol direction numbers and blue-noise texture: the
+// Sobol, PCG and owen (Owen-scrambled Sobol sets) samplers.
 #include <gtest/gtest.h>
 
 #include <complex>
@@ -109,7 +110,8 @@ TEST(Sampler, ValuesInUnitIntervalAndStratifiedPerPixel) {
         std::vector<uint8_t> seen(n, 0);
         bool strat = true;
         for (uint32_t i = 0; i < n; ++i) {
-          gpu::SamplerState s = gpu::samplerInit(glm::uvec2(px, px * 3 + 1), i, 12345u, pcg);
+          gpu::SamplerState s = gpu::samplerInit(glm::uvec2(px, px * 3 + 1), i, 12345u,
+                                                 pcg ? WB_SAMPLER_PCG : WB_SAMPLER_SOBOL);
           float v = gpu::samplerGet1D(s, dim);
           ASSERT_GE(v, 0.0f);
           ASSERT_LT(v, 1.0f);
@@ -125,8 +127,8 @@ TEST(Sampler, ValuesInUnitIntervalAndStratifiedPerPixel) {
   }
   EXPECT_LT(gpu::uintToUnitFloat(0xffffffffu), 1.0f);
   // The rotation (and so the first sample) differs between pixels and dimension pairs.
-  gpu::SamplerState a = gpu::samplerInit(glm::uvec2(3, 4), 0, 0, false);
-  gpu::SamplerState b = gpu::samplerInit(glm::uvec2(4, 4), 0, 0, false);
+  gpu::SamplerState a = gpu::samplerInit(glm::uvec2(3, 4), 0, 0, WB_SAMPLER_SOBOL);
+  gpu::SamplerState b = gpu::samplerInit(glm::uvec2(4, 4), 0, 0, WB_SAMPLER_SOBOL);
   EXPECT_NE(gpu::samplerGet1D(a, 2), gpu::samplerGet1D(b, 2));
   EXPECT_NE(gpu::samplerGet1D(a, 2), gpu::samplerGet1D(a, 4));
 }
@@ -139,11 +141,187 @@ TEST(Sampler, PcgUniformity) {
   EXPECT_GT(r.pValue, 0.01) << r.describe();
   std::fill(obs.begin(), obs.end(), 0.0);
   for (uint32_t i = 0; i < 1000000; ++i) {
-    gpu::SamplerState s = gpu::samplerInit(glm::uvec2(i % 1000, i / 1000), 3u, 9u, true);
+    gpu::SamplerState s = gpu::samplerInit(glm::uvec2(i % 1000, i / 1000), 3u, 9u, WB_SAMPLER_PCG);
     obs[static_cast<int>(gpu::samplerGet1D(s, 5) * 64)] += 1.0;
   }
   r = test::chiSquareTest(obs, exp);
   EXPECT_GT(r.pValue, 0.01) << r.describe();
+}
+
+// ---- owen: Owen-scrambled Sobol sets ----
+
+TEST(Owen, SobolDimension1ClosedFormMatchesTheTable) {
+  SamplerTables t;
+  for (uint32_t i = 0; i < (1u << 16); ++i) {
+    ASSERT_EQ(gpu::sobolDim1Reversed(glm::bitfieldReverse(i)), gpu::sobolBits(i, 1)) << i;
+  }
+  for (uint32_t i : {0xffffffffu, 0x80000001u, 0x12345678u}) {
+    EXPECT_EQ(gpu::sobolDim1Reversed(glm::bitfieldReverse(i)), gpu::sobolBits(i, 1)) << i;
+  }
+}
+
+// The nested uniform scramble is a bijection that keeps every aligned block of 2^m values (m <= 32) together:
+// bit i of the output depends only on bits i and above of the input.
+TEST(Owen, NestedUniformScrambleIsANestedPermutation) {
+  for (uint32_t seed : {1u, 0x9e3779b9u, gpu::pcgHash(5u)}) {
+    std::vector<uint8_t> seen(1u << 16, 0);
+    for (uint32_t x = 0; x < (1u << 16); ++x) {
+      const uint32_t y = gpu::nestedUniformScramble(x << 16, seed);
+      ASSERT_EQ(seen[y >> 16]++, 0) << "not a permutation of the top 16 bits";
+      // Same top m bits in, same top m bits out.
+      for (int m : {1, 4, 9}) {
+        const uint32_t other = gpu::nestedUniformScramble((x << 16) ^ (1u << (31 - m)), seed);
+        ASSERT_EQ(y >> (32 - m), other >> (32 - m)) << "bit " << m << " changed a higher output bit";
+      }
+    }
+  }
+}
+
+// Within one pixel, the first 2^m samples of every coordinate are stratified in 1D, and each 2D set is a
+// (0,m,2)-net: one point in every elementary interval [a/2^j, (a+1)/2^j) x [b/2^(m-j), (b+1)/2^(m-j)) - for
+// every m, so at every power-of-two sample count, and for the next block of 2^m samples too.
+TEST(Owen, SetsAreScrambledZeroMTwoNetsAtEveryPowerOfTwo) {
+  SamplerTables t;
+  const std::pair<uint32_t, uint32_t> pairs[] = {
+      {WB_DIM_PIXEL, WB_DIM_PIXEL + 1u},
+      {gpu::sampleDimension(0, WB_DIM_BRDF), gpu::sampleDimension(0, WB_DIM_BRDF) + 1u},
+      {gpu::sampleDimension(0, WB_DIM_LIGHT + 1u), gpu::sampleDimension(0, WB_DIM_LIGHT + 2u)},
+      {gpu::sampleDimension(7, WB_DIM_BRDF), gpu::sampleDimension(7, WB_DIM_BRDF) + 1u},
+      {gpu::sampleDimension(40, WB_DIM_LIGHT + 1u), gpu::sampleDimension(40, WB_DIM_LIGHT + 2u)},
+  };
+  for (uint32_t px = 0; px < 5; ++px) {
+    const glm::uvec2 pixel(px * 37u, px * 11u + 3u);
+    for (const auto& [dx, dy] : pairs) {
+      for (int m = 0; m <= 10; ++m) {
+        for (uint32_t block = 0; block < 2; ++block) {
+          const uint32_t n = 1u << m;
+          std::vector<std::pair<uint32_t, uint32_t>> pts;
+          for (uint32_t i = block * n; i < (block + 1) * n; ++i) {
+            const gpu::SamplerState s = gpu::samplerInit(pixel, i, 42u, WB_SAMPLER_OWEN);
+            const float x = gpu::samplerGet1D(s, dx), y = gpu::samplerGet1D(s, dy);
+            ASSERT_GE(x, 0.0f);
+            ASSERT_LT(x, 1.0f);
+            pts.emplace_back(uint32_t(x * 4294967296.0), uint32_t(y * 4294967296.0));
+          }
+          for (int j = 0; j <= m; ++j) {
+            std::vector<uint8_t> seen(n, 0);
+            for (const auto& [x, y] : pts) {
+              const uint32_t cx = j == 0 ? 0u : x >> (32 - j);
+              const uint32_t cy = m - j == 0 ? 0u : y >> (32 - (m - j));
+              ASSERT_EQ(seen[(cx << (m - j)) | cy]++, 0)
+                  << "dims " << dx << "," << dy << " pixel " << px << " m " << m << " block " << block
+                  << ": two points in one " << j << "/" << m - j << " elementary interval";
+            }
+          }
+        }
+      }
+    }
+  }
+  // The 1D sets (lobe, light choice, Russian roulette) are stratified too.
+  for (uint32_t k : {uint32_t(WB_DIM_LOBE), uint32_t(WB_DIM_LIGHT_CHOICE), uint32_t(WB_DIM_RR)}) {
+    const uint32_t dim = gpu::sampleDimension(3, k);
+    ASSERT_TRUE(stratifies(
+        [&](uint32_t i) {
+          return uint32_t(gpu::samplerGet1D(gpu::samplerInit(glm::uvec2(9, 9), i, 1u, WB_SAMPLER_OWEN), dim) *
+                          4294967296.0);
+        },
+        0, 8))
+        << "dim " << dim;
+  }
+}
+
+// Every pixel and seed is an independent randomisation: a given sample's values over many pixels are uniform
+// (chi-square), seeds give different values, and two sets of one path are independent of each other (their
+// joint 2D histogram over pixels and samples is uniform: the per-set index shuffle decorrelates them).
+TEST(Owen, PixelsAreIndependentUniformRandomisations) {
+  const int bins = 16;
+  const uint32_t pixels = 256u * 64u;
+  std::vector<double> expected1(bins, double(pixels) / bins);
+  for (uint32_t dim :
+       {0u, 1u, gpu::sampleDimension(0, WB_DIM_LOBE), gpu::sampleDimension(2, WB_DIM_LIGHT + 2u)}) {
+    for (uint32_t index : {0u, 5u}) {
+      std::vector<double> obs(bins, 0.0);
+      for (uint32_t p = 0; p < pixels; ++p) {
+        const gpu::SamplerState s =
+            gpu::samplerInit(glm::uvec2(p % 256u, p / 256u), index, 3u, WB_SAMPLER_OWEN);
+        obs[int(gpu::samplerGet1D(s, dim) * bins)] += 1.0;
+      }
+      const auto r = test::chiSquareTest(obs, expected1);
+      EXPECT_GT(r.pValue, 1e-3) << "dim " << dim << " index " << index << ": " << r.describe();
+    }
+  }
+  // The bits below the shuffle's 2^-16 resolution are uniform too (Owen scrambling randomises every digit).
+  for (uint32_t dim : {0u, 1u, gpu::sampleDimension(0, WB_DIM_BRDF) + 1u}) {
+    std::vector<double> obs(bins, 0.0);
+    for (uint32_t p = 0; p < pixels; ++p) {
+      const gpu::SamplerState s = gpu::samplerInit(glm::uvec2(p % 256u, p / 256u), 0u, 3u, WB_SAMPLER_OWEN);
+      const double v = gpu::samplerGet1D(s, dim) * 65536.0;
+      obs[int((v - std::floor(v)) * bins)] += 1.0;
+    }
+    const auto r = test::chiSquareTest(obs, expected1);
+    EXPECT_GT(r.pValue, 1e-3) << "dim " << dim << " below 2^-16: " << r.describe();
+  }
+  // Seeds change every value.
+  const gpu::SamplerState s1 = gpu::samplerInit(glm::uvec2(1, 2), 0, 1u, WB_SAMPLER_OWEN);
+  const gpu::SamplerState s2 = gpu::samplerInit(glm::uvec2(1, 2), 0, 2u, WB_SAMPLER_OWEN);
+  for (uint32_t dim = 0; dim < 40; ++dim) EXPECT_NE(gpu::samplerGet1D(s1, dim), gpu::samplerGet1D(s2, dim));
+}
+
+// Two sets of one path are independent within a pixel (the per-set index shuffle decorrelates them): the
+// estimate of P(x < 1/2, y < 1/2) = 1/4 from 16 samples of a pixel has at most the variance of independent
+// samples (3/256). Without the shuffle, sets that use the same Sobol dimension are scrambled copies of one
+// sequence and the estimate is 0 or 1/2.
+TEST(Owen, SetsOfOnePathAreDecorrelated) {
+  const std::pair<uint32_t, uint32_t> pairs[] = {
+      {0u, gpu::sampleDimension(0, WB_DIM_BRDF)},                                          // pixel x, BRDF u
+      {gpu::sampleDimension(0, WB_DIM_BRDF), gpu::sampleDimension(0, WB_DIM_LIGHT + 1u)},  // BRDF u, light u
+      {gpu::sampleDimension(0, WB_DIM_BRDF) + 1u,
+       gpu::sampleDimension(1, WB_DIM_BRDF) + 1u},                                         // bounce 0 vs 1
+      {gpu::sampleDimension(0, WB_DIM_LIGHT_CHOICE), gpu::sampleDimension(0, WB_DIM_RR)},  // two 1D sets
+  };
+  for (const auto& [a, b] : pairs) {
+    double sum = 0, sum2 = 0;
+    const int pixels = 4096;
+    for (int p = 0; p < pixels; ++p) {
+      int inside = 0;
+      for (uint32_t i = 0; i < 16; ++i) {
+        const gpu::SamplerState s = gpu::samplerInit(glm::uvec2(p % 64, p / 64), i, 8u, WB_SAMPLER_OWEN);
+        inside += gpu::samplerGet1D(s, a) < 0.5f && gpu::samplerGet1D(s, b) < 0.5f;
+      }
+      sum += inside / 16.0;
+      sum2 += (inside / 16.0) * (inside / 16.0);
+    }
+    const double mean = sum / pixels, var = sum2 / pixels - mean * mean;
+    std::printf("dims %u, %u: mean %.4f variance %.5f (independent samples: 0.01172)\n", a, b, mean, var);
+    EXPECT_NEAR(mean, 0.25, 0.01);
+    EXPECT_LT(var, 1.2 * 3.0 / 256.0) << "dims " << a << ", " << b;
+  }
+}
+
+// Stratification pays: the error of a smooth 2D integral over 64 samples per pixel is far below independent
+// sampling's (scrambled nets: variance O(n^-3) for smooth integrands), and its mean over pixels is unbiased.
+TEST(Owen, SmoothIntegralErrorFarBelowMonteCarlo) {
+  auto f = [](float x, float y) { return double(std::exp(x) * std::sin(3.0f * y + 0.5f)); };
+  const double exact = (std::exp(1.0) - 1.0) * (std::cos(0.5) - std::cos(3.5)) / 3.0;
+  double mseOwen = 0, msePcg = 0, meanOwen = 0;
+  const int pixels = 2000;
+  for (int p = 0; p < pixels; ++p) {
+    double sumO = 0, sumP = 0;
+    for (uint32_t i = 0; i < 64; ++i) {
+      const gpu::SamplerState so = gpu::samplerInit(glm::uvec2(p, 7), i, 1u, WB_SAMPLER_OWEN);
+      const gpu::SamplerState sp = gpu::samplerInit(glm::uvec2(p, 7), i, 1u, WB_SAMPLER_PCG);
+      const uint32_t d = gpu::sampleDimension(2, WB_DIM_BRDF);
+      sumO += f(gpu::samplerGet1D(so, d), gpu::samplerGet1D(so, d + 1u));
+      sumP += f(gpu::samplerGet1D(sp, d), gpu::samplerGet1D(sp, d + 1u));
+    }
+    mseOwen += std::pow(sumO / 64.0 - exact, 2.0) / pixels;
+    msePcg += std::pow(sumP / 64.0 - exact, 2.0) / pixels;
+    meanOwen += sumO / 64.0 / pixels;
+  }
+  std::printf("64 samples: MSE owen %.3g, pcg %.3g (ratio %.0f); mean over pixels %.6f (exact %.6f)\n",
+              mseOwen, msePcg, msePcg / mseOwen, meanOwen, exact);
+  EXPECT_LT(mseOwen, msePcg / 100.0);
+  EXPECT_NEAR(meanOwen, exact, 4.0 * std::sqrt(mseOwen / pixels));
 }
 
 // ---- blue noise ----

@@ -42,7 +42,11 @@ nlohmann::json WorkbenchWindow::parametersJson() {
   }
   // Every parameter under its own name (the schema of every JSON writer), and the older grouped keys.
   j.update(app::parametersJson(state_.params));
-  j["rr"] = {{"enabled", s.russianRoulette}, {"start", s.rrStart}, {"min", s.rrMin}, {"max", s.rrMax}};
+  j["rr"] = {{"enabled", s.russianRoulette},
+             {"start", s.rrStart},
+             {"min", s.rrMin},
+             {"max", s.rrMax},
+             {"exponent", s.rrExponent}};
   j["generic_shaders"] = s.generic;
   j["environment"] = {{"path", s.envPath},
                       {"color", {s.envColor.x, s.envColor.y, s.envColor.z}},
