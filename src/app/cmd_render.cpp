@@ -8,6 +8,8 @@
 #include "app/render_options.h"
 #include "app/hybrid_json.h"
 #include "app/render_session.h"
+#include "common/file_io.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 
@@ -53,6 +55,16 @@ int runRenderCommand(const std::vector<std::string>& args) {
     return 2;
   }
   try {
+    // Every output is checked before the render: a render never ends in "cannot write" after the work.
+    requireWritableFile(outPath, "--out");
+    if (ro.aovAlbedo) requireWritableFile(aovPath(outPath, "albedo"), "--aov albedo");
+    if (ro.aovNormal) requireWritableFile(aovPath(outPath, "normal"), "--aov normal");
+    if (!stats.empty()) requireWritableFile(stats, "--stats");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "workbench render: error: %s\n", e.what());
+    return 2;
+  }
+  try {
     SessionOptions so;
     so.scenePath = ro.scene;
     so.settings = ro.settings;
@@ -61,8 +73,7 @@ int runRenderCommand(const std::vector<std::string>& args) {
     so.hybrid = ro.hybrid;
     std::optional<eval::ImageRGBA> referenceImage;
     if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
-    RenderSession session(so);
-    for (const auto& w : session.scene().warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    RenderSession session(so);  // prints the scene's and environment's warnings
     const double seconds = session.render(ro.settings.spp);
     const auto image = session.image();
     eval::writeImage(outPath, image);
@@ -76,10 +87,6 @@ int runRenderCommand(const std::vector<std::string>& args) {
     const double pixels = double(image.width) * image.height;
     for (double& m : mean) m /= pixels;
     const double samples = pixels * ro.settings.spp;
-    std::printf("rendered %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
-                session.scene().sourcePath.string().c_str(), unsigned(session.scene().triangleCount()),
-                image.width, image.height, ro.settings.spp, seconds, session.context().deviceName().c_str(),
-                outPath.string().c_str());
     if (!stats.empty()) {
       nlohmann::json j;
       j["device"] = session.context().deviceName();
@@ -130,9 +137,14 @@ int runRenderCommand(const std::vector<std::string>& args) {
       j["tlas_build_ms"] = session.gpuScene().accel().tlasBuildMs();
       j["device_bytes"] = session.gpuScene().deviceBytes();
       std::ofstream f(stats);
-      if (!f) throw std::runtime_error("cannot write --stats file '" + stats + "'");
-      f << j.dump(2) << "\n";
+      f << jsonText(j, 2) << "\n";
+      if (!f.flush()) throw std::runtime_error("cannot write --stats file '" + stats + "'");
     }
+    // Said last: every file is written.
+    std::printf("rendered %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
+                session.scene().sourcePath.string().c_str(), unsigned(session.scene().triangleCount()),
+                image.width, image.height, ro.settings.spp, seconds, session.context().deviceName().c_str(),
+                outPath.string().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench render: error: %s\n", e.what());
     return 1;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "common/paths.h"
 #include "shader/hash.h"
@@ -27,6 +28,7 @@ render::EnvironmentData loadEnvironmentData(const render::RenderSettings& settin
   d.alias = std::move(env.alias);
   d.totalWeight = env.totalWeight;
   d.isMap = isMap;
+  d.warnings = std::move(env.warnings);
   return d;
 }
 
@@ -69,7 +71,13 @@ RenderSession::RenderSession(const SessionOptions& options) {
       options.scenePath.empty() ? defaultScenePath() : std::filesystem::path(options.scenePath);
   scene_ =
       options.sceneData ? *options.sceneData : scene::loadGltf(scenePath);  // before the device: fail fast
+  // The loader's warnings come first: they may be the reason a later step refuses the scene (no triangles
+  // when every primitive is POINTS or LINES).
+  if (!options.quiet)
+    for (const auto& w : scene_.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const auto envData = loadEnvironmentData(options.settings);
+  if (!options.quiet)
+    for (const auto& w : envData.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;
   vk::applyDriverDefaults(cacheDir);  // Mesa's shader cache under ours, llvmpipe's vector width

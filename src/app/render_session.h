@@ -20,7 +20,7 @@ struct SessionOptions {
   render::RenderSettings settings;
   vk::ContextOptions context;
   std::filesystem::path cacheDir;  // empty = shader_cache/ of the project
-  bool quiet = false;
+  bool quiet = false;              // true: the scene's and environment's warnings are not printed (stderr)
   // What render() and image() use: the path tracer, or a hybrid renderer built beside it.
   render::RenderMode mode = render::RenderMode::PathTrace;
   render::HybridSettings hybrid;

@@ -2,6 +2,8 @@
 // mouse and keyboard input.
 #include "app/window/workbench_window.h"
 
+#include <cstdio>
+
 #include <imgui.h>
 
 #include "app/render_options.h"
@@ -49,7 +51,9 @@ void WorkbenchWindow::applyState() {
   const bool envChanged = s.envPath != a.envPath || (s.envPath.empty() && s.envColor != a.envColor);
   if (envChanged) {
     try {
-      auto env = std::make_unique<render::GpuEnvironment>(session_->context(), loadEnvironmentData(s));
+      const auto data = loadEnvironmentData(s);
+      for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+      auto env = std::make_unique<render::GpuEnvironment>(session_->context(), data);
       tracer.setEnvironment(*env);
       for (auto& h : hybrids_)
         if (h) h->setEnvironment(*env);
