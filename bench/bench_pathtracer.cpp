@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/render_session.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 
 namespace {
@@ -92,6 +93,6 @@ int main(int argc, char** argv) {
   j["paths_per_s"] = total > 0 ? c.pathCount / total : 0.0;
   j["rays_per_s"] = total > 0 ? c.rayCount / total : 0.0;
   j["mrays_per_s"] = total > 0 ? c.rayCount / total / 1e6 : 0.0;
-  std::printf("%s\n", j.dump(2).c_str());
+  std::printf("%s\n", wb::jsonText(j, 2).c_str());
   return 0;
 }

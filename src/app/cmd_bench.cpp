@@ -16,6 +16,8 @@
 
 #include "app/process.h"
 #include "app/render_session.h"
+#include "common/file_io.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "scene/procedural.h"
@@ -379,7 +381,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
   std::vector<std::string> sections = {"pathtracer", "startup", "reload", "modes"};
   int edits = 0;
   cli.add_option("--edits", edits, "reload: number of closest-hit edits (default 20, 4 with --quick)");
-  cli.add_option("--only", sections, "sections to run: pathtracer startup reload modes");
+  const std::vector<std::string> known = sections;
+  cli.add_option("--only", sections, "sections to run: pathtracer,startup,reload,modes (commas or spaces)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(known));
   try {
     std::vector<std::string> reversed(args.rbegin(), args.rend());
     cli.parse(reversed);
@@ -396,6 +401,14 @@ int runBenchCommand(const std::vector<std::string>& args) {
   if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h) {
     std::fprintf(stderr, "workbench bench: error: --size: expected WxH, got '%s'\n", size.c_str());
     return 2;
+  }
+  if (!out.empty()) {
+    try {
+      requireWritableFile(out, "--out");  // checked before the suite runs, not after
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
+      return 2;
+    }
   }
   const uint32_t spp = quick ? 1 : 4;
   const auto has = [&](const char* s) {
@@ -518,12 +531,12 @@ int runBenchCommand(const std::vector<std::string>& args) {
                   r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>());
     }
   }
-  if (result.contains("startup")) std::printf("start-up: %s\n", result["startup"].dump().c_str());
-  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", result["hot_reload"].dump().c_str());
+  if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
+  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
   std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
   if (!out.empty()) {
     std::ofstream f(out);
-    f << result.dump(2) << "\n";
+    f << jsonText(result, 2) << "\n";
     if (!f) {
       std::fprintf(stderr, "workbench bench: error: cannot write '%s'\n", out.c_str());
       return 1;

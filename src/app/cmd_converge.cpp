@@ -14,6 +14,7 @@
 #include "app/converge_report.h"
 #include "app/render_options.h"
 #include "app/render_session.h"
+#include "common/file_io.h"
 #include "common/paths.h"
 #include "eval/hard_cases.h"
 #include "eval/metrics.h"
@@ -358,7 +359,7 @@ int runConvergeCommand(const std::vector<std::string>& args) {
   }
   try {
     const fs::path dir(c.out);
-    fs::create_directories(dir);
+    requireWritableDirectory(dir, "--out");  // before any render: never fail at the end for want of a folder
     if (c.hardCases) return runHardCases(args, c);
     Progress progress;
     std::string refDescription;

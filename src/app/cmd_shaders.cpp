@@ -1,5 +1,6 @@
 #include "app/cmd_shaders.h"
 
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "shader/library.h"
 
@@ -63,9 +64,11 @@ int runShadersCommand(const std::vector<std::string>& args) {
   }
 
   std::vector<Define> defs;
-  for (const auto& d : defines) {
-    const auto eq = d.find('=');
-    defs.push_back(eq == std::string::npos ? Define{d, ""} : Define{d.substr(0, eq), d.substr(eq + 1)});
+  try {
+    for (const auto& d : defines) defs.push_back(parseDefine(d, "--define"));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "workbench shaders: error: " << e.what() << '\n';
+    return 2;
   }
   std::vector<std::string> errors;
   const auto files = collect(paths, errors);
@@ -130,7 +133,7 @@ int runShadersCommand(const std::vector<std::string>& args) {
     }
     out.push_back(std::move(j));
   }
-  if (json) std::cout << out.dump(2) << '\n';
+  if (json) std::cout << jsonText(out, 2) << '\n';
   if (!json) {
     ShaderLibrary::Stats total{};
     for (const auto& [d, l] : libs) {

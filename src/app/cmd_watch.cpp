@@ -12,6 +12,7 @@
 #include "app/reload_log.h"
 #include "app/render_options.h"
 #include "app/render_session.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "render/hot_reload.h"
 
@@ -82,7 +83,7 @@ int runWatchCommand(const std::vector<std::string>& args) {
     const auto start = std::chrono::steady_clock::now();
     std::optional<render::ReloadEvent> unlogged;
     auto writeEvent = [&](const render::ReloadEvent& e) {
-      const std::string line = reloadEventJson(e).dump();
+      const std::string line = jsonText(reloadEventJson(e));
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
       if (log) {

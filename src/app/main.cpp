@@ -7,6 +7,7 @@
 #include <execinfo.h>
 #include <unistd.h>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,15 @@ void usage() {
       "       workbench converge [SCENE] --out DIR ... error against a reference over time, per config\n"
       "       workbench bench [--quick] [--out FILE]   performance suite (not a test)\n"
       "run 'workbench COMMAND --help' for a command's flags\n");
+}
+
+// The first word of the live workbench's command line is a scene: an existing file, or a name that looks like
+// a glTF path (the loader then says what is wrong with it).
+bool looksLikeScene(const std::string& word) {
+  std::error_code ec;
+  if (std::filesystem::exists(word, ec)) return true;
+  const std::string ext = std::filesystem::path(word).extension().string();
+  return ext == ".gltf" || ext == ".glb" || word.find('/') != std::string::npos;
 }
 
 int runDefault(const std::vector<std::string>& args) {
@@ -100,6 +110,13 @@ int main(int argc, char** argv) {
     code = wb::app::runConvergeCommand(rest);
   } else if (cmd == "bench") {
     code = wb::app::runBenchCommand(rest);
+  } else if (!cmd.empty() && cmd[0] != '-' && !looksLikeScene(cmd)) {
+    // A typo of a command ("shader") must not be taken for a scene path.
+    std::fprintf(stderr,
+                 "workbench: unknown command '%s' (commands: render, shaders, watch, converge, bench; or a "
+                 "scene file: workbench SCENE.gltf)\n",
+                 cmd.c_str());
+    return 2;
   } else {
     code = runDefault(args);
   }

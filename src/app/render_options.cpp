@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "shader/types.h"
+
 namespace wb::app {
 
 void addRenderOptions(CLI::App& app, RenderOptions& o) {
@@ -18,19 +20,26 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(0u, 1024u));
   app.add_option("--rr-start", s.rrStart, "first bounce where Russian roulette may end a path")
       ->capture_default_str();
-  app.add_option("--rr-min", s.rrMin, "lowest Russian roulette survival probability")->capture_default_str();
-  app.add_option("--rr-max", s.rrMax, "highest Russian roulette survival probability")->capture_default_str();
+  app.add_option("--rr-min", s.rrMin, "lowest Russian roulette survival probability")
+      ->capture_default_str()
+      ->check(paramCheck(params::kRrMin));
+  app.add_option("--rr-max", s.rrMax, "highest Russian roulette survival probability")
+      ->capture_default_str()
+      ->check(paramCheck(params::kRrMax));
   app.add_flag("--no-rr", o.noRussianRoulette, "disable Russian roulette");
   app.add_flag("--no-nee", o.noNee, "disable next-event estimation (BRDF sampling only)");
   app.add_flag("--no-mis", o.noMis, "environment by light sampling only (no MIS with BRDF sampling)");
   app.add_option("--sampler", o.sampler, "sobol|pcg")->capture_default_str();
   app.add_option("--seed", s.seed, "random seed")->capture_default_str();
-  app.add_option("--env", s.envPath, "equirectangular .hdr environment map");
+  app.add_option("--env", s.envPath,
+                 "equirectangular environment: Radiance .hdr (PNG/JPEG are taken as sRGB, with a warning)");
   app.add_option("--env-color", o.envColor, "constant environment radiance R,G,B");
   app.add_option("--env-rotation", s.envRotationDeg, "environment rotation about +Y, degrees")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(paramCheck(params::kEnvRotation));
   app.add_option("--env-intensity", s.envIntensity, "environment intensity multiplier")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(paramCheck(params::kEnvIntensity));
   app.add_option("--aov", o.aov, "write AOVs: albedo,normal (beside --out)");
   app.add_option("--device", o.device, "Vulkan device name (substring)");
   app.add_option("--tile", o.tile, "trace each sample in tiles of WxH (dispatch-shape experiments)");
@@ -43,11 +52,12 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
          "traced reflections); with hybrid modes --spp is the number of frames")
       ->capture_default_str();
   auto& h = o.hybrid;
-  app.add_option(
-      "--sun-angle", h.sunAngleDeg,
-      "hybrid: sun angular diameter in degrees for soft shadows (default: the light's, else 0.53)");
+  app.add_option("--sun-angle", h.sunAngleDeg,
+                 "hybrid: sun angular diameter in degrees for soft shadows (default: the light's, else 0.53)")
+      ->check(paramCheck(params::kSunAngle));
   app.add_option("--ao-radius", h.aoRadius,
-                 "hybrid: ambient occlusion ray length (default: 15% of camera distance)");
+                 "hybrid: ambient occlusion ray length (default: 15% of camera distance)")
+      ->check(paramCheck(params::kAoRadius));
   app.add_option("--ao-rays", h.aoRays, "hybrid: ambient occlusion rays per pixel and frame (0 = off)")
       ->capture_default_str();
   app.add_flag("--no-temporal", o.noTemporal, "hybrid: no accumulation of shadows/AO over frames");
@@ -56,23 +66,44 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
       ->check(CLI::Range(0u, 16u));
   app.add_option("--reflection-roughness", h.reflectionMaxRoughness,
                  "reflections: trace reflections below this roughness")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(paramCheck(params::kReflectionRoughness));
   app.add_option("--reflection-metallic", h.reflectionMinMetallic,
                  "reflections: ... on surfaces at least this metallic (0 = smooth dielectrics too)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(paramCheck(params::kReflectionMetallic));
 }
 
-static float parseFloat(const std::string& text, const std::string& what) {
+double parseParam(const ParamRange& p, const std::string& text, const std::string& name) {
   size_t used = 0;
-  float v = 0;
+  double v = 0;
   try {
-    v = std::stof(text, &used);
+    v = std::stod(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != text.size() || !std::isfinite(v))
-    throw std::invalid_argument(what + ": '" + text + "' is not a number");
+  const std::string prefix = name.empty() ? "" : name + ": ";
+  if (text.empty() || used != text.size() || !std::isfinite(v))
+    throw std::invalid_argument(prefix + "'" + text + "' is not a finite number");
+  if (v < p.min || v > p.max) {
+    std::ostringstream range;
+    range << prefix << text << " is out of range [" << p.min << ", " << p.max << "]";
+    throw std::invalid_argument(range.str());
+  }
   return v;
+}
+
+CLI::Validator paramCheck(const ParamRange& p) {
+  return CLI::Validator(
+      [p](std::string& text) -> std::string {
+        try {
+          parseParam(p, text, "");  // CLI11 puts the flag in front
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "", std::string("range of ") + p.flag);
 }
 
 void finishRenderOptions(RenderOptions& o) {
@@ -100,8 +131,9 @@ void finishRenderOptions(RenderOptions& o) {
     std::vector<float> c;
     std::stringstream ss(o.envColor);
     std::string part;
-    while (std::getline(ss, part, ',')) c.push_back(parseFloat(part, "--env-color"));
-    if (c.size() != 3 || c[0] < 0 || c[1] < 0 || c[2] < 0) {
+    while (std::getline(ss, part, ','))
+      c.push_back(float(parseParam(params::kEnvColor, part, "--env-color")));
+    if (c.size() != 3) {
       throw std::invalid_argument("--env-color: expected three non-negative numbers R,G,B, got '" +
                                   o.envColor + "'");
     }
@@ -117,31 +149,16 @@ void finishRenderOptions(RenderOptions& o) {
   if (!(s.rrMin > 0.0f && s.rrMin <= s.rrMax && s.rrMax <= 1.0f)) {
     throw std::invalid_argument("--rr-min/--rr-max: need 0 < rr-min <= rr-max <= 1");
   }
-  if (!std::isfinite(s.envIntensity) || s.envIntensity < 0) {
-    throw std::invalid_argument("--env-intensity: must be a non-negative number");
-  }
   const auto mode = render::parseRenderMode(o.modeName);
   if (!mode)
     throw std::invalid_argument("--mode: expected pathtrace, hybrid or reflections, got '" + o.modeName +
                                 "'");
   o.mode = *mode;
   o.hybrid.temporal = !o.noTemporal;
-  if (!std::isfinite(o.hybrid.aoRadius) || o.hybrid.aoRadius < 0) {
-    throw std::invalid_argument("--ao-radius: must be a non-negative number");
-  }
-  if (!std::isfinite(o.hybrid.sunAngleDeg) || o.hybrid.sunAngleDeg > 90.0f) {
-    throw std::invalid_argument("--sun-angle: must be at most 90 degrees");
-  }
   s.defines.clear();
   for (const auto& d : o.defines) {
-    const auto eq = d.find('=');
-    const std::string name = d.substr(0, eq);
-    const bool valid =
-        !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-        std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
-    if (!valid)
-      throw std::invalid_argument("--define: expected NAME=VALUE with a C identifier, got '" + d + "'");
-    s.defines.emplace_back(name, eq == std::string::npos ? std::string() : d.substr(eq + 1));
+    const shader::Define def = shader::parseDefine(d, "--define");
+    s.defines.emplace_back(def.name, def.value);
   }
   s.russianRoulette = !o.noRussianRoulette;
   s.nee = !o.noNee;

@@ -51,6 +51,10 @@ ShaderLibrary::Resolved ShaderLibrary::resolve(const ShaderKey& key) const {
         {{path, 0, "error",
           "unknown shader stage (use .rgen .rmiss .rchit .rahit .rint .rcall .vert .frag .comp or "
           "name.<stage>.glsl, or set ShaderKey::stage)"}});
+  for (const auto& d : key.defines) {
+    if (const std::string problem = defineProblem(d); !problem.empty())
+      throw CompileError({{path, 0, "error", "define: " + problem}});
+  }
   Hasher h;
   h.add(uint64_t{DiskCache::kFormatVersion}).add(compilerFingerprint()).add(path.string());
   h.add(uint64_t(static_cast<int>(*stage))).add(key.entry);

@@ -27,6 +27,12 @@ struct Define {
   std::string name, value;
   bool operator==(const Define&) const = default;
 };
+// Why a define cannot be used, or "" when it can: the name must be an identifier, the value one line without
+// control characters (a newline would add preprocessor lines of its own).
+std::string defineProblem(const Define& d);
+// A define as a command-line flag gives it ("NAME" or "NAME=VALUE"), checked; throws std::invalid_argument
+// starting with `flag` ("--define NAME: ...").
+Define parseDefine(const std::string& text, const std::string& flag);
 
 struct ShaderKey {
   fs::path path;

@@ -262,3 +262,104 @@ TEST(BadInput, TextureWithoutImageLoadsWithAWarning) {
   EXPECT_NE(r.output.find("warning: texture 0 refers to image 0, which does not exist"), std::string::npos)
       << r.output;
 }
+
+// 2. `shaders --json` on a binary file, or on a file whose name is not UTF-8, writes JSON (invalid bytes
+// replaced) and exits 1 for the failed compile; it used to abort on nlohmann's type_error.316 (exit 134).
+TEST(BadInput, ShadersJsonSurvivesBinaryFilesAndNames) {
+  const fs::path dir = tempDir() / "binary_shaders";
+  fs::create_directories(dir);
+  std::vector<unsigned char> junk;
+  for (int i = 0; i < 4096; ++i) junk.push_back(static_cast<unsigned char>((i * 7919 + 13) % 251 + 3));
+  writeBytes(dir / "junk.rgen", junk);
+  writeBytes(dir / "name_\xff.rgen", junk);
+  const CommandResult r = wb::testing::runCommand(
+      "timeout 300 " + std::string(WB_WORKBENCH_BIN) + " shaders --json " + dir.string(), false);
+  EXPECT_EQ(r.code, 1) << r.output;
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.output)) << r.output;
+  ASSERT_EQ(j.size(), 2u);
+  for (const auto& f : j) EXPECT_EQ(f["status"], "error") << f.dump();
+}
+
+// 3. A shader cache entry replaced by a named pipe used to make `render` wait forever on it.
+TEST(BadInput, NamedPipesInTheShaderCacheAreMisses) {
+  const fs::path cache = tempDir() / "fifo_cache";
+  fs::remove_all(cache);
+  const std::string cmd = "env WB_SHADER_CACHE_DIR=" + cache.string() + " timeout 300 " + WB_WORKBENCH_BIN +
+                          " render " + box() + kSmall + "--out " + (tempDir() / "fifo.png").string();
+  ASSERT_EQ(wb::testing::runCommand(cmd).code, 0);
+  size_t pipes = 0;
+  for (const auto& e : fs::directory_iterator(cache)) {
+    if (!e.is_regular_file()) continue;  // Mesa's folder stays
+    const fs::path p = e.path();
+    fs::remove(p);
+    ASSERT_EQ(mkfifo(p.c_str(), 0644), 0);
+    ++pipes;
+  }
+  EXPECT_GE(pipes, 3u);
+  const CommandResult r = wb::testing::runCommand(cmd);
+  EXPECT_NE(r.code, 124) << "hung on a named pipe";
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("named pipe"), std::string::npos) << r.output;
+}
+
+// 8. Every numeric flag is checked the same way: finite and in range.
+TEST(BadInput, NumericFlagsAreFiniteAndInRange) {
+  for (const std::string flags :
+       {"--env-rotation nan", "--env-rotation inf", "--env-intensity nan", "--env-color 1,nan,1",
+        "--mode hybrid --sun-angle -10", "--mode hybrid --sun-angle 91", "--reflection-roughness nan",
+        "--reflection-metallic 2", "--ao-radius inf", "--rr-max 7"}) {
+    const CommandResult r = run("render " + flags + kSmall + "--out " + (tempDir() / "n.png").string());
+    EXPECT_EQ(r.code, 2) << flags << ": " << r.output;
+    const std::string flag =
+        flags.substr(flags.rfind("--"), flags.find(' ', flags.rfind("--")) - flags.rfind("--"));
+    EXPECT_NE(r.output.find(flag), std::string::npos) << flags << ": " << r.output;
+    EXPECT_EQ(r.output.find("rendered"), std::string::npos) << r.output;
+  }
+}
+
+// 13. Defines are checked: an identifier, one line; the message names the flag.
+TEST(BadInput, DefinesAreValidated) {
+  const std::string shader = (wb::projectRoot() / "shaders/pathtracer/miss.rmiss").string();
+  for (const std::string define : {"=5", "5X=1", "'A=1\n#error injected'", "'A B=1'"}) {
+    const CommandResult s = run("shaders --define " + define + " " + shader);
+    EXPECT_EQ(s.code, 2) << define << ": " << s.output;
+    EXPECT_NE(s.output.find("--define"), std::string::npos) << s.output;
+    EXPECT_EQ(s.output.find("-1:"), std::string::npos) << s.output;
+    EXPECT_EQ(s.output.find("\n#error"), std::string::npos) << s.output;
+    EXPECT_EQ(s.output.find("error: #error"), std::string::npos)
+        << "the define injected a line: " << s.output;
+    const CommandResult r =
+        run("render --define " + define + kSmall + "--out " + (tempDir() / "d.png").string());
+    EXPECT_EQ(r.code, 2) << define << ": " << r.output;
+    EXPECT_NE(r.output.find("--define"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(run("shaders --define WB_OK=1 --define WB_FLAG " + shader).code, 0);
+}
+
+// 16. A typo of a command is not a scene; bench takes the README's comma form and refuses unknown sections.
+TEST(BadInput, UnknownCommandsAndBenchSections) {
+  const CommandResult typo = run("shader x.rgen");
+  EXPECT_EQ(typo.code, 2) << typo.output;
+  EXPECT_NE(typo.output.find("unknown command 'shader'"), std::string::npos) << typo.output;
+  EXPECT_NE(typo.output.find("render, shaders, watch, converge, bench"), std::string::npos) << typo.output;
+  const CommandResult bench = run("bench --quick --only pathtracer,nonsense");
+  EXPECT_EQ(bench.code, 2) << bench.output;
+  EXPECT_NE(bench.output.find("nonsense not in"), std::string::npos) << bench.output;
+  EXPECT_EQ(bench.output.find("pathtracer,nonsense"), std::string::npos) << "not split at the comma";
+}
+
+// 11. bench --out and converge --out are checked before any work.
+TEST(BadInput, BenchAndConvergeOutputsAreCheckedFirst) {
+  const CommandResult bench = run("bench --quick --only startup --out /nonexistent/bench.json");
+  EXPECT_EQ(bench.code, 2) << bench.output;
+  EXPECT_NE(bench.output.find("cannot write"), std::string::npos) << bench.output;
+  EXPECT_EQ(bench.output.find("start-up"), std::string::npos) << "ran before failing: " << bench.output;
+  const fs::path blocker = tempDir() / "blocker";
+  std::ofstream(blocker) << "a file, not a folder";
+  const CommandResult converge =
+      run("converge --size 8x8 --seconds 0.05 --reference-spp 4 --out " + (blocker / "report").string());
+  EXPECT_NE(converge.code, 0) << converge.output;
+  EXPECT_NE(converge.output.find("--out"), std::string::npos) << converge.output;
+  EXPECT_EQ(converge.output.find("reference"), std::string::npos) << "rendered first: " << converge.output;
+}

@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app/window/workbench_window.h"
+#include "common/file_io.h"
 
 namespace wb::app {
 namespace {
@@ -68,10 +69,14 @@ int runWindowCommand(const std::vector<std::string>& args) {
     std::vector<std::string> reversed(args.rbegin(), args.rend());
     cli.parse(reversed);
     o.sizeGiven = cli.get_option("--size")->count() > 0;
+    o.sppGiven = cli.get_option("--spp")->count() > 0;
     finishRenderOptions(o.render);
     if (!parseWindowSize(o.windowSize, o.windowWidth, o.windowHeight))
       throw std::invalid_argument("--window: expected WxH (at least 64x64), got '" + o.windowSize + "'");
     if (!(o.scale > 0.0f && o.scale <= 2.0f)) throw std::invalid_argument("--scale: expected 0 < scale <= 2");
+    // Files written at exit are checked now, not after the session.
+    if (!o.screenshot.empty()) requireWritableFile(o.screenshot, "--screenshot");
+    if (!o.statsPath.empty()) requireWritableFile(o.statsPath, "--stats");
   } catch (const CLI::CallForHelp&) {
     std::printf("%s", cli.help().c_str());
     return 0;

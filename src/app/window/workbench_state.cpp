@@ -1,5 +1,7 @@
 #include "app/window/workbench_state.h"
 
+#include "app/render_options.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -43,13 +45,19 @@ bool toBool(const std::string& name, const std::string& v) {
   throw std::invalid_argument(name + ": expected on/off, got '" + v + "'");
 }
 
-glm::vec3 toVec3(const std::string& name, const std::string& v) {
+glm::vec3 toVec3(const std::string& name, const std::string& v, const ParamRange* range = nullptr) {
   std::stringstream ss(v);
   std::string part;
   std::vector<float> c;
-  while (std::getline(ss, part, ',')) c.push_back(toFloat(name, part));
+  while (std::getline(ss, part, ','))
+    c.push_back(range ? float(parseParam(*range, part, name)) : toFloat(name, part));
   if (c.size() != 3) throw std::invalid_argument(name + ": expected X,Y,Z, got '" + v + "'");
   return {c[0], c[1], c[2]};
+}
+
+// A numeric setting checked as its command-line flag is (render_options.h).
+float toParam(const ParamRange& p, const std::string& name, const std::string& v) {
+  return float(parseParam(p, v, name));
 }
 
 }  // namespace
@@ -84,7 +92,7 @@ const char* settingNamesHelp() {
 void applySetting(WorkbenchState& st, const std::string& name, const std::string& value) {
   auto& s = st.settings;
   if (name == "exposure") {
-    st.display.exposure = toFloat(name, value);
+    st.display.exposure = toParam(params::kExposure, name, value);
   } else if (name == "tonemap") {
     auto t = tonemapFromName(value);
     if (!t) throw std::invalid_argument("tonemap: expected clamp, reinhard or aces, got '" + value + "'");
@@ -98,9 +106,9 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
   } else if (name == "rr_start") {
     s.rrStart = toUint(name, value);
   } else if (name == "rr_min") {
-    s.rrMin = toFloat(name, value);
+    s.rrMin = toParam(params::kRrMin, name, value);
   } else if (name == "rr_max") {
-    s.rrMax = toFloat(name, value);
+    s.rrMax = toParam(params::kRrMax, name, value);
   } else if (name == "sampler") {
     if (value != "sobol" && value != "pcg") throw std::invalid_argument("sampler: expected sobol or pcg");
     s.sampler = value == "pcg" ? render::SamplerKind::Pcg : render::SamplerKind::Sobol;
@@ -117,27 +125,29 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
   } else if (name == "preview") {
     st.preview = toBool(name, value);
   } else if (name == "budget_ms") {
-    st.budgetMs = toFloat(name, value);
+    st.budgetMs = toParam(params::kBudgetMs, name, value);
   } else if (name == "vsync") {
     st.vsync = toBool(name, value);
   } else if (name == "panel") {
     st.showPanel = toBool(name, value);
   } else if (name == "env_intensity") {
-    s.envIntensity = toFloat(name, value);
+    s.envIntensity = toParam(params::kEnvIntensity, name, value);
   } else if (name == "env_rotation") {
-    s.envRotationDeg = toFloat(name, value);
+    s.envRotationDeg = toParam(params::kEnvRotation, name, value);
   } else if (name == "env_color") {
-    s.envColor = toVec3(name, value);
+    s.envColor = toVec3(name, value, &params::kEnvColor);
   } else if (name == "env") {
     s.envPath = value;
   } else if (name == "sun_direction" || name == "sun_intensity") {
     if (st.lights.empty()) throw std::invalid_argument(name + ": the scene has no directional light");
     auto& l = st.lights[0];
     if (name == "sun_direction") {
-      l.direction = glm::normalize(toVec3(name, value));
+      const glm::vec3 d = toVec3(name, value);
+      if (!(glm::length(d) > 1e-6f)) throw std::invalid_argument(name + ": the direction has no length");
+      l.direction = glm::normalize(d);
     } else {
       const float old = std::max({l.radiance.x, l.radiance.y, l.radiance.z});
-      const float want = toFloat(name, value);
+      const float want = toParam(params::kSunIntensity, name, value);
       l.radiance = old > 0.0f ? l.radiance * (want / old) : glm::vec3(want);
     }
     st.lightsDirty = true;
@@ -147,15 +157,11 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
       throw std::invalid_argument("mode: expected pathtrace, hybrid or reflections, got '" + value + "'");
     st.mode = *m;
   } else if (name == "sun_angle") {
-    const float f = toFloat(name, value);
-    if (f > 90.0f) throw std::invalid_argument("sun_angle: must be at most 90 degrees");
-    st.hybrid.sunAngleDeg = f;
+    st.hybrid.sunAngleDeg = toParam(params::kSunAngle, name, value);
   } else if (name == "ao_rays") {
     st.hybrid.aoRays = toUint(name, value);
   } else if (name == "ao_radius") {
-    const float f = toFloat(name, value);
-    if (f < 0.0f) throw std::invalid_argument("ao_radius: must be non-negative");
-    st.hybrid.aoRadius = f;
+    st.hybrid.aoRadius = toParam(params::kAoRadius, name, value);
   } else if (name == "temporal") {
     st.hybrid.temporal = toBool(name, value);
   } else if (name == "reflection_depth") {
@@ -163,9 +169,9 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
     if (d > 16) throw std::invalid_argument("reflection_depth: at most 16");
     st.hybrid.reflectionDepth = d;
   } else if (name == "reflection_roughness") {
-    st.hybrid.reflectionMaxRoughness = toFloat(name, value);
+    st.hybrid.reflectionMaxRoughness = toParam(params::kReflectionRoughness, name, value);
   } else if (name == "reflection_metallic") {
-    st.hybrid.reflectionMinMetallic = toFloat(name, value);
+    st.hybrid.reflectionMinMetallic = toParam(params::kReflectionMetallic, name, value);
   } else if (name == "reference") {
     st.referencePath = value;
   } else if (name.rfind("material.", 0) == 0) {
@@ -177,11 +183,11 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
     auto& m = st.materials[index];
     const std::string field = name.substr(dot + 1);
     if (field == "roughness") {
-      m.roughness = toFloat(name, value);
+      m.roughness = toParam(params::kMaterialFactor, name, value);
     } else if (field == "metallic") {
-      m.metallic = toFloat(name, value);
+      m.metallic = toParam(params::kMaterialFactor, name, value);
     } else if (field == "base_color") {
-      const glm::vec3 c = toVec3(name, value);
+      const glm::vec3 c = toVec3(name, value, &params::kMaterialFactor);
       m.baseColorFactor = glm::vec4(c, m.baseColorFactor.w);
     } else {
       throw std::invalid_argument(name + ": unknown material field '" + field + "'");

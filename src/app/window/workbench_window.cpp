@@ -20,7 +20,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   state_.fixedWidth = o.render.settings.width;
   state_.fixedHeight = o.render.settings.height;
   state_.vsync = !o.noVsync;
-  state_.targetSpp = 0;
+  state_.targetSpp = o.sppGiven ? o.render.settings.spp : 0;  // without --spp: refine until stopped
   state_.mode = o.render.mode;
   state_.hybrid = o.render.hybrid;
   state_.referencePath = o.reference;

@@ -36,6 +36,7 @@ namespace wb::app {
 struct WindowOptions {
   RenderOptions render;
   bool sizeGiven = false;
+  bool sppGiven = false;  // --spp N: the window stops accumulating at N samples (its target spp)
   std::string windowSize = "1280x720";
   uint32_t windowWidth = 1280, windowHeight = 720;
   uint64_t frames = 0;
