@@ -125,8 +125,12 @@ int runShadersCommand(const std::vector<std::string>& args) {
       j["status"] = "error";
       j["diagnostics"] = nlohmann::json::array();
       for (const auto& d : e.diagnostics) {
-        j["diagnostics"].push_back(
-            {{"file", d.file.string()}, {"line", d.line}, {"severity", d.severity}, {"message", d.message}});
+        j["diagnostics"].push_back({{"file", d.file.string()},
+                                    {"line", d.line},
+                                    {"severity", d.severity},
+                                    {"message", d.message},
+                                    {"stages", d.stages},
+                                    {"included_from", d.includedFrom}});
         std::cerr << d.toString() << '\n';
       }
       if (!json) std::printf("%-60s %-6s FAILED\n", f.string().c_str(), st ? stageName(*st) : "?");

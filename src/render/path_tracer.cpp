@@ -63,6 +63,11 @@ PathTracer::PathTracer(vk::Context& ctx, shader::ShaderLibrary& library, const G
   blueNoise_ = vk::makeBuffer(ctx, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
+  {
+    vk::DescriptorSets recorder(ctx);
+    writeDescriptors(recorder);
+    provided_ = recorder.requested();
+  }
   const char* code = std::getenv("WB_CPU_DEVICE_CODE");
   cpuDeviceCode_ = code && *code ? std::string(code) == "1" : ctx.cpuDevice();
   setFeatures(features);
@@ -116,8 +121,7 @@ void PathTracer::createImages() {
   sampleIndex_ = 0;
 }
 
-void PathTracer::writeDescriptors() {
-  auto& s = *sets_;
+void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
   emitterVersion_ = scene_.emitterVersion();
   s.writeAccelerationStructure(0, WB_BIND_TLAS, scene_.tlas());
   s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
@@ -140,6 +144,9 @@ void PathTracer::writeDescriptors() {
 
 std::unique_ptr<PreparedPipeline> PathTracer::preparePipeline(
     const shader::ShaderLibrary::ProgramBuild& build) const {
+  // A binding the path tracer does not fill would be read unbound (VUID-vkCmdTraceRaysKHR-None-02699): a
+  // compile error at its declaration instead, and the last good pipeline stays.
+  vk::requireProvided(build, provided_, "the path tracer");
   // Groups: raygen, environment miss, shadow miss, one triangle hit group (closest-hit + any-hit when the
   // program has an any-hit stage, i.e. some material is not opaque).
   const int anyHit = build.stages.size() > 4 ? 4 : -1;
@@ -159,7 +166,7 @@ void PathTracer::commitPipeline(std::unique_ptr<PreparedPipeline> prepared) {
   pipeline_ = std::move(prepared->pipeline);
   layout_ = std::move(prepared->layout);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *layout_);
-  writeDescriptors();
+  writeDescriptors(*sets_);
   pipelineMs_ = pipeline_->createMs();
   sampleIndex_ = 0;
   // Libraries of the last few builds stay (variants and an edit in flight); older ones go.
@@ -174,6 +181,9 @@ void PathTracer::addHotReloadTarget(HotReload& hot) {
   hot.addTarget(program_,
                 {"pathtracer",
                  [this, makeWarmup](const shader::ShaderLibrary::ProgramBuild& b) -> std::shared_ptr<void> {
+                   // Before the warm-up device sees it: a program that uses a binding we do not fill is a
+                   // reload error, not a warm-up failure.
+                   vk::requireProvided(b, provided_, "the path tracer");
                    // The driver's compile on the warm-up device runs beside this device's pipeline creation.
                    const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
                    std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran
@@ -213,7 +223,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   if (resized) {
     vkDeviceWaitIdle(ctx_.device());
     createImages();
-    writeDescriptors();
+    writeDescriptors(*sets_);
   }
   sampleIndex_ = 0;
 }
@@ -221,7 +231,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
 void PathTracer::setEnvironment(const GpuEnvironment& env) {
   vkDeviceWaitIdle(ctx_.device());
   env_ = &env;
-  writeDescriptors();
+  writeDescriptors(*sets_);
   sampleIndex_ = 0;
 }
 
@@ -252,7 +262,7 @@ void PathTracer::updateFrameUniforms() {
 void PathTracer::record(VkCommandBuffer cmd, std::optional<PixelRegion> region) {
   PixelRegion r = region.value_or(PixelRegion{0, 0, settings_.width, settings_.height});
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
-  if (scene_.emitterVersion() != emitterVersion_) writeDescriptors();
+  if (scene_.emitterVersion() != emitterVersion_) writeDescriptors(*sets_);
   if (sampleIndex_ == 0 && (!region || (r.x == 0 && r.y == 0))) updateFrameUniforms();
   gpu::PushConstants pc{};
   pc.sampleIndex = sampleIndex_;

@@ -87,6 +87,12 @@ const char* descriptorTypeName(VkDescriptorType t) {
 std::string Diagnostic::toString() const {
   std::ostringstream os;
   os << file.string() << ':' << line << ": " << severity << ": " << message;
+  if (!stages.empty() || !includedFrom.empty()) {
+    os << " (";
+    for (size_t i = 0; i < stages.size(); ++i) os << (i ? ", " : "in ") << stages[i];
+    if (!includedFrom.empty()) os << (stages.empty() ? "" : "; ") << "included from " << includedFrom;
+    os << ')';
+  }
   return os.str();
 }
 

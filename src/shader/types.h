@@ -47,7 +47,13 @@ struct Diagnostic {
   int line = 0;   // 1-based; 0 when the message is not about a line
   std::string severity;  // "error" | "warning"
   std::string message;
-  std::string toString() const;  // file:line: severity: message
+  // Where it was met: the stages whose compile reported it ("rchit"...; one entry per stage even when an
+  // included file's error is met by several), and for an included file the chain of #include lines back to
+  // the stage file ("/a.glsl:2 <- /main.rchit:4"). Empty when not known (cached warnings).
+  std::vector<std::string> stages;
+  std::string includedFrom;
+  // file:line: severity: message, then " (in rchit, rmiss; included from ...)" when known.
+  std::string toString() const;
   bool operator==(const Diagnostic&) const = default;
 };
 

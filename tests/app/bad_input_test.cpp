@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -362,4 +363,31 @@ TEST(BadInput, BenchAndConvergeOutputsAreCheckedFirst) {
   EXPECT_NE(converge.code, 0) << converge.output;
   EXPECT_NE(converge.output.find("--out"), std::string::npos) << converge.output;
   EXPECT_EQ(converge.output.find("reference"), std::string::npos) << "rendered first: " << converge.output;
+}
+
+// 9. A shader that declares and uses a resource the path tracer does not bind is refused at load, at the
+// declaration's file:line (it rendered, reading an unbound descriptor: VUID-vkCmdTraceRaysKHR-None-02699).
+TEST(BadInput, UnboundResourceIsACompileErrorAtItsDeclaration) {
+  const fs::path root = tempDir() / "unbound_root";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  fs::copy(wb::projectRoot() / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(wb::projectRoot() / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
+  std::ifstream in(chit);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const size_t afterIncludes = text.find('\n', text.rfind("#include")) + 1;
+  const int line = 1 + int(std::count(text.begin(), text.begin() + long(afterIncludes), '\n'));
+  text.insert(afterIncludes, "layout(set = 0, binding = 30, std430) buffer WbExtra { vec4 v[]; } wbExtra;\n");
+  text.insert(text.find('\n', text.find("void main()")) + 1, "  if (wbExtra.v[0].x > 1e30) return;\n");
+  std::ofstream(chit, std::ios::trunc) << text;
+  const CommandResult r = wb::testing::runCommand(
+      "env WB_ROOT=" + root.string() + " WB_SHADER_CACHE_DIR=" + (root / "cache").string() + " timeout 300 " +
+      WB_WORKBENCH_BIN + " render" + kSmall + "--out " + (root / "x.png").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("closesthit.rchit:" + std::to_string(line) + ": error: set 0 binding 30"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("rendered"), std::string::npos) << r.output;
+  fs::remove_all(root);
 }

@@ -4,6 +4,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -164,10 +165,32 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
   ASSERT_GE(lines.size(), 5u) << readFile(out);
   EXPECT_TRUE(lines[4]["ok"].get<bool>()) << lines[4].dump();
 
+  // A resource the path tracer does not bind (set 0, binding 30), declared and used: a reload error at its
+  // declaration, the old pipeline kept (it used to be accepted, and traced with an unbound descriptor).
+  std::string extra = good;
+  const size_t afterIncludes = extra.find('\n', extra.rfind("#include")) + 1;
+  extra.insert(afterIncludes,
+               "layout(set = 0, binding = 30, std430) buffer WbExtra { vec4 v[]; } wbExtra;\n");
+  extra.insert(extra.find('\n', extra.find("void main()")) + 1, "  if (wbExtra.v[0].x > 1e30) return;\n");
+  const int declarationLine = 1 + int(std::count(good.begin(), good.begin() + long(afterIncludes), '\n'));
+  writeFile(chit, extra);
+  lines = waitForLog(log, 6);
+  ASSERT_GE(lines.size(), 6u) << readFile(out);
+  EXPECT_FALSE(lines[5]["ok"].get<bool>()) << lines[5].dump();
+  EXPECT_TRUE(lines[5]["pipelines_rebuilt"].empty()) << lines[5].dump();
+  const std::string error = lines[5]["error"].get<std::string>();
+  EXPECT_NE(error.find("closesthit.rchit:" + std::to_string(declarationLine) + ": error: set 0 binding 30"),
+            std::string::npos)
+      << error;
+  writeFile(chit, good);
+  lines = waitForLog(log, 7);
+  ASSERT_GE(lines.size(), 7u) << readFile(out);
+  EXPECT_TRUE(lines[6]["ok"].get<bool>()) << lines[6].dump();
+
   const int status = stop();
   EXPECT_EQ(WEXITSTATUS(status), 0) << readFile(out);
   // Exactly one reload per save, and frames kept coming throughout.
-  EXPECT_EQ(readLog(log).size(), 5u);
+  EXPECT_EQ(readLog(log).size(), 7u);
   const std::string text = readFile(out);
   unsigned long long frames = 0;
   size_t reloads = 0;
@@ -175,7 +198,7 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
                         &reloads),
             2)
       << text;
-  EXPECT_EQ(reloads, 5u);
+  EXPECT_EQ(reloads, 7u);
   EXPECT_GT(frames, 20u);
   fs::remove_all(root);
 }

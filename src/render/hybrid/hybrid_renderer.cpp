@@ -141,6 +141,11 @@ HybridRenderer::HybridRenderer(vk::Context& ctx, shader::ShaderLibrary& library,
   WB_VK(vkCreateSampler(ctx.device(), &sci, nullptr, &nearest_));
   uniforms_ = vk::Buffer(ctx, sizeof(gpu::HybridUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   createImages();
+  {
+    vk::DescriptorSets recorder(ctx);
+    writeDescriptors(recorder);
+    provided_ = recorder.requested();
+  }
 
   static const char* programNames[kPassCount] = {"hybrid-gbuffer", "hybrid-shadow-ao", "hybrid-reflections",
                                                  "hybrid-composite"};
@@ -202,9 +207,7 @@ void HybridRenderer::createImages() {
   frameIndex_ = 0;
 }
 
-void HybridRenderer::writeDescriptors(Pass pass) {
-  auto& s = *sets_[size_t(pass)];
-  if (s.sets().empty()) return;
+void HybridRenderer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeAccelerationStructure(0, WB_BIND_TLAS, gpuScene_.tlas());
   s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
@@ -228,6 +231,7 @@ void HybridRenderer::writeDescriptors(Pass pass) {
 
 std::shared_ptr<void> HybridRenderer::preparePipeline(
     Pass pass, const shader::ShaderLibrary::ProgramBuild& build) const {
+  vk::requireProvided(build, provided_, std::string("the ") + passName(pass) + " pass");
   auto p = std::make_shared<Prepared>();
   p->ctx = &ctx_;
   p->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
@@ -284,7 +288,7 @@ void HybridRenderer::commitPipeline(Pass pass, std::shared_ptr<void> prepared) {
   pipelines_[i]->rayTracing = std::move(p->rayTracing);
   pipelines_[i]->compute = std::exchange(p->compute, VK_NULL_HANDLE);
   sets_[i] = std::make_unique<vk::DescriptorSets>(ctx_, *pipelines_[i]->layout);
-  writeDescriptors(pass);
+  if (!sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
   builds_[i]++;
   frameIndex_ = 0;
 }
@@ -300,6 +304,7 @@ void HybridRenderer::addHotReloadTargets(HotReload& hot) {
     hot.addTarget(programs_[i],
                   {passName(pass),
                    [this, pass, makeWarmup](const shader::ShaderLibrary::ProgramBuild& b) {
+                     vk::requireProvided(b, provided_, std::string("the ") + passName(pass) + " pass");
                      // As the path tracer's: the warm-up device compiles the pipeline beside this one's
                      // creation.
                      const uint32_t handlesBefore = ctx_.lastGroupHandleWord();
@@ -350,7 +355,7 @@ void HybridRenderer::setSettings(const RenderSettings& settings) {
     vkDeviceWaitIdle(ctx_.device());
     createImages();
     for (size_t i = 0; i < kPassCount; ++i) {
-      if (sets_[i]) writeDescriptors(static_cast<Pass>(i));
+      if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
     }
   }
   frameIndex_ = 0;
@@ -370,7 +375,7 @@ void HybridRenderer::setEnvironment(const GpuEnvironment& env) {
   vkDeviceWaitIdle(ctx_.device());
   env_ = &env;
   for (size_t i = 0; i < kPassCount; ++i) {
-    if (sets_[i]) writeDescriptors(static_cast<Pass>(i));
+    if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
   }
   frameIndex_ = 0;
 }
