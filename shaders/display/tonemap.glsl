@@ -5,8 +5,9 @@
 #include "display_types.h"
 
 float tonemapChannel(float v, uint op) {
-  if (isnan(v) || isinf(v)) return 0.0;
-  v = max(v, 0.0);
+  // As src/eval/image.cpp: NaN is black; +inf and huge values are white (the curves would overflow to NaN).
+  if (isnan(v)) return 0.0;
+  v = clamp(v, 0.0, 1e15);
   if (op == WB_TONEMAP_CLAMP) return min(v, 1.0);
   if (op == WB_TONEMAP_REINHARD) return v / (1.0 + v);
   // Narkowicz 2015 fit of the ACES filmic curve.

@@ -16,6 +16,8 @@
 
 #include "app/process.h"
 #include "common/env.h"
+#include "common/file_io.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "scene/procedural.h"
@@ -390,6 +392,7 @@ void BenchCommand::finish() {
   unsigned w = 0, h = 0;
   if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h)
     throw std::invalid_argument("--size: expected WxH, got '" + size + "'");
+  if (!out.empty()) requireWritableFile(out, "--out");  // checked before the suite runs, not after
 }
 
 int runBenchCommand(const std::vector<std::string>& args) {
@@ -521,12 +524,12 @@ int BenchCommand::run() {
                   r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>());
     }
   }
-  if (result.contains("startup")) std::printf("start-up: %s\n", result["startup"].dump().c_str());
-  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", result["hot_reload"].dump().c_str());
+  if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
+  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
   std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
   if (!out.empty()) {
     std::ofstream f(out);
-    f << result.dump(2) << "\n";
+    f << jsonText(result, 2) << "\n";
     if (!f) {
       std::fprintf(stderr, "workbench bench: error: cannot write '%s'\n", out.c_str());
       return 1;

@@ -15,6 +15,7 @@
 #include "app/render_options.h"
 #include "render/render_session.h"
 #include "shader/hash.h"
+#include "common/file_io.h"
 #include "common/paths.h"
 #include "eval/hard_cases.h"
 #include "eval/metrics.h"
@@ -326,7 +327,7 @@ int ConvergeCommand::run() {
   const auto& c = converge;
   try {
     const fs::path dir(c.out);
-    fs::create_directories(dir);
+    requireWritableDirectory(dir, "--out");  // before any render: never fail at the end for want of a folder
     if (c.hardCases) return runHardCases();
     Progress progress;
     std::string refDescription;

@@ -8,6 +8,8 @@
 #include "app/render_options.h"
 #include "app/hybrid_json.h"
 #include "app/parameter_json.h"
+#include "common/file_io.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
 #include "render/render_session.h"
@@ -49,6 +51,16 @@ int RenderCommand::run() {
   const RenderOptions& ro = options;
   const std::filesystem::path outPath(out);
   try {
+    // Every output is checked before the render: a render never ends in "cannot write" after the work.
+    requireWritableFile(outPath, "--out");
+    if (ro.aovAlbedo) requireWritableFile(aovPath(outPath, "albedo"), "--aov albedo");
+    if (ro.aovNormal) requireWritableFile(aovPath(outPath, "normal"), "--aov normal");
+    if (!stats.empty()) requireWritableFile(stats, "--stats");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "workbench render: error: %s\n", e.what());
+    return 2;
+  }
+  try {
     render::SessionOptions so;
     so.scenePath = ro.scene;
     so.settings = ro.params.render;
@@ -57,8 +69,7 @@ int RenderCommand::run() {
     so.hybrid = ro.params.hybrid;
     std::optional<eval::ImageRGBA> referenceImage;
     if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
-    render::RenderSession session(so);
-    for (const auto& w : session.scene().warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    render::RenderSession session(so);  // prints the scene's and environment's warnings
     const double seconds = session.render(ro.params.render.spp);
     const auto image = session.image();
     eval::writeImage(outPath, image, ro.params.display.exposure, ro.params.display.tonemap);
@@ -72,10 +83,6 @@ int RenderCommand::run() {
     const double pixels = double(image.width) * image.height;
     for (double& m : mean) m /= pixels;
     const double samples = pixels * ro.params.render.spp;
-    std::printf("rendered %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
-                session.scene().sourcePath.string().c_str(), unsigned(session.scene().triangleCount()),
-                image.width, image.height, ro.params.render.spp, seconds,
-                session.context().deviceName().c_str(), outPath.string().c_str());
     if (!stats.empty()) {
       nlohmann::json j;
       j["device"] = session.context().deviceName();
@@ -128,9 +135,14 @@ int RenderCommand::run() {
       j["tlas_build_ms"] = session.gpuScene().accel().tlasBuildMs();
       j["device_bytes"] = session.gpuScene().deviceBytes();
       std::ofstream f(stats);
-      if (!f) throw std::runtime_error("cannot write --stats file '" + stats + "'");
-      f << j.dump(2) << "\n";
+      f << jsonText(j, 2) << "\n";
+      if (!f.flush()) throw std::runtime_error("cannot write --stats file '" + stats + "'");
     }
+    // Said last: every file is written.
+    std::printf("rendered %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
+                session.scene().sourcePath.string().c_str(), unsigned(session.scene().triangleCount()),
+                image.width, image.height, ro.params.render.spp, seconds,
+                session.context().deviceName().c_str(), outPath.string().c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench render: error: %s\n", e.what());
     return 1;

@@ -1,5 +1,6 @@
 #include "app/cmd_shaders.h"
 
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "shader/library.h"
 
@@ -60,9 +61,11 @@ int runShadersCommand(const std::vector<std::string>& args) {
 
 int ShadersCommand::run() {
   std::vector<Define> defs;
-  for (const auto& d : defines) {
-    const auto eq = d.find('=');
-    defs.push_back(eq == std::string::npos ? Define{d, ""} : Define{d.substr(0, eq), d.substr(eq + 1)});
+  try {
+    for (const auto& d : defines) defs.push_back(parseDefine(d, "--define"));
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "workbench shaders: error: " << e.what() << '\n';
+    return 2;
   }
   std::vector<std::string> errors;
   const auto files = collect(paths, errors);
@@ -119,15 +122,19 @@ int ShadersCommand::run() {
       j["status"] = "error";
       j["diagnostics"] = nlohmann::json::array();
       for (const auto& d : e.diagnostics) {
-        j["diagnostics"].push_back(
-            {{"file", d.file.string()}, {"line", d.line}, {"severity", d.severity}, {"message", d.message}});
+        j["diagnostics"].push_back({{"file", d.file.string()},
+                                    {"line", d.line},
+                                    {"severity", d.severity},
+                                    {"message", d.message},
+                                    {"stages", d.stages},
+                                    {"included_from", d.includedFrom}});
         std::cerr << d.toString() << '\n';
       }
       if (!json) std::printf("%-60s %-6s FAILED\n", f.string().c_str(), st ? stageName(*st) : "?");
     }
     out.push_back(std::move(j));
   }
-  if (json) std::cout << out.dump(2) << '\n';
+  if (json) std::cout << jsonText(out, 2) << '\n';
   if (!json) {
     ShaderLibrary::Stats total{};
     for (const auto& [d, l] : libs) {

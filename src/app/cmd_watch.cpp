@@ -11,6 +11,7 @@
 
 #include "app/reload_log.h"
 #include "app/render_options.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 #include "render/hot_reload.h"
 #include "render/render_session.h"
@@ -69,7 +70,7 @@ int WatchCommand::run() {
     const auto start = std::chrono::steady_clock::now();
     std::optional<render::ReloadEvent> unlogged;
     auto writeEvent = [&](const render::ReloadEvent& e) {
-      const std::string line = reloadEventJson(e).dump();
+      const std::string line = jsonText(reloadEventJson(e));
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
       if (log) {

@@ -46,7 +46,7 @@ int parseAndRun(CLI::App& app, const std::vector<std::string>& args, Command* de
     const std::string l = label(app, subcommands, defaultCommand);
     std::fprintf(stderr, "%s: error: %s (see '%s --help')\n", l.c_str(), e.what(), l.c_str());
     return kUsageError;
-  } catch (const std::invalid_argument& e) {
+  } catch (const std::exception& e) {  // finish(): a bad value, an output that cannot be written
     std::fprintf(stderr, "%s: error: %s\n", label(app, subcommands, defaultCommand).c_str(), e.what());
     return kUsageError;
   }

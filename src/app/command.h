@@ -16,7 +16,8 @@ class Command {
   virtual const char* name() const = 0;
   virtual const char* description() const = 0;
   virtual void addFlags(CLI::App& app) = 0;
-  // Checks and converts what was parsed; throws std::invalid_argument with a one-line reason naming the flag.
+  // Checks and converts what was parsed, and that the outputs can be written; throws (std::invalid_argument,
+  // std::runtime_error) with a one-line reason naming the flag.
   virtual void finish() {}
   // The command run without a subcommand sees the first argument before parsing, to tell a mistyped
   // command from a scene. Throws std::invalid_argument.

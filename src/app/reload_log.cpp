@@ -21,11 +21,12 @@ nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
   } else {
     j["edit_to_first_frame_ms"] = nullptr;
   }
-  // The frames around the reload (render/reload_frames.h).
-  j["frame_ms_median_before"] = e.frames.medianBefore;
-  j["frame_ms_max_during_rebuild"] = e.frames.maxDuringRebuild;
-  j["frame_ms_max_before_same_span"] = e.frames.maxBeforeSameSpan;
-  j["first_new_frame_ms"] = e.frames.firstNewFrame;
+  // The frames around the reload (render/reload_frames.h); null where there was no such frame.
+  auto frameMs = [](double ms) { return ms >= 0 ? nlohmann::json(ms) : nlohmann::json(nullptr); };
+  j["frame_ms_median_before"] = frameMs(e.frames.medianBefore);
+  j["frame_ms_max_during_rebuild"] = frameMs(e.frames.maxDuringRebuild);
+  j["frame_ms_max_before_same_span"] = frameMs(e.frames.maxBeforeSameSpan);
+  j["first_new_frame_ms"] = frameMs(e.frames.firstNewFrame);
   j["frames_during_rebuild"] = e.frames.framesDuringRebuild;
   j["ok"] = e.ok;
   j["error"] = e.error;

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "shader/types.h"
+
 namespace wb::app {
 
 void addRenderOptions(CLI::App& app, RenderOptions& o) {
@@ -43,14 +45,8 @@ void finishRenderOptions(RenderOptions& o) {
   }
   s.defines.clear();
   for (const auto& d : o.defines) {
-    const auto eq = d.find('=');
-    const std::string name = d.substr(0, eq);
-    const bool valid =
-        !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
-        std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
-    if (!valid)
-      throw std::invalid_argument("--define: expected NAME=VALUE with a C identifier, got '" + d + "'");
-    s.defines.emplace_back(name, eq == std::string::npos ? std::string() : d.substr(eq + 1));
+    const shader::Define def = shader::parseDefine(d, "--define");
+    s.defines.emplace_back(def.name, def.value);
   }
   s.aov = false;
   if (!o.aov.empty()) {

@@ -26,9 +26,13 @@ float linearToSrgb(float v) {
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
 }
 
+// The largest value the curves see: ACES squares its input, so anything above ~1e19 would overflow to inf
+// (inf / inf = NaN -> black); every curve is 1 (white) long before this.
+constexpr float kTonemapInputMax = 1e15f;
+
 static float applyTonemap(float v, Tonemap op) {
-  if (!std::isfinite(v)) return 0.0f;
-  v = std::max(v, 0.0f);
+  if (std::isnan(v)) return 0.0f;
+  v = std::clamp(v, 0.0f, kTonemapInputMax);  // +inf and huge values are white, -inf black
   switch (op) {
     case Tonemap::Clamp:
       return std::min(v, 1.0f);

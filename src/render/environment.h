@@ -1,6 +1,7 @@
 // The environment on the device: an RGBA32F equirectangular image (1x1 for a constant colour) and the alias
 // table that importance-samples it.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "shared/gpu_types.h"
@@ -13,7 +14,8 @@ struct EnvironmentData {
   std::vector<float> rgb;  // width * height * 3, row 0 = top (+Y)
   std::vector<gpu::EnvAliasEntry> alias;
   float totalWeight = 0.0f;
-  bool isMap = false;  // false: a constant colour
+  bool isMap = false;                 // false: a constant colour
+  std::vector<std::string> warnings;  // the loader's (an 8-bit image taken as radiance)
 };
 
 class GpuEnvironment {

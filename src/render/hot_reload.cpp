@@ -156,9 +156,12 @@ void HotReload::run() {
         p.event.libraries.libraryMs += s.libraryMs;
         p.event.libraries.linkMs += s.linkMs;
       } catch (const std::exception& e) {
-        // The program compiled but its pipeline did not build: the last good pipeline stays, and the error is
-        // current (banner, Shaders panel) until a later build of this program succeeds.
-        const std::string message = target.name + ": pipeline creation failed: " + e.what();
+        // The program compiled but its pipeline did not build (or uses a binding the renderer does not fill:
+        // a CompileError at its declaration): the last good pipeline stays, and the error is current (banner,
+        // Shaders panel) until a later build of this program succeeds.
+        const bool compileError = dynamic_cast<const shader::CompileError*>(&e) != nullptr;
+        const std::string message =
+            target.name + (compileError ? ": " : ": pipeline creation failed: ") + e.what();
         p.event.ok = false;
         p.event.error += (p.event.error.empty() ? "" : "\n") + message;
         pipelineErrors[result->programs[i]] = message;

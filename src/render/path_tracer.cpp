@@ -48,6 +48,11 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   blueNoise_ = vk::makeBuffer(ctx_, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
+  {
+    vk::DescriptorSets recorder(ctx_);
+    writeDescriptors(recorder);
+    provided_ = recorder.requested();
+  }
   setFeatures(features);
 }
 
@@ -94,8 +99,7 @@ void PathTracer::createImages() {
   sampleIndex_ = 0;
 }
 
-void PathTracer::writeDescriptors() {
-  auto& s = *sets_;
+void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
   emitterVersion_ = gpuScene_.emitterVersion();
   s.writeAccelerationStructure(0, WB_BIND_TLAS, gpuScene_.tlas());
   s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
@@ -123,6 +127,9 @@ std::vector<RendererProgram> PathTracer::programs() const {
 std::unique_ptr<vk::BuiltPipeline> PathTracer::buildPipeline(
     shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const {
   (void)program;
+  // A binding the path tracer does not fill would be read unbound (VUID-vkCmdTraceRaysKHR-None-02699): a
+  // compile error at its declaration instead, and the last good pipeline stays.
+  vk::requireProvided(build, provided_, "the path tracer");
   // The any-hit stage is there when some material is not opaque (stageKeys).
   vk::RtBindingTable table;
   table.raygen("raygen.rgen")
@@ -144,7 +151,7 @@ void PathTracer::installPipeline(shader::ShaderLibrary::ProgramId program,
   sets_.reset();
   pipeline_ = std::move(pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *pipeline_->layout);
-  writeDescriptors();
+  writeDescriptors(*sets_);
   pipelineMs_ = pipeline_->rayTracing->createMs();
   sampleIndex_ = 0;
   ++installs_;
@@ -168,7 +175,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   if (resized) {
     vkDeviceWaitIdle(ctx_.device());
     createImages();
-    writeDescriptors();
+    writeDescriptors(*sets_);
   }
   sampleIndex_ = 0;
 }
@@ -176,7 +183,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
 void PathTracer::setEnvironment(const GpuEnvironment& env) {
   vkDeviceWaitIdle(ctx_.device());
   env_ = &env;
-  writeDescriptors();
+  writeDescriptors(*sets_);
   sampleIndex_ = 0;
 }
 
@@ -211,7 +218,7 @@ void PathTracer::updateFrameUniforms() {
 
 void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
-  if (gpuScene_.emitterVersion() != emitterVersion_) writeDescriptors();
+  if (gpuScene_.emitterVersion() != emitterVersion_) writeDescriptors(*sets_);
   if (sampleIndex_ == 0 && r.x == 0 && r.y == 0) updateFrameUniforms();
   gpu::PushConstants pc{};
   pc.sampleIndex = sampleIndex_;

@@ -85,7 +85,8 @@ class PathTracer final : public Renderer {
 
  private:
   void createImages();
-  void writeDescriptors();
+  // Writes every descriptor the path tracer provides into s (a recorder lists them: provided_).
+  void writeDescriptors(vk::DescriptorSets& s);
   void updateFrameUniforms();
 
   vk::Context& ctx_;
@@ -99,7 +100,8 @@ class PathTracer final : public Renderer {
   bool cpuDeviceCode_ = false;
   std::vector<std::pair<scene::SceneFeatures, shader::ShaderLibrary::ProgramId>> variants_;
   std::unique_ptr<vk::DescriptorSets> sets_;
-  uint64_t emitterVersion_ = 0;  // the scene's emitter buffers the descriptors point at
+  std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
+  uint64_t emitterVersion_ = 0;                // the scene's emitter buffers the descriptors point at
   // Before pipeline_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<vk::BuiltPipeline> pipeline_;

@@ -6,12 +6,13 @@
 
 namespace wb::render {
 
+// Frame times in ms; -1 where there was no such frame (the logs write null there, not a time of 0).
 struct ReloadFrameStats {
-  double medianBefore = 0;       // median of the (up to 20) frames that ended before the edit was seen
-  double maxDuringRebuild = 0;   // slowest frame that ended after the edit, the first new frame excluded
-  double maxBeforeSameSpan = 0;  // slowest frame of as long a span just before the edit: the noise floor
-  double firstNewFrame = -1;     // the first frame with the new pipelines (-1: none, e.g. a failed build)
-  int framesDuringRebuild = 0;   // frames that ended after the edit, the first new frame excluded
+  double medianBefore = -1;       // median of the (up to 20) frames that ended before the edit was seen
+  double maxDuringRebuild = -1;   // slowest frame that ended after the edit, the first new frame excluded
+  double maxBeforeSameSpan = -1;  // slowest frame of as long a span just before the edit: the noise floor
+  double firstNewFrame = -1;      // the first frame with the new pipelines (none, e.g., after a failed build)
+  int framesDuringRebuild = 0;    // frames that ended after the edit, the first new frame excluded
 };
 
 class ReloadFrameTimeline {

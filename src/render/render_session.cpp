@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "common/paths.h"
 #include "shader/hash.h"
@@ -27,6 +28,7 @@ EnvironmentData loadEnvironmentData(const RenderSettings& settings) {
   d.alias = std::move(env.alias);
   d.totalWeight = env.totalWeight;
   d.isMap = isMap;
+  d.warnings = std::move(env.warnings);
   return d;
 }
 
@@ -63,13 +65,20 @@ std::string shaderSourceFingerprint() {
   return h.finish().hex();
 }
 
-RenderSession::RenderSession(const SessionOptions& options) : mode_(options.mode), hybrid_(options.hybrid) {
+RenderSession::RenderSession(const SessionOptions& options)
+    : mode_(options.mode), hybrid_(options.hybrid), quiet_(options.quiet) {
   auto t0 = std::chrono::steady_clock::now();
   const std::filesystem::path scenePath =
       options.scenePath.empty() ? defaultScenePath() : std::filesystem::path(options.scenePath);
   scene_ =
       options.sceneData ? *options.sceneData : scene::loadGltf(scenePath);  // before the device: fail fast
+  // The loader's warnings come first: they may be the reason a later step refuses the scene (no triangles
+  // when every primitive is POINTS or LINES).
+  if (!options.quiet)
+    for (const auto& w : scene_.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const auto envData = loadEnvironmentData(options.settings);
+  if (!options.quiet)
+    for (const auto& w : envData.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   const auto cacheDir = options.cacheDir.empty() ? shaderCacheDir() : options.cacheDir;
   vk::applyDriverDefaults(cacheDir);  // before the first instance of the process (vk/driver_policy.h)
@@ -136,7 +145,10 @@ void RenderSession::setCamera(const CameraState& camera) {
 }
 
 void RenderSession::setEnvironment(const RenderSettings& settings) {
-  auto env = std::make_unique<GpuEnvironment>(*ctx_, loadEnvironmentData(settings));
+  const auto data = loadEnvironmentData(settings);
+  if (!quiet_)
+    for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  auto env = std::make_unique<GpuEnvironment>(*ctx_, data);
   forEachRenderer([&](Renderer& r) { r.setEnvironment(*env); });  // each waits for the device
   env_ = std::move(env);                                          // the previous one is no longer referenced
 }

@@ -26,7 +26,7 @@ struct SessionOptions {
   RenderSettings settings;
   vk::ContextOptions context;
   std::filesystem::path cacheDir;  // empty = shader_cache/ of the project
-  bool quiet = false;
+  bool quiet = false;              // true: the scene's and environment's warnings are not printed (stderr)
   RenderMode mode = RenderMode::PathTrace;  // the renderer render() and image() use
   HybridSettings hybrid;
 };
@@ -109,6 +109,7 @@ class RenderSession {
   CameraState camera_, sceneCamera_;
   std::vector<gpu::DirectionalLight> lights_;
   HotReload* hot_ = nullptr;
+  bool quiet_ = false;
   std::vector<double> frameSeconds_;
   double setupSeconds_ = 0;
 };

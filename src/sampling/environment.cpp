@@ -5,7 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include <stb_image.h>
+#include "common/file_io.h"
+#include "common/image_decode.h"
 
 namespace wb {
 
@@ -92,28 +93,38 @@ void buildEnvironmentSampling(EnvironmentMap& env) {
 }
 
 EnvironmentMap loadHdrEnvironment(const std::filesystem::path& path) {
+  const std::string name = path.string();
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw std::runtime_error("loadHdrEnvironment: " + path.string() + ": no such file");
-  }
-  int w = 0;
-  int h = 0;
-  int channels = 0;
-  float* data = stbi_loadf(path.string().c_str(), &w, &h, &channels, 3);
-  if (!data) {
-    const char* reason = stbi_failure_reason();
-    throw std::runtime_error("loadHdrEnvironment: " + path.string() + ": cannot decode image (" +
-                             (reason ? reason : "unknown reason") + ")");
+  if (std::filesystem::is_directory(path, ec))
+    throw std::runtime_error("environment " + name + ": is a directory, not an image file");
+  if (!std::filesystem::exists(path, ec)) throw std::runtime_error("environment " + name + ": no such file");
+  std::string why;
+  const auto bytes = readRegularFile(path, &why);
+  if (!bytes) throw std::runtime_error("environment " + name + ": cannot read (" + why + ")");
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
+  const ImageFormat format = sniffImageFormat(data, bytes->size());
+  if (format == ImageFormat::Unknown) {
+    throw std::runtime_error("environment " + name +
+                             ": not a Radiance .hdr, PNG or JPEG file (equirectangular .hdr expected)");
   }
   EnvironmentMap env;
-  env.width = w;
-  env.height = h;
-  env.rgb.assign(data, data + static_cast<size_t>(w) * h * 3);
-  stbi_image_free(data);
-  if (w < 2 || h < 1) {
-    throw std::runtime_error("loadHdrEnvironment: " + path.string() +
-                             ": image too small for an environment (" + std::to_string(w) + "x" +
-                             std::to_string(h) + ")");
+  try {
+    FloatImage img = decodeLinearRgb(data, bytes->size());
+    env.width = int(img.width);
+    env.height = int(img.height);
+    env.rgb = std::move(img.rgb);
+  } catch (const ImageDecodeError& e) {
+    throw std::runtime_error("environment " + name + ": cannot decode image (" + e.what() + ")");
+  }
+  if (format != ImageFormat::RadianceHdr) {
+    // An 8-bit image holds display values, not radiance: decoded from sRGB to linear, its brightest sky is 1.
+    env.warnings.push_back("environment " + name + " is an 8-bit " + imageFormatName(format) +
+                           " image, not HDR: decoded from sRGB to linear radiance of at most 1 "
+                           "(--env-intensity scales it)");
+  }
+  if (env.width < 2 || env.height < 1) {
+    throw std::runtime_error("environment " + name + ": image too small for an environment (" +
+                             std::to_string(env.width) + "x" + std::to_string(env.height) + ")");
   }
   bool anyFinite = false;
   for (float& v : env.rgb) {
@@ -124,7 +135,7 @@ EnvironmentMap loadHdrEnvironment(const std::filesystem::path& path) {
       v = 0.0f;  // NaN / Inf texels would poison every estimate: zero them
     }
   }
-  if (!anyFinite) throw std::runtime_error("loadHdrEnvironment: " + path.string() + ": no finite pixels");
+  if (!anyFinite) throw std::runtime_error("environment " + name + ": no finite pixels");
   buildEnvironmentSampling(env);
   return env;
 }

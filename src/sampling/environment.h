@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -16,7 +17,8 @@ struct EnvironmentMap {
   int height = 0;
   std::vector<float> rgb;                 // width * height * 3 linear floats, row-major, row 0 = top (+Y)
   std::vector<gpu::EnvAliasEntry> alias;  // width * height entries
-  float totalWeight = 0.0f;  // sum of the unnormalised pixel weights (FrameUniforms::envTotalWeight)
+  float totalWeight = 0.0f;           // sum of the unnormalised pixel weights (FrameUniforms::envTotalWeight)
+  std::vector<std::string> warnings;  // what the loader chose for the user (an 8-bit image taken as radiance)
 };
 
 // Pixel weights for importance sampling: luminance * sin(theta_center) (negative / non-finite luminance ->
@@ -31,9 +33,10 @@ std::vector<gpu::EnvAliasEntry> buildAliasTable(const std::vector<double>& weigh
 // Builds alias + totalWeight for a map whose width/height/rgb are set.
 void buildEnvironmentSampling(EnvironmentMap& env);
 
-// Loads a Radiance .hdr (or any float image stb_image reads) with stbi_loadf; throws std::runtime_error with
-// the path and stb's reason for unreadable files, and for maps that are not 2:1 equirectangular-like (width <
-// 2 or height < 1) or contain no finite pixels.
+// Loads an equirectangular environment: a Radiance .hdr (common/image_decode.h: bounded, truncated files
+// refused), or a PNG/JPEG decoded from sRGB to linear with a warning in EnvironmentMap::warnings. Throws
+// std::runtime_error with the path and the reason for a directory, a missing or unreadable file, another
+// format, a map smaller than 2x1 or one with no finite pixels.
 EnvironmentMap loadHdrEnvironment(const std::filesystem::path& path);
 
 // A 1x1 map of constant radiance (the sampler then draws uniformly in (u,v), pdf = 1 / (2 pi^2 sin theta)).

@@ -6,7 +6,8 @@
 #include <iterator>
 #include <limits>
 
-#include <stb/stb_image.h>
+#include "common/file_io.h"
+#include "common/image_decode.h"
 
 #include "scene/load_context.h"
 #include "scene/scene.h"
@@ -33,17 +34,11 @@ std::vector<unsigned char> readWholeFile(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path, "file not found (" + path.string() + ")");
   if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a glTF file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open file for reading");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) fail(path, "cannot determine file size");
-  if (static_cast<uint64_t>(size) > kMaxFileSize) fail(path, "file larger than 2 GiB");
-  in.seekg(0, std::ios::beg);
-  std::vector<unsigned char> data(static_cast<size_t>(size));
-  if (size > 0 && !in.read(reinterpret_cast<char*>(data.data()), size)) fail(path, "read error");
-  if (data.empty()) fail(path, "file is empty");
-  return data;
+  std::string why;
+  const auto text = readRegularFile(path, &why, kMaxFileSize);  // never blocks on a named pipe
+  if (!text) fail(path, "cannot read the file: " + why);
+  if (text->empty()) fail(path, "file is empty");
+  return std::vector<unsigned char>(text->begin(), text->end());
 }
 
 // tinygltf 2.7 trusts the GLB header more than it should; check every length against the file size first.
@@ -106,22 +101,38 @@ bool decodeImageRgba8(tinygltf::Image* image, const int imageIndex, std::string*
   image->bits = 8;
   image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
   image->image.clear();
-  int width = 0, height = 0, channels = 0;
-  stbi_uc* pixels =
-      (bytes && size > 0) ? stbi_load_from_memory(bytes, size, &width, &height, &channels, 4) : nullptr;
-  if (!pixels) {
-    if (warn) {
-      const char* reason = stbi_failure_reason();
-      *warn += "image " + std::to_string(imageIndex) + " ('" + image->name + image->uri + "', " +
-               (image->mimeType.empty() ? std::string("unknown type") : image->mimeType) +
-               ") could not be decoded: " + (reason ? reason : "unknown format") + "\n";
+  // Bounded decoding (common/image_decode.h): dimensions checked before any pixel is decoded, and Radiance
+  // HDR bytes never reach stb_image (which can loop forever on a truncated one).
+  std::string reason = "no image data";
+  if (bytes && size > 0) {
+    try {
+      Rgba8Image decoded = decodeRgba8(bytes, static_cast<size_t>(size));
+      image->width = int(decoded.width);
+      image->height = int(decoded.height);
+      image->image = std::move(decoded.rgba);
+      return true;
+    } catch (const ImageDecodeError& e) {
+      reason = e.what();
     }
-    return true;
   }
-  image->width = width;
-  image->height = height;
-  image->image.assign(pixels, pixels + static_cast<size_t>(width) * static_cast<size_t>(height) * 4);
-  stbi_image_free(pixels);
+  if (warn) {
+    *warn += "image " + std::to_string(imageIndex) + " ('" + image->name + image->uri + "', " +
+             (image->mimeType.empty() ? std::string("unknown type") : image->mimeType) +
+             ") could not be decoded: " + reason + "\n";
+  }
+  return true;
+}
+
+// File reads for tinygltf (external .bin buffers and image files): regular files only, never blocking on a
+// named pipe, at most 2 GiB.
+bool readReferencedFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::string why;
+  const auto data = readRegularFile(path, &why, kMaxFileSize);
+  if (!data) {
+    if (err) *err += "cannot read '" + path + "': " + why + "\n";
+    return false;
+  }
+  out->assign(data->begin(), data->end());
   return true;
 }
 
@@ -137,6 +148,8 @@ tinygltf::Model parseGltfFile(const std::filesystem::path& path, std::vector<std
   tinygltf::TinyGLTF parser;
   tinygltf::Model model;
   parser.SetImageLoader(decodeImageRgba8, &model);
+  parser.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readReferencedFile,
+                         &tinygltf::WriteWholeFile, nullptr});
   std::string err, warn;
   const std::filesystem::path parent = path.parent_path();
   const std::string baseDir = parent.empty() ? std::string(".") : parent.string();

@@ -59,20 +59,27 @@ class MaterialConverter {
       const tinygltf::Texture& source = model.textures[i];
       const std::string name = "texture " + std::to_string(i);
       Texture texture;
-      if (source.source >= 0 && static_cast<size_t>(source.source) >= model.images.size()) {
-        ctx_.fail(name + " refers to image " + std::to_string(source.source) + ", which does not exist");
+      // A texture without its image loses nothing but that texture (as an undecodable image does): exporters
+      // leave such textures behind, often unused by any material.
+      const bool imageMissing =
+          source.source >= 0 && static_cast<size_t>(source.source) >= model.images.size();
+      if (imageMissing) {
+        ctx_.warn(name + " refers to image " + std::to_string(source.source) +
+                  ", which does not exist; materials use their factors alone");
       }
       if (source.sampler >= 0 && static_cast<size_t>(source.sampler) >= model.samplers.size()) {
         ctx_.fail(name + " refers to sampler " + std::to_string(source.sampler) + ", which does not exist");
       }
       texture.sampler = source.sampler < 0 ? -1 : source.sampler;
-      if (source.source >= 0 && scene_.images[static_cast<size_t>(source.source)].width > 0) {
+      if (source.source >= 0 && !imageMissing &&
+          scene_.images[static_cast<size_t>(source.source)].width > 0) {
         texture.image = source.source;
       }
       for (const auto& [extension, value] : source.extensions) {
         ctx_.warn(name + ": image source extension " + extension + " unsupported");
       }
-      if (texture.image < 0) ctx_.warn(name + " has no decodable image; materials use their factors alone");
+      if (texture.image < 0 && !imageMissing)
+        ctx_.warn(name + " has no decodable image; materials use their factors alone");
       scene_.textures.push_back(texture);
     }
     scene_.textureIsSrgb.assign(model.textures.size(), false);

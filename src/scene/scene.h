@@ -95,7 +95,9 @@ struct Scene {
 // Loads a .gltf (external or data-URI buffers) or .glb file. Throws SceneError with a one-line reason.
 Scene loadGltf(const std::filesystem::path& path);
 
-// A camera looking along -Z at the centre of the bounds, far enough back to see all of them.
+// A camera looking at the centre of the bounds, far enough back to see all of them: along -Z, or, for a model
+// that is flat seen that way (its XY projection under 5% of its largest face), along its thinnest axis (from
+// above for a ground plane in XZ).
 Camera frameBounds(const Bounds& bounds, float yfov);
 
 }  // namespace wb::scene

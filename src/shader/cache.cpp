@@ -1,5 +1,7 @@
 #include "shader/cache.h"
 
+#include "common/file_io.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -73,21 +75,26 @@ DiskCache::DiskCache(fs::path dir, WarnFn warn, PruneLimits limits)
     disable("cannot create cache directory " + dir_.string() + (ec ? ": " + ec.message() : ""));
     return;
   }
-  // Probe: can we create a file there?
+  enabled_ = true;
+  // Probe: can we create a file there? A read-only folder (a shared or packaged cache) still serves reads.
   const fs::path probe = dir_ / tempName();
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0) {
-    disable("cache directory " + dir_.string() + " is not writable: " + std::strerror(errno));
+    if (warn_) {
+      warn_("shader cache: " + dir_.string() + " is not writable (" + std::strerror(errno) +
+            "): reading its entries, writing none");
+    }
     return;
   }
   ::close(fd);
   fs::remove(probe, ec);
-  enabled_ = true;
+  writable_ = true;
   prune(limits);
 }
 
 void DiskCache::disable(const std::string& why) {
   enabled_ = false;
+  writable_ = false;
   if (warn_) warn_("shader cache: " + why + "; using a memory-only cache");
 }
 
@@ -95,14 +102,15 @@ std::optional<std::string> DiskCache::readChecked(const fs::path& p, const char 
                                                   const Hash128& key) {
   std::error_code ec;
   if (!fs::exists(p, ec)) return std::nullopt;
-  auto data = readFile(p);
+  std::string unreadable;
+  auto data = readRegularFile(p, &unreadable);  // non-blocking: a named pipe here is refused, not waited on
   auto reject = [&](const std::string& why) -> std::optional<std::string> {
     if (warn_) warn_("shader cache: discarding " + p.string() + ": " + why);
     std::error_code rec;
-    fs::remove(p, rec);
+    if (writable_) fs::remove(p, rec);
     return std::nullopt;
   };
-  if (!data) return reject("unreadable");
+  if (!data) return reject("unreadable (" + unreadable + ")");
   if (data->empty()) return reject("empty file");
   if (data->size() < kHeaderSize)
     return reject("truncated header (" + std::to_string(data->size()) + " bytes)");
@@ -132,6 +140,7 @@ std::optional<std::string> DiskCache::readChecked(const fs::path& p, const char 
 
 bool DiskCache::writeAtomic(const fs::path& p, const char magic[4], const Hash128& key,
                             const std::string& payload) {
+  if (!writable_) return false;
   Writer w;
   w.raw(magic, 4);
   w.u32(kFormatVersion);
@@ -177,12 +186,12 @@ std::optional<std::vector<fs::path>> DiskCache::loadIndex(const Hash128& variant
   if (!ok || !r.done() || files.empty()) {
     if (warn_) warn_("shader cache: discarding malformed index " + indexPath(variant).string());
     std::error_code ec;
-    fs::remove(indexPath(variant), ec);
+    if (writable_) fs::remove(indexPath(variant), ec);
     return std::nullopt;
   }
   std::error_code ec;
-  fs::last_write_time(indexPath(variant), fs::file_time_type::clock::now(),
-                      ec);  // LRU for pruning, as load()
+  if (writable_)
+    fs::last_write_time(indexPath(variant), fs::file_time_type::clock::now(), ec);  // LRU, as load()
   return files;
 }
 
@@ -227,11 +236,11 @@ std::optional<CacheEntry> DiskCache::load(const Hash128& key) {
   if (!ok || !r.done()) {
     if (warn_) warn_("shader cache: discarding malformed entry " + p.string());
     std::error_code ec;
-    fs::remove(p, ec);
+    if (writable_) fs::remove(p, ec);
     return std::nullopt;
   }
   std::error_code ec;
-  fs::last_write_time(p, fs::file_time_type::clock::now(), ec);  // LRU for pruning
+  if (writable_) fs::last_write_time(p, fs::file_time_type::clock::now(), ec);  // LRU for pruning
   return e;
 }
 
@@ -253,7 +262,7 @@ void DiskCache::store(const CacheEntry& e) {
 }
 
 void DiskCache::prune(const PruneLimits& limits) {
-  if (!enabled_) return;
+  if (!writable_) return;
   struct Item {
     fs::path path;
     fs::file_time_type time;
@@ -273,6 +282,11 @@ void DiskCache::prune(const PruneLimits& limits) {
       continue;
     }
     if (p.extension() != ".wbspv" && p.extension() != ".wbidx") continue;
+    if (!it->is_regular_file(e2)) {  // a named pipe, a folder...: never a cache entry
+      if (warn_) warn_("shader cache: discarding " + p.string() + ": is " + describeFileKind(p));
+      fs::remove_all(p, e2);
+      continue;
+    }
     if (now - t > std::chrono::hours(24) * limits.maxAgeDays) {
       fs::remove(p, e2);
       continue;

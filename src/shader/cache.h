@@ -3,7 +3,8 @@
 //   <variant>.wbidx  index: variant key (path, stage, defines, entry, options, compiler) -> dependency list
 //   <content>.wbspv  entry: content key (variant + contents of every dependency) -> SPIR-V + deps + warnings
 // File layout of both: magic(4) formatVersion(u32) key(16) payloadSize(u64) xxh64(payload)(u64) payload.
-// A truncated, empty, garbage, wrong-version or bad-checksum file is discarded with a warning.
+// A truncated, empty, garbage, wrong-version or bad-checksum file, or anything that is not a regular file (a
+// named pipe is never opened for a blocking read), is discarded with a warning.
 #pragma once
 #include "shader/hash.h"
 #include "shader/types.h"
@@ -34,9 +35,11 @@ class DiskCache {
   using PruneLimits = CachePruneLimits;
   using WarnFn = std::function<void(const std::string&)>;
 
-  // Empty dir = disabled. An unusable directory disables the cache with a warning.
+  // Empty dir = disabled. A directory that cannot be made disables the cache with a warning; one that exists
+  // but takes no new files (read-only) is read from, with one warning, and never written.
   DiskCache(fs::path dir, WarnFn warn, PruneLimits limits = {});
   bool enabled() const { return enabled_; }
+  bool writable() const { return writable_; }
   const fs::path& dir() const { return dir_; }
 
   std::optional<std::vector<fs::path>> loadIndex(const Hash128& variant);
@@ -56,6 +59,7 @@ class DiskCache {
   fs::path dir_;
   WarnFn warn_;
   bool enabled_ = false;
+  bool writable_ = false;
   std::mutex mutex_;
 };
 

@@ -9,6 +9,7 @@
 #include <glslang/build_info.h>
 #include <spirv-tools/libspirv.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -49,6 +50,34 @@ std::string trim(std::string s) {
   size_t i = 0;
   while (i < s.size() && s[i] == ' ') ++i;
   return s.substr(i);
+}
+
+// Makes glslang's messages point where the user looks: the stage and, for an included file, the #include
+// chain; an include error at its #include line; no follow-on noise ("compilation terminated", errors past the
+// end of a file after the real one: glslang's artifacts once it met an error inside an include).
+void refineDiagnostics(std::vector<Diagnostic>& diags, const CompileInput& in, const Includer& includer) {
+  const bool anyReal = std::any_of(diags.begin(), diags.end(), [](const Diagnostic& d) {
+    return d.severity == "error" && d.message.find("compilation terminated") == std::string::npos;
+  });
+  std::vector<Diagnostic> out;
+  bool errorSeen = false;
+  for (auto d : diags) {
+    if (anyReal && d.message.find("compilation terminated") != std::string::npos) continue;
+    if (const size_t at = d.message.find("for header name: "); at != std::string::npos) {
+      const int line = includer.includeLine(d.file, trim(d.message.substr(at + 17)));
+      if (line > 0) d.line = line;
+    }
+    const size_t lines = includer.lineCount(d.file);
+    if (lines > 0 && size_t(d.line) > lines) {
+      if (errorSeen && d.severity == "error") continue;  // a follow-on of the error before it
+      d.line = int(lines);
+    }
+    errorSeen = errorSeen || d.severity == "error";
+    d.stages = {stageName(in.stage)};
+    if (d.file != in.path) d.includedFrom = includer.includeChain(d.file);
+    out.push_back(std::move(d));
+  }
+  diags = std::move(out);
 }
 
 }  // namespace
@@ -127,6 +156,7 @@ CompileOutput compileGlsl(const CompileInput& in) {
   shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_4);
 
   Includer includer(in.path, hash64(in.source), in.includeRoots);
+  includer.setMainText(in.source);
   const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
   const bool parsed = shader->parse(GetDefaultResources(), 460, false, messages, includer);
   std::vector<Diagnostic> diags = parseGlslangLog(shader->getInfoLog(), in.path);
@@ -134,6 +164,7 @@ CompileOutput compileGlsl(const CompileInput& in) {
     bool anyError = false;
     for (const auto& x : d) anyError |= x.severity == "error";
     if (!anyError) d.push_back({in.path, 0, "error", fallback});
+    refineDiagnostics(d, in, includer);
     return CompileError(std::move(d));
   };
   if (!parsed) throw failWith(diags, "compile failed");
@@ -172,6 +203,7 @@ CompileOutput compileGlsl(const CompileInput& in) {
     if (!tools.Validate(out.spirv.data(), out.spirv.size(), vopts)) {
       diags.push_back(
           {in.path, 0, "error", trim(validationLog.empty() ? "SPIR-V validation failed" : validationLog)});
+      refineDiagnostics(diags, in, includer);
       throw CompileError(std::move(diags));
     }
   }

@@ -1,5 +1,7 @@
 #include "shader/hash.h"
 
+#include "common/file_io.h"
+
 #include <sys/stat.h>
 #include <xxhash.h>
 
@@ -41,12 +43,7 @@ Hash128 Hasher::finish() const {
 }
 
 std::optional<std::string> readFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) return std::nullopt;
-  return ss.str();
+  return readRegularFile(p);  // a named pipe or device is unreadable here, never a wait
 }
 
 namespace {

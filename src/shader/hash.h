@@ -40,6 +40,7 @@ class Hasher {
   void* state_;
 };
 
+// The whole file; nullopt when it is missing, unreadable or not a regular file (common/file_io.h).
 std::optional<std::string> readFile(const fs::path& p);
 
 // Maps a path to the xxh3-64 of its contents. A cached hash is reused while (mtime, ctime, size, inode) are

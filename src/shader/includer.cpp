@@ -69,12 +69,52 @@ glslang::TShader::Includer::IncludeResult* Includer::include(const char* headerN
       files_.push_back({canon, h});
     stack_.push_back(canon);
     texts_.push_back(*data);
+    includedBy_.try_emplace(canon, Edge{includer, headerName});
+    textOf_.try_emplace(canon, *data);
     auto* owned = new Owned{canon.string(), std::move(*data)};
     return new IncludeResult(owned->name, owned->data.data(), owned->data.size(), owned);
   }
   std::string searched;
   for (const auto& c : candidates) searched += (searched.empty() ? "" : ", ") + c.lexically_normal().string();
   return fail("include file not found: \"" + std::string(headerName) + "\" (searched: " + searched + ")");
+}
+
+size_t Includer::lineCount(const fs::path& file) const {
+  const auto it = textOf_.find(file);
+  if (it == textOf_.end()) return 0;
+  const std::string& t = it->second;
+  const size_t newlines = static_cast<size_t>(std::count(t.begin(), t.end(), '\n'));
+  return newlines + (!t.empty() && t.back() != '\n' ? 1 : 0);
+}
+
+int Includer::includeLine(const fs::path& file, const std::string& header) const {
+  const auto it = textOf_.find(file);
+  if (it == textOf_.end() || header.empty()) return 0;
+  int number = 0;
+  size_t start = 0;
+  const std::string& t = it->second;
+  while (start <= t.size()) {
+    const size_t end = std::min(t.find('\n', start), t.size());
+    ++number;
+    const std::string line = t.substr(start, end - start);
+    if (line.find("#include") != std::string::npos && line.find(header) != std::string::npos) return number;
+    start = end + 1;
+  }
+  return 0;
+}
+
+std::string Includer::includeChain(const fs::path& file) const {
+  std::string chain;
+  fs::path at = file;
+  for (int guard = 0; guard < 64; ++guard) {
+    const auto it = includedBy_.find(at);
+    if (it == includedBy_.end()) break;
+    const Edge& e = it->second;
+    chain += (chain.empty() ? "" : " <- ") + e.includer.string() + ":" +
+             std::to_string(includeLine(e.includer, e.header));
+    at = e.includer;
+  }
+  return chain;
 }
 
 bool Includer::mentions(const std::string& word) const {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,14 @@ class Includer : public glslang::TShader::Includer {
 
   const std::vector<File>& files() const { return files_; }  // main file first, then first-seen order
   bool mentions(const std::string& word) const;              // does any included file's text contain word
+  // "/inc.glsl:3 <- /main.rchit:5": the #include lines that first brought `file` in, back to the main file
+  // ("" for the main file or a file never included).
+  std::string includeChain(const fs::path& file) const;
+  // Lines of a file read for this compile (the main file's from mainText), 0 when unknown.
+  size_t lineCount(const fs::path& file) const;
+  // The line of `file` whose #include names `header`, 0 when not found.
+  int includeLine(const fs::path& file, const std::string& header) const;
+  void setMainText(std::string text) { textOf_[stack_.front()] = std::move(text); }
 
  private:
   IncludeResult* include(const char* headerName, const char* includerName, size_t depth, bool local);
@@ -37,6 +46,12 @@ class Includer : public glslang::TShader::Includer {
   // glslang retries a failed "local" include as a <system> one; keep the first (more precise) error.
   std::string pendingHeader_, pendingError_;
   std::vector<fs::path> stack_;  // stack_[0] = main file, stack_[d] = file at include depth d
+  struct Edge {
+    fs::path includer;
+    std::string header;  // as written in the #include
+  };
+  std::map<fs::path, Edge> includedBy_;     // first inclusion of each file
+  std::map<fs::path, std::string> textOf_;  // every file read, by canonical path
 };
 
 }  // namespace wb::shader

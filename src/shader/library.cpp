@@ -1,5 +1,6 @@
 #include "shader/library.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -51,6 +52,10 @@ ShaderLibrary::Resolved ShaderLibrary::resolve(const ShaderKey& key) const {
         {{path, 0, "error",
           "unknown shader stage (use .rgen .rmiss .rchit .rahit .rint .rcall .vert .frag .comp or "
           "name.<stage>.glsl, or set ShaderKey::stage)"}});
+  for (const auto& d : key.defines) {
+    if (const std::string problem = defineProblem(d); !problem.empty())
+      throw CompileError({{path, 0, "error", "define: " + problem}});
+  }
   Hasher h;
   h.add(uint64_t{DiskCache::kFormatVersion}).add(compilerFingerprint()).add(path.string());
   h.add(uint64_t(static_cast<int>(*stage))).add(key.entry);
@@ -140,6 +145,8 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& ke
       if (same) {
         std::lock_guard lock(mutex_);
         ++stats_.hits;
+        // A failed compile in between registered the files it touched; the stage depends on these again.
+        graph_.setStageFiles(vid, cached->files);
         auto& st = statuses_[r.path];
         st.ok = true;
         st.diagnostics = cached->warnings;
@@ -179,6 +186,12 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& ke
           s->cacheHit = true;
           s->reflection = reflectSpirv(s->spirv, r.stage, r.path);
           s->compileMs = msSince(t0);
+          try {
+            checkBindingAliases(*s);  // entries written before this check existed
+          } catch (const CompileError& e) {
+            recordStatus(r.path, e.diagnostics, false, s->compileMs, true);
+            throw;
+          }
           {
             std::lock_guard lock(mutex_);
             ++stats_.hits;
@@ -239,6 +252,16 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& ke
     ++stats_.compiles;
     stats_.compileMs += out.ms;
   }
+  try {
+    checkBindingAliases(*s);  // glslang accepts two descriptor types at one binding; a pipeline layout cannot
+  } catch (const CompileError& e) {
+    {
+      std::lock_guard lock(mutex_);
+      graph_.setStageFiles(vid, s->files);
+    }
+    recordStatus(r.path, e.diagnostics, false, out.ms, false);
+    throw;
+  }
   if (disk_.enabled()) {
     // The key is built from exactly the bytes glslang compiled.
     Hasher h;
@@ -248,6 +271,24 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& ke
     disk_.storeIndex(r.variant, s->files);
   }
   return finish(std::move(s), std::move(out.contentHashes));
+}
+
+std::vector<Diagnostic> mergeStageDiagnostics(std::vector<Diagnostic> diags) {
+  std::vector<Diagnostic> out;
+  for (auto& d : diags) {
+    auto same = std::find_if(out.begin(), out.end(), [&](const Diagnostic& o) {
+      return o.file == d.file && o.line == d.line && o.severity == d.severity && o.message == d.message;
+    });
+    if (same == out.end()) {
+      out.push_back(std::move(d));
+      continue;
+    }
+    for (auto& st : d.stages)
+      if (std::find(same->stages.begin(), same->stages.end(), st) == same->stages.end())
+        same->stages.push_back(st);
+    if (same->includedFrom.empty()) same->includedFrom = d.includedFrom;
+  }
+  return out;
 }
 
 ShaderLibrary::ProgramId ShaderLibrary::registerProgram(std::string name, std::vector<ShaderKey> stages) {
@@ -317,7 +358,7 @@ ShaderLibrary::ProgramBuild ShaderLibrary::buildProgram(ProgramId id) {
     std::lock_guard lock(mutex_);
     programs_[id].ok = errors.empty();
   }
-  if (!errors.empty()) throw CompileError(std::move(errors));
+  if (!errors.empty()) throw CompileError(mergeStageDiagnostics(std::move(errors)));
   return b;
 }
 

@@ -14,6 +14,10 @@
 
 namespace wb::shader {
 
+// One diagnostic per place and message: a message that several stages met (an error in a file they all
+// include) is kept once, with every stage in Diagnostic::stages.
+std::vector<Diagnostic> mergeStageDiagnostics(std::vector<Diagnostic> diags);
+
 class ShaderLibrary {
  public:
   struct Options {

@@ -1,8 +1,12 @@
 #include "shader/reflection.h"
 
+#include "shader/hash.h"
+
 #include <spirv_cross/spirv_cross.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <regex>
 #include <map>
 #include <sstream>
 
@@ -48,6 +52,50 @@ uint32_t conservativeSize(const spirv_cross::Compiler& c, const spirv_cross::SPI
     if (t.array_size_literal[i]) size *= std::max<uint32_t>(t.array[i], 1);
   }
   return size;
+}
+
+bool isWordChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+bool hasWord(const std::string& line, const std::string& word) {
+  if (word.empty()) return false;
+  for (size_t at = line.find(word); at != std::string::npos; at = line.find(word, at + 1)) {
+    const bool before = at == 0 || !isWordChar(line[at - 1]);
+    const bool after = at + word.size() >= line.size() || !isWordChar(line[at + word.size()]);
+    if (before && after) return true;
+  }
+  return false;
+}
+
+std::vector<std::string> fileLines(const fs::path& p) {
+  std::vector<std::string> lines;
+  const auto text = readFile(p);
+  if (!text) return lines;
+  std::istringstream in(*text);
+  std::string line;
+  while (std::getline(in, line)) lines.push_back(line);
+  return lines;
+}
+
+// See findDeclaration (reflection.h).
+std::pair<fs::path, int> declarationIn(const std::vector<fs::path>& files, const std::string& name,
+                                       uint32_t binding) {
+  for (const auto& f : files) {
+    const auto lines = fileLines(f);
+    for (size_t i = 0; i < lines.size(); ++i) {
+      if (!hasWord(lines[i], name)) continue;
+      for (size_t back = 0; back <= 2 && back <= i; ++back)
+        if (lines[i - back].find("layout") != std::string::npos) return {f, int(i + 1)};
+    }
+  }
+  const std::regex literal("binding\\s*=\\s*" + std::to_string(binding) + "\\b");
+  for (const auto& f : files) {
+    const auto lines = fileLines(f);
+    for (size_t i = 0; i < lines.size(); ++i)
+      if (std::regex_search(lines[i], literal)) return {f, int(i + 1)};
+  }
+  return {files.empty() ? fs::path() : files.front(), 0};
 }
 
 }  // namespace
@@ -116,10 +164,64 @@ Reflection reflectSpirv(const std::vector<uint32_t>& spirv, Stage stage, const f
   return out;
 }
 
+std::pair<fs::path, int> findDeclaration(const CompiledShader& stage, const DescriptorBinding& binding) {
+  std::vector<fs::path> files = stage.files;
+  if (files.empty()) files.push_back(stage.key.path);
+  return declarationIn(files, binding.name, binding.binding);
+}
+
+void checkBindingAliases(const CompiledShader& stage) {
+  // Every declared resource, used or not: a binding has one descriptor type in a pipeline layout.
+  struct Declared {
+    uint32_t set, binding;
+    std::string type, name;
+  };
+  std::vector<Declared> declared;
+  try {
+    spirv_cross::Compiler c(stage.spirv);
+    const auto res = c.get_shader_resources();
+    auto add = [&](const spirv_cross::SmallVector<spirv_cross::Resource>& list, const char* type) {
+      for (const auto& r : list) {
+        declared.push_back({c.get_decoration(r.id, spv::DecorationDescriptorSet),
+                            c.get_decoration(r.id, spv::DecorationBinding), type,
+                            r.name.empty() ? c.get_name(r.base_type_id) : r.name});
+      }
+    };
+    add(res.uniform_buffers, "uniform-buffer");
+    add(res.storage_buffers, "storage-buffer");
+    add(res.storage_images, "storage-image");
+    add(res.sampled_images, "sampled-image");
+    add(res.separate_images, "separate-image");
+    add(res.separate_samplers, "sampler");
+    add(res.acceleration_structures, "acceleration-structure");
+    add(res.subpass_inputs, "input-attachment");
+  } catch (const spirv_cross::CompilerError&) {
+    return;  // reflectSpirv reports an unreadable module
+  }
+  std::vector<fs::path> files = stage.files;
+  if (files.empty()) files.push_back(stage.key.path);
+  std::vector<Diagnostic> errors;
+  for (size_t i = 0; i < declared.size(); ++i) {
+    for (size_t j = i + 1; j < declared.size(); ++j) {
+      const auto &a = declared[i], &b = declared[j];
+      if (a.set != b.set || a.binding != b.binding || a.type == b.type) continue;
+      const auto whereA = declarationIn(files, a.name, a.binding);
+      const auto whereB = declarationIn(files, b.name, b.binding);
+      const std::string at = "set " + std::to_string(a.set) + " binding " + std::to_string(a.binding);
+      errors.push_back({whereB.first, whereB.second, "error",
+                        "binding conflict at " + at + ": " + b.type + " '" + b.name + "' here, but " +
+                            a.type + " '" + a.name + "' at " + whereA.first.string() + ":" +
+                            std::to_string(whereA.second)});
+    }
+  }
+  if (!errors.empty()) throw CompileError(std::move(errors));
+}
+
 PipelineLayoutDesc mergeLayouts(const std::vector<std::shared_ptr<const CompiledShader>>& stages) {
   struct Slot {
     DescriptorBinding b;
     fs::path file;
+    const CompiledShader* stage;
   };
   std::map<std::pair<uint32_t, uint32_t>, Slot> slots;
   PipelineLayoutDesc out;
@@ -128,7 +230,7 @@ PipelineLayoutDesc mergeLayouts(const std::vector<std::shared_ptr<const Compiled
     if (!s) continue;
     const fs::path file = s->files.empty() ? s->key.path : s->files.front();
     for (const auto& b : s->reflection.bindings) {
-      auto [it, inserted] = slots.try_emplace({b.set, b.binding}, Slot{b, file});
+      auto [it, inserted] = slots.try_emplace({b.set, b.binding}, Slot{b, file, s.get()});
       if (inserted) continue;
       DescriptorBinding& m = it->second.b;
       const bool countsAgree = m.runtimeArray || b.runtimeArray || m.count == b.count;
@@ -145,12 +247,14 @@ PipelineLayoutDesc mergeLayouts(const std::vector<std::shared_ptr<const Compiled
         std::ostringstream w;
         w << "set " << b.set << " binding " << b.binding;
         const std::string where = w.str();
-        errors.push_back({it->second.file, 0, "error",
+        const auto here = findDeclaration(*it->second.stage, m);
+        const auto there = findDeclaration(*s, b);
+        errors.push_back({here.first, here.second, "error",
                           "binding conflict at " + where + ": " + describe(m) + " here, but " + describe(b) +
-                              " in " + file.string()});
-        errors.push_back({file, 0, "error",
+                              " in " + there.first.string() + ":" + std::to_string(there.second)});
+        errors.push_back({there.first, there.second, "error",
                           "binding conflict at " + where + ": " + describe(b) + " here, but " + describe(m) +
-                              " in " + it->second.file.string()});
+                              " in " + here.first.string() + ":" + std::to_string(here.second)});
         continue;
       }
       m.stages |= b.stages;

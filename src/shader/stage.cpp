@@ -1,6 +1,9 @@
 #include "shader/types.h"
 
+#include <algorithm>
+#include <cctype>
 #include <sstream>
+#include <stdexcept>
 
 namespace wb::shader {
 
@@ -84,6 +87,12 @@ const char* descriptorTypeName(VkDescriptorType t) {
 std::string Diagnostic::toString() const {
   std::ostringstream os;
   os << file.string() << ':' << line << ": " << severity << ": " << message;
+  if (!stages.empty() || !includedFrom.empty()) {
+    os << " (";
+    for (size_t i = 0; i < stages.size(); ++i) os << (i ? ", " : "in ") << stages[i];
+    if (!includedFrom.empty()) os << (stages.empty() ? "" : "; ") << "included from " << includedFrom;
+    os << ')';
+  }
   return os.str();
 }
 
@@ -100,5 +109,29 @@ std::string joinDiagnostics(const std::vector<Diagnostic>& d) {
 
 CompileError::CompileError(std::vector<Diagnostic> d)
     : std::runtime_error(joinDiagnostics(d)), diagnostics(std::move(d)) {}
+
+std::string defineProblem(const Define& d) {
+  const bool identifier =
+      !d.name.empty() && !std::isdigit(static_cast<unsigned char>(d.name[0])) &&
+      std::all_of(d.name.begin(), d.name.end(), [](unsigned char c) { return std::isalnum(c) || c == '_'; });
+  if (!identifier)
+    return "'" + d.name + "' is not an identifier (letters, digits, _; not starting with a digit)";
+  if (std::any_of(d.value.begin(), d.value.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
+    return "the value of " + d.name + " holds a newline or another control character";
+  return "";
+}
+
+Define parseDefine(const std::string& text, const std::string& flag) {
+  const auto eq = text.find('=');
+  Define d{text.substr(0, eq), eq == std::string::npos ? std::string() : text.substr(eq + 1)};
+  const std::string problem = defineProblem(d);
+  if (!problem.empty()) {
+    std::string shown;  // control characters made visible: the message stays one line
+    for (unsigned char c : text)
+      shown += c == '\n' ? std::string("\\n") : c < 0x20 ? std::string("?") : std::string(1, char(c));
+    throw std::invalid_argument(flag + " '" + shown + "': expected NAME or NAME=VALUE; " + problem);
+  }
+  return d;
+}
 
 }  // namespace wb::shader

@@ -27,6 +27,12 @@ struct Define {
   std::string name, value;
   bool operator==(const Define&) const = default;
 };
+// Why a define cannot be used, or "" when it can: the name must be an identifier, the value one line without
+// control characters (a newline would add preprocessor lines of its own).
+std::string defineProblem(const Define& d);
+// A define as a command-line flag gives it ("NAME" or "NAME=VALUE"), checked; throws std::invalid_argument
+// starting with `flag` ("--define NAME: ...").
+Define parseDefine(const std::string& text, const std::string& flag);
 
 struct ShaderKey {
   fs::path path;
@@ -41,7 +47,13 @@ struct Diagnostic {
   int line = 0;   // 1-based; 0 when the message is not about a line
   std::string severity;  // "error" | "warning"
   std::string message;
-  std::string toString() const;  // file:line: severity: message
+  // Where it was met: the stages whose compile reported it ("rchit"...; one entry per stage even when an
+  // included file's error is met by several), and for an included file the chain of #include lines back to
+  // the stage file ("/a.glsl:2 <- /main.rchit:4"). Empty when not known (cached warnings).
+  std::vector<std::string> stages;
+  std::string includedFrom;
+  // file:line: severity: message, then " (in rchit, rmiss; included from ...)" when known.
+  std::string toString() const;
   bool operator==(const Diagnostic&) const = default;
 };
 

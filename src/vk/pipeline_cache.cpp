@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "common/file_io.h"
 #include "vk/check.h"
 
 namespace wb::vk {
@@ -25,8 +26,9 @@ PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& 
     : device_(device), props_(props), file_(std::move(file)) {
   std::vector<char> data;
   if (!file_.empty()) {
-    std::ifstream f(file_, std::ios::binary);
-    if (f) data.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    // Non-blocking and regular files only: a named pipe in the cache folder must not stall start-up.
+    if (auto bytes = readRegularFile(file_, nullptr, uint64_t{1} << 30))
+      data.assign(bytes->begin(), bytes->end());
     if (!data.empty() && !headerMatches(data.data(), data.size(), props)) {
       warning_ =
           "pipeline cache " + file_.string() + " is for another device or driver, or corrupt: starting empty";

@@ -372,10 +372,10 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
 
   render::HotReload hot(library, {shaders.root});
   hot.addRenderer(hybrid);
-  hot.start();
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the watcher is up
+  hot.start();  // the watches are in place when start() returns
   auto waitForReload = [&]() -> std::optional<render::ReloadEvent> {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    // A cap for a busy machine (a 1 s reload took tens of seconds beside two busy loops), not a timing.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
     while (std::chrono::steady_clock::now() < deadline) {
       if (auto e = hot.poll()) {
         hybrid.render(1);

@@ -58,3 +58,15 @@ TEST(ReloadFrames, KeepsTenSecondsOfFrames) {
   ReloadFrameTimeline empty;
   EXPECT_DOUBLE_EQ(empty.stats(at, true).firstNewFrame, -1.0);
 }
+
+// No frame before the edit (an edit during the very first frame): the median before is "none" (-1), not 0.
+TEST(ReloadFrames, NoSuchFrameIsMinusOneNotZero) {
+  ReloadFrameTimeline t;
+  const auto edit = Clock::time_point{} + milliseconds(1000);
+  addFrames(t, edit + milliseconds(5), {30});
+  const auto s = t.stats(edit, true);
+  EXPECT_DOUBLE_EQ(s.medianBefore, -1.0);
+  EXPECT_DOUBLE_EQ(s.maxBeforeSameSpan, -1.0);
+  EXPECT_DOUBLE_EQ(s.maxDuringRebuild, -1.0);
+  EXPECT_DOUBLE_EQ(s.firstNewFrame, 30.0);
+}

@@ -317,11 +317,15 @@ TEST(SyntheticGltf, CameraImportAndAutomaticFraming) {
     EXPECT_FALSE(scene.camera.fromFile);
     const Camera expected = frameBounds(scene.bounds, 0.7f);
     EXPECT_EQ(scene.camera.eye, expected.eye);
-    // Bounds (0,0,-1)..(1,0,0): centre (0.5, 0, -0.5), radius sqrt(2)/2; looking along -Z from in front.
+    // Bounds (0,0,-1)..(1,0,0): centre (0.5, 0, -0.5), radius sqrt(2)/2. The triangle lies flat in XZ (seen
+    // along -Z it would be a line): the camera looks down -Y at it from above, -Z up in the image.
     EXPECT_EQ(scene.camera.target, glm::vec3(0.5f, 0.0f, -0.5f));
     const float radius = std::sqrt(2.0f) / 2.0f;
-    EXPECT_NEAR(scene.camera.eye.z - scene.camera.target.z, 1.1f * radius / std::sin(0.35f), 1e-5f);
-    EXPECT_GT(scene.camera.zfar, scene.camera.eye.z + 1.0f);
+    EXPECT_NEAR(scene.camera.eye.y - scene.camera.target.y, 1.1f * radius / std::sin(0.35f), 1e-5f);
+    EXPECT_FLOAT_EQ(scene.camera.eye.x, scene.camera.target.x);
+    EXPECT_FLOAT_EQ(scene.camera.eye.z, scene.camera.target.z);
+    EXPECT_EQ(scene.camera.up, glm::vec3(0.0f, 0.0f, -1.0f));
+    EXPECT_GT(scene.camera.zfar, scene.camera.eye.y + 1.0f);
   }
   // A camera node rotated 90 degrees about Y (looking along -X) at (5, 1, 0), under a translated parent.
   const float h = std::sqrt(0.5f);
@@ -441,6 +445,39 @@ TEST(SyntheticGltf, TexturesSamplersAndUnsupportedTextureFeatures) {
 
   gltf.json["materials"][0]["normalTexture"]["index"] = 9;
   EXPECT_NE(refusal(gltf, "bad_texture").find("texture 9"), std::string::npos);
+}
+
+// A texture whose image does not exist (nvpro's cornellBox.gltf has one, used by no material) costs that
+// texture alone, with a warning; a material using it keeps its factors.
+TEST(SyntheticGltf, TextureWithoutItsImageIsAWarning) {
+  SyntheticGltf gltf;
+  const int p = gltf.addData(kTrianglePositions, kFloat, "VEC3");
+  gltf.addSingleMeshNode({{"attributes", {{"POSITION", p}}}, {"material", 0}});
+  gltf.json["textures"] = {{{"source", 0}, {"name", "tex"}}, {{"source", 3}}};
+  gltf.json["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}}};
+  const Scene scene = loadGltf(gltf.write("texture_without_image"));
+  ASSERT_EQ(scene.textures.size(), 2u);
+  EXPECT_EQ(scene.textures[0].image, -1);
+  EXPECT_TRUE(hasWarning(scene, "texture 0 refers to image 0, which does not exist"));
+  EXPECT_TRUE(hasWarning(scene, "texture 1 refers to image 3, which does not exist"));
+  EXPECT_EQ(scene.materials[0].baseColorTexture, -1);
+}
+
+// Automatic framing looks down -Z unless the model is flat seen that way: then along its thinnest axis.
+TEST(SyntheticGltf, AutomaticFramingOfFlatModels) {
+  Bounds wall{{0.0f, -1.0f, -2.0f}, {0.0f, 1.0f, 2.0f}};  // a wall in YZ
+  Camera c = frameBounds(wall, 0.7f);
+  EXPECT_GT(c.eye.x - c.target.x, 1.0f);
+  EXPECT_FLOAT_EQ(c.eye.y, c.target.y);
+  EXPECT_EQ(c.up, glm::vec3(0.0f, 1.0f, 0.0f));
+  Bounds slab{{-5.0f, 0.0f, -5.0f}, {5.0f, 0.1f, 5.0f}};  // a ground slab: 1% as thick as it is wide
+  c = frameBounds(slab, 0.7f);
+  EXPECT_GT(c.eye.y - c.target.y, 1.0f);
+  Bounds box{{-1.0f, -1.0f, -0.3f}, {1.0f, 1.0f, 0.3f}};  // some depth: the -Z view as before
+  c = frameBounds(box, 0.7f);
+  EXPECT_GT(c.eye.z - c.target.z, 1.0f);
+  EXPECT_FLOAT_EQ(c.eye.x, c.target.x);
+  EXPECT_FLOAT_EQ(c.eye.y, c.target.y);
 }
 
 TEST(SyntheticGltf, CompressedGeometryExtensionsAreRefused) {

@@ -2,10 +2,15 @@
 #include "shader/library.h"
 #include "test_util.h"
 
+#include <sched.h>
+#include <signal.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <functional>
 
 using namespace wb::shader;
 using namespace wb::shader::test;
@@ -190,6 +195,90 @@ TEST_F(CacheFixture, UnwritableCacheDirDegradesToMemoryOnly) {
   // A directory in /proc cannot take files either.
   ShaderLibrary p({.cacheDir = "/proc/self/wb_cache", .printWarnings = false});
   EXPECT_FALSE(p.diskCacheEnabled());
+}
+
+namespace {
+
+// Runs `body` in a child process and waits for it at most `seconds`: a hang is a failed test (the child is
+// killed) instead of a test that never ends. Returns the child's exit status, or -1 when it was killed.
+int inChild(const std::function<int()>& body, int seconds = 120) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    int rc = 1;
+    try {
+      rc = body();
+    } catch (...) {
+      rc = 100;
+    }
+    _exit(rc);
+  }
+  for (int i = 0; i < seconds * 20; ++i) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    usleep(50000);
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  return -1;
+}
+
+}  // namespace
+
+// A cache entry or index replaced by a named pipe: a miss with a warning, never a blocking read.
+TEST_F(CacheFixture, NamedPipeInsteadOfAnEntryIsAMissNotAHang) {
+  std::vector<uint32_t> good;
+  {
+    auto l = lib();
+    good = l.compile({t / "a.comp"})->spirv;
+  }
+  for (const char* ext : {".wbspv", ".wbidx"}) {
+    { lib().compile({t / "a.comp"}); }  // both files exist again
+    const auto files = entries(cache(), ext);
+    ASSERT_EQ(files.size(), 1u);
+    fs::remove(files[0]);
+    ASSERT_EQ(mkfifo(files[0].c_str(), 0644), 0);
+    const int rc = inChild([&] {
+      auto l = lib();
+      auto s = l.compile({t / "a.comp"});
+      if (s->cacheHit || s->spirv != good) return 2;
+      const auto w = l.cacheWarnings();
+      return w.size() == 1 && w[0].find("named pipe") != std::string::npos ? 0 : 3;
+    });
+    EXPECT_EQ(rc, 0) << ext << (rc == -1 ? ": hung on the named pipe" : "");
+    fs::remove(files[0]);  // if the child hung, the pipe is still there
+  }
+}
+
+// A read-only cache folder still serves its entries (one warning, nothing written).
+TEST_F(CacheFixture, ReadOnlyCacheDirIsReadNotWritten) {
+  { lib().compile({t / "a.comp"}); }
+  const size_t before = entries(cache()).size() + entries(cache(), ".wbidx").size();
+  const int rc = inChild([&] {
+    // root ignores permission bits: make the folder read-only with a read-only bind mount in a mount
+    // namespace of this child's own; others drop the write bits.
+    if (geteuid() == 0) {
+      if (unshare(CLONE_NEWNS) != 0 || mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
+          mount(cache().c_str(), cache().c_str(), nullptr, MS_BIND, nullptr) != 0 ||
+          mount(nullptr, cache().c_str(), nullptr, MS_BIND | MS_REMOUNT | MS_RDONLY, nullptr) != 0)
+        return 50;  // no mount namespace here: skipped below
+    } else {
+      fs::permissions(cache(), fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                      fs::perm_options::remove);
+    }
+    auto l = lib();
+    auto a = l.compile({t / "a.comp"});
+    l.compile({t / "b.comp"});  // a miss: compiled, not stored
+    const auto w = l.cacheWarnings();
+    if (!a->cacheHit) return 2;
+    if (l.stats().hits != 1 || l.stats().compiles != 1) return 3;
+    if (w.size() != 1 || w[0].find("not writable") == std::string::npos) return 4;
+    return 0;
+  });
+  if (rc == 50) GTEST_SKIP() << "cannot make a read-only folder here (no mount namespace for root)";
+  EXPECT_EQ(rc, 0);
+  fs::permissions(cache(), fs::perms::owner_all, fs::perm_options::add);
+  EXPECT_EQ(entries(cache()).size() + entries(cache(), ".wbidx").size(), before)
+      << "wrote to a read-only cache";
 }
 
 TEST_F(CacheFixture, TwoProcessesWritingAtOnce) {

@@ -263,7 +263,106 @@ void main() { p = s.c; }
     EXPECT_NE(what.find("set 0 binding 2"), std::string::npos) << what;
     EXPECT_NE(what.find("uniform-buffer"), std::string::npos) << what;
     EXPECT_NE(what.find("storage-buffer"), std::string::npos) << what;
+    // At the declarations' lines, not line 0.
+    ASSERT_EQ(e.diagnostics.size(), 2u) << what;
+    EXPECT_EQ(e.diagnostics[0].file, t / "a.rgen");
+    EXPECT_EQ(e.diagnostics[0].line, 3) << what;
+    EXPECT_EQ(e.diagnostics[1].file, t / "b.rmiss");
+    EXPECT_EQ(e.diagnostics[1].line, 4) << what;
   }
+}
+
+// Two descriptor types at one set/binding inside one stage: glslang accepts it, a pipeline layout cannot.
+TEST(ShaderReflect, TwoTypesAtOneBindingInOneFileIsAnError) {
+  TempDir t;
+  writeFile(t / "a.rmiss", R"(#version 460
+#extension GL_EXT_ray_tracing : require
+layout(location = 0) rayPayloadInEXT vec3 p;
+layout(set = 0, binding = 3) uniform U { vec4 a; } u;
+layout(set = 0, binding = 3, std430) buffer B { vec4 b[]; } bb;
+void main() { p = u.a.xyz + bb.b[0].xyz; }
+)");
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "a.rmiss"});
+    FAIL() << "reported ok";
+  } catch (const CompileError& e) {
+    ASSERT_EQ(e.diagnostics.size(), 1u) << e.what();
+    EXPECT_EQ(e.diagnostics[0].line, 5) << e.what();
+    EXPECT_NE(e.diagnostics[0].message.find("binding conflict at set 0 binding 3"), std::string::npos);
+    EXPECT_NE(e.diagnostics[0].message.find("a.rmiss:4"), std::string::npos) << e.what();
+  }
+}
+
+// An error in a nested include: said once for the program, with every stage that met it and the #include
+// chain; no follow-on errors after it.
+TEST(ShaderCompile, NestedIncludeErrorOnceWithStagesAndChain) {
+  TempDir t;
+  writeFile(t / "b.glsl", "// b\nfloat broken() { return undefinedThing; }\n");
+  writeFile(t / "a.glsl", "// a\n#include \"b.glsl\"");  // no newline at the end
+  const std::string head =
+      "#version 460\n#extension GL_EXT_ray_tracing : require\n"
+      "#extension GL_GOOGLE_include_directive : require\n#include \"a.glsl\"\n";
+  writeFile(t / "m.rmiss",
+            head + "layout(location = 0) rayPayloadInEXT vec3 p;\nvoid main() { p = vec3(broken()); }\n");
+  writeFile(t / "g.rgen", head + "void main() { float x = broken(); }\n");
+  ShaderLibrary lib({});
+  auto id = lib.registerProgram("p", {{t / "g.rgen"}, {t / "m.rmiss"}});
+  try {
+    lib.buildProgram(id);
+    FAIL();
+  } catch (const CompileError& e) {
+    ASSERT_EQ(e.diagnostics.size(), 1u) << e.what();
+    const auto& d = e.diagnostics[0];
+    EXPECT_EQ(d.file, t / "b.glsl");
+    EXPECT_EQ(d.line, 2);
+    EXPECT_EQ(d.stages, (std::vector<std::string>{"rgen", "rmiss"})) << e.what();
+    EXPECT_EQ(d.includedFrom, (t / "a.glsl").string() + ":2 <- " + (t / "g.rgen").string() + ":4")
+        << e.what();
+    EXPECT_NE(d.toString().find("(in rgen, rmiss; included from "), std::string::npos) << d.toString();
+  }
+}
+
+// The include-cycle error is at the #include line, inside the file, also when it is the last line without a
+// newline.
+TEST(ShaderCompile, IncludeCycleLineIsInsideTheFile) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  writeFile(t / "inc.glsl", "#define VALUE 1u\n#include \"other.glsl\"\n");
+  writeFile(t / "other.glsl", "// other\n#include \"inc.glsl\"");
+  ShaderLibrary lib({});
+  try {
+    lib.compile({t / "a.comp"});
+    FAIL();
+  } catch (const CompileError& e) {
+    ASSERT_FALSE(e.diagnostics.empty());
+    EXPECT_EQ(e.diagnostics.front().file, t / "other.glsl") << e.what();
+    EXPECT_EQ(e.diagnostics.front().line, 2) << e.what();
+  }
+}
+
+// After a failed compile is fixed, the files only the failed version touched are no longer dependencies.
+TEST(ShaderCompile, FixedCompileForgetsTheFilesOfTheFailure) {
+  TempDir t;
+  writeFile(t / "a.comp", kComputeMain);
+  writeFile(t / "inc.glsl", "#define VALUE 1u\n");
+  writeFile(t / "broken.glsl", "const uint z = nope;\n#define VALUE 1u\n");
+  ShaderLibrary lib({});
+  const auto id = lib.registerProgram("p", {{t / "a.comp"}});
+  lib.buildProgram(id);
+  EXPECT_TRUE(lib.programsDependingOn(t / "broken.glsl").empty());
+  const std::string good = readAll(t / "a.comp");
+  std::string bad = good;
+  bad.replace(bad.find("inc.glsl"), 8, "broken.glsl");
+  writeFile(t / "a.comp", bad);
+  lib.invalidateFiles({t / "a.comp"});
+  EXPECT_THROW(lib.buildProgram(id), CompileError);
+  EXPECT_EQ(lib.programsDependingOn(t / "broken.glsl").size(), 1u);
+  writeFile(t / "a.comp", good);  // the fix: back to the compiled version (a memory hit)
+  lib.invalidateFiles({t / "a.comp"});
+  lib.buildProgram(id);
+  EXPECT_TRUE(lib.programsDependingOn(t / "broken.glsl").empty()) << "editing it would rebuild the program";
+  EXPECT_EQ(lib.programsDependingOn(t / "inc.glsl").size(), 1u);
 }
 
 TEST(ShaderCompile, ThreadSafe) {

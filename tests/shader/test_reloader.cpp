@@ -71,7 +71,8 @@ struct ReloaderFixture : ::testing::Test {
   }
   void TearDown() override { reloader->stop(); }
 
-  std::optional<ReloadResult> waitResult(std::chrono::milliseconds timeout = 5000ms) {
+  // Results are waited for with a generous cap: a busy machine makes a reload slow, never absent.
+  std::optional<ReloadResult> waitResult(std::chrono::milliseconds timeout = 300000ms) {
     const auto end = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < end) {
       if (auto r = reloader->poll()) return r;

@@ -132,7 +132,7 @@ TEST(Window, ParameterChangeResetsAccumulationDisplayChangeDoesNot) {
   const auto dir = tempDir("reset");
   const auto script = dir / "script.txt";
   writeFile(script,
-            "wait_samples 3 40\n"
+            "wait_samples 3 300\n"
             "stats " +
                 (dir / "a.json").string() +
                 "\n"
@@ -176,11 +176,11 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
   writeFile(dir / "good.rchit", good);
   const auto script = dir / "script.txt";
   writeFile(script,
-            "wait_samples 2 40\n"
+            "wait_samples 2 300\n"
             "copy " +
                 (dir / "broken.rchit").string() + " " + watched.string() +
                 "\n"
-                "wait_reload 20\n"
+                "wait_reload 300\n"
                 "stats " +
                 (dir / "broken1.json").string() +
                 "\n"
@@ -194,8 +194,8 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
                 "copy " +
                 (dir / "good.rchit").string() + " " + watched.string() +
                 "\n"
-                "wait_reload 20\n"
-                "wait_samples 1 40\n"
+                "wait_reload 300\n"
+                "wait_samples 1 300\n"
                 "stats " +
                 (dir / "fixed.json").string() + "\n");
   auto r = runWindow("--script " + script.string(), "WB_ROOT=" + root.string());
@@ -220,8 +220,7 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
   EXPECT_GT(applied["first_new_frame_ms"].get<double>(), 0.0) << applied.dump();
   EXPECT_GT(applied["frame_ms_median_before"].get<double>(), 0.0) << applied.dump();
   EXPECT_TRUE(applied["edit_to_first_frame_ms"].is_number()) << applied.dump();
-  EXPECT_EQ(b1["reloads"].back()["first_new_frame_ms"].get<double>(), -1.0)
-      << "a failed build draws no new frame";
+  EXPECT_TRUE(b1["reloads"].back()["first_new_frame_ms"].is_null()) << "a failed build draws no new frame";
 }
 
 TEST(Window, NoDisplayFallsBackToHeadlessRender) {
@@ -245,7 +244,7 @@ TEST(Window, HybridAndReflectionModesRenderAndSwitchBack) {
                         (dir / "reflections.json").string() + "\nscreenshot " +
                         (dir / "reflections.png").string() +
                         "\nframes 1\n"
-                        "set mode pathtrace\nwait_samples 1 60\nstats " +
+                        "set mode pathtrace\nwait_samples 1 300\nstats " +
                         (dir / "pathtrace.json").string() + "\n");
   auto r = runWindow("--script " + script.string());
   ASSERT_EQ(r.code, 0) << r.output;
@@ -277,10 +276,10 @@ TEST(Window, RunningErrorAgainstAReferenceAndTheNoiseEstimate) {
   auto small = runShell(std::string(WB_WORKBENCH_BIN) + " render --size 32x32 --spp 1 --out " +
                         (dir / "small.exr").string());
   ASSERT_EQ(small.code, 0) << small.output;
-  writeFile(dir / "a.txt", "wait_samples 16 60\nstats " + (dir / "a.json").string() + "\nset reference " +
+  writeFile(dir / "a.txt", "wait_samples 16 300\nstats " + (dir / "a.json").string() + "\nset reference " +
                                (dir / "small.exr").string() + "\nframes 2\nstats " +
                                (dir / "c.json").string() + "\n");
-  writeFile(dir / "b.txt", "wait_samples 16 60\nstats " + (dir / "b.json").string() + "\n");
+  writeFile(dir / "b.txt", "wait_samples 16 300\nstats " + (dir / "b.json").string() + "\n");
   const std::string common = "--size 48x48 --scale 1 --sampler pcg ";
   auto ra = runWindow(common + "--reference " + (dir / "ref.exr").string() + " --script " +
                       (dir / "a.txt").string());
@@ -352,7 +351,7 @@ TEST(Window, SaveDebugViewResizeAndImguiIni) {
   REQUIRE_XVFB();
   const auto dir = tempDir("save");
   const auto script = dir / "script.txt";
-  writeFile(script, "wait_samples 1 60\nsave " + (dir / "saved").string() +
+  writeFile(script, "wait_samples 1 300\nsave " + (dir / "saved").string() +
                         "\nset view albedo\nframes 2\nscreenshot " + (dir / "albedo.png").string() +
                         "\nframes 1\nset view beauty\nframes 2\nscreenshot " + (dir / "beauty.png").string() +
                         "\nframes 1\nresize 400 300\nframes 3\nstats " + (dir / "resized.json").string() +
@@ -401,4 +400,16 @@ TEST(Window, ModeFlagStartsInThatMode) {
   EXPECT_EQ(j["mode"], "reflections");
   EXPECT_EQ(j["parameters"]["hybrid"]["reflection_depth"], 3);
   EXPECT_GE(j["samples"].get<int>(), 3);
+}
+
+// --spp N is the window's target: it stops accumulating at N samples (it was listed by the window's help but
+// ignored). The frames after the target is reached add nothing.
+TEST(Window, SppFlagIsTheTargetSpp) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("spp");
+  writeFile(dir / "script.txt", "wait_samples 2 300\nframes 30\nstats " + (dir / "s.json").string() + "\n");
+  auto r = runWindow("--spp 2 --script " + (dir / "script.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = readJson(dir / "s.json");
+  EXPECT_EQ(j["samples"].get<int>(), 2) << j.dump();
 }

@@ -12,6 +12,11 @@ std::vector<shader::ShaderKey> DisplayPass::stageKeys() {
 
 DisplayPass::DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRenderPass renderPass)
     : ctx_(ctx), renderPass_(renderPass) {
+  {
+    vk::DescriptorSets recorder(ctx);
+    writeDescriptors(recorder);
+    provided_ = recorder.requested();
+  }
   program_ = library.registerProgram("display", stageKeys());
   install(build(library.buildProgram(program_)));
 }
@@ -24,6 +29,7 @@ DisplayPass::~DisplayPass() {
 
 std::unique_ptr<vk::BuiltPipeline> DisplayPass::build(
     const shader::ShaderLibrary::ProgramBuild& build) const {
+  vk::requireProvided(build, provided_, "the display pass");
   auto built = std::make_unique<vk::BuiltPipeline>();
   built->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
 
@@ -80,18 +86,16 @@ void DisplayPass::install(std::unique_ptr<vk::BuiltPipeline> pipeline) {
   sets_.reset();
   current_ = std::move(pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *current_->layout);
-  writeDescriptors();
+  if (sources_.accum) writeDescriptors(*sets_);
 }
 
 void DisplayPass::setSources(const DisplaySources& sources) {
   if (sources == sources_) return;
   sources_ = sources;
-  writeDescriptors();
+  if (sets_ && sources_.accum) writeDescriptors(*sets_);
 }
 
-void DisplayPass::writeDescriptors() {
-  if (!sets_ || !sources_.accum) return;
-  auto& s = *sets_;
+void DisplayPass::writeDescriptors(vk::DescriptorSets& s) {
   s.writeStorageImage(0, WB_DISPLAY_BIND_ACCUM, sources_.accum);
   s.writeStorageImage(0, WB_DISPLAY_BIND_ALBEDO, sources_.albedo);
   s.writeStorageImage(0, WB_DISPLAY_BIND_NORMAL, sources_.normal);

@@ -37,13 +37,14 @@ class DisplayPass {
   void record(VkCommandBuffer cmd, const gpu::DisplayPush& push) const;
 
  private:
-  void writeDescriptors();
+  void writeDescriptors(vk::DescriptorSets& s);
 
   vk::Context& ctx_;
   VkRenderPass renderPass_;
   shader::ShaderLibrary::ProgramId program_ = 0;
   std::unique_ptr<vk::BuiltPipeline> current_;
   std::unique_ptr<vk::DescriptorSets> sets_;
+  std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
   DisplaySources sources_;
 };
 

@@ -8,6 +8,7 @@
 
 #include "app/cmd_render.h"
 #include "common/env.h"
+#include "common/file_io.h"
 #include "common/paths.h"
 
 namespace wb::app {
@@ -96,6 +97,9 @@ void WindowCommand::finish() {
   if (!parseWindowSize(o.windowSize, o.windowWidth, o.windowHeight))
     throw std::invalid_argument("--window: expected WxH (at least 64x64), got '" + o.windowSize + "'");
   if (!(o.scale > 0.0f && o.scale <= 2.0f)) throw std::invalid_argument("--scale: expected 0 < scale <= 2");
+  // Files written at exit are checked now, not after the session.
+  if (!o.screenshot.empty()) requireWritableFile(o.screenshot, "--screenshot");
+  if (!o.statsPath.empty()) requireWritableFile(o.statsPath, "--stats");
 }
 
 int WindowCommand::run() {

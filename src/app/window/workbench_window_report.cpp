@@ -10,6 +10,7 @@
 #include "app/hybrid_json.h"
 #include "app/parameter_json.h"
 #include "app/reload_log.h"
+#include "common/json_text.h"
 #include "common/paths.h"
 
 namespace wb::app {
@@ -111,7 +112,7 @@ nlohmann::json WorkbenchWindow::statsJson() {
 void WorkbenchWindow::writeStats(const std::string& path) {
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write stats '" + path + "'");
-  f << statsJson().dump(2) << "\n";
+  f << jsonText(statsJson(), 2) << "\n";
 }
 
 void WorkbenchWindow::saveRender(std::string base) {
@@ -123,7 +124,7 @@ void WorkbenchWindow::saveRender(std::string base) {
   eval::writePng(base + ".png", image, state_.params.display.exposure, state_.params.display.tonemap);
   eval::writeExr(base + ".exr", image);
   std::ofstream f(base + ".json");
-  f << parametersJson().dump(2) << "\n";
+  f << jsonText(parametersJson(), 2) << "\n";
   lastSaved_ = std::filesystem::path(base).filename().string() + ".png/.exr/.json";
   std::printf("workbench: saved %s.png (tonemapped), %s.exr (linear), %s.json\n", base.c_str(), base.c_str(),
               base.c_str());

@@ -106,6 +106,11 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
   WB_VK(vkCreateSampler(ctx_.device(), &sci, nullptr, &nearest_));
   uniforms_ = vk::Buffer(ctx_, sizeof(gpu::HybridUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   createImages();
+  {
+    vk::DescriptorSets recorder(ctx_);
+    writeDescriptors(recorder);
+    provided_ = recorder.requested();
+  }
 
   static const char* programNames[kPassCount] = {"hybrid-gbuffer", "hybrid-shadow-ao", "hybrid-reflections",
                                                  "hybrid-composite"};
@@ -157,9 +162,7 @@ void HybridRenderer::createImages() {
   frameIndex_ = 0;
 }
 
-void HybridRenderer::writeDescriptors(Pass pass) {
-  auto& s = *sets_[size_t(pass)];
-  if (s.sets().empty()) return;
+void HybridRenderer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeAccelerationStructure(0, WB_BIND_TLAS, gpuScene_.tlas());
   s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
@@ -198,6 +201,7 @@ std::unique_ptr<vk::BuiltPipeline> HybridRenderer::buildPipeline(
     shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const {
   const auto pass = passOf(program);
   if (!pass) throw std::invalid_argument("program " + std::to_string(program) + " is not a hybrid pass");
+  vk::requireProvided(build, provided_, std::string("the ") + passName(*pass) + " pass");
   auto p = std::make_unique<vk::BuiltPipeline>();
   p->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
   switch (*pass) {
@@ -258,7 +262,7 @@ void HybridRenderer::installPipeline(shader::ShaderLibrary::ProgramId program,
   sets_[i].reset();
   pipelines_[i] = std::move(pipeline);
   sets_[i] = std::make_unique<vk::DescriptorSets>(ctx_, *pipelines_[i]->layout);
-  writeDescriptors(*pass);
+  if (!sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
   builds_[i]++;
   frameIndex_ = 0;
 }
@@ -312,7 +316,7 @@ void HybridRenderer::setSettings(const RenderSettings& settings) {
     vkDeviceWaitIdle(ctx_.device());
     createImages();
     for (size_t i = 0; i < kPassCount; ++i) {
-      if (sets_[i]) writeDescriptors(static_cast<Pass>(i));
+      if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
     }
   }
   frameIndex_ = 0;
@@ -332,7 +336,7 @@ void HybridRenderer::setEnvironment(const GpuEnvironment& env) {
   vkDeviceWaitIdle(ctx_.device());
   env_ = &env;
   for (size_t i = 0; i < kPassCount; ++i) {
-    if (sets_[i]) writeDescriptors(static_cast<Pass>(i));
+    if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
   }
   frameIndex_ = 0;
 }

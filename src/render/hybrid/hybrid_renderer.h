@@ -89,7 +89,8 @@ class HybridRenderer final : public Renderer {
   };
   std::optional<Pass> passOf(shader::ShaderLibrary::ProgramId program) const;
   void createImages();
-  void writeDescriptors(Pass pass);
+  // Writes every descriptor the hybrid passes provide into s (a recorder lists them: provided_).
+  void writeDescriptors(vk::DescriptorSets& s);
   void updateUniforms();
   VkPipelineBindPoint bindPoint(Pass pass) const;
 
@@ -110,6 +111,7 @@ class HybridRenderer final : public Renderer {
   std::array<shader::ShaderLibrary::ProgramId, kPassCount> programs_{};
   std::array<std::unique_ptr<vk::BuiltPipeline>, kPassCount> pipelines_;
   std::array<std::unique_ptr<vk::DescriptorSets>, kPassCount> sets_;
+  std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
   std::array<uint32_t, kPassCount> builds_{};
   vk::Image albedo_, normal_, emissive_, depth_, shadowMask_, aoMask_, history_, reflection_, output_;
   VkSampler nearest_ = VK_NULL_HANDLE;
