@@ -76,19 +76,33 @@ bool Script::step(ScriptHost& host) {
         reloadsAtStart_ = host.reloadCount();
         deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 1, 20, c.where)));
       }
-      if (host.reloadCount() == reloadsAtStart_ && clock::now() < deadline_) return true;
+      if (host.reloadCount() == reloadsAtStart_) {
+        if (clock::now() < deadline_) return true;
+        throw std::runtime_error(c.where + ": wait_reload: no shader reload within " +
+                                 std::to_string(numberArg(w, 1, 20, c.where)) + " s");
+      }
     } else if (cmd == "wait_samples") {
       if (!waiting_) {
         waiting_ = true;
         deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 2, 60, c.where)));
       }
-      if (host.samples() < uint32_t(numberArg(w, 1, 1, c.where)) && clock::now() < deadline_) return true;
+      const uint32_t want = uint32_t(numberArg(w, 1, 1, c.where));
+      if (host.samples() < want) {
+        if (clock::now() < deadline_) return true;
+        throw std::runtime_error(c.where + ": wait_samples: " + std::to_string(host.samples()) + " of " +
+                                 std::to_string(want) + " samples after " +
+                                 std::to_string(numberArg(w, 2, 60, c.where)) + " s");
+      }
     } else {
       try {
         if (cmd == "set") {
           host.scriptSet(w[1], w[2]);
         } else if (cmd == "screenshot") {
+          // The frame drawn next is captured: the commands after this one wait for it.
           host.scriptScreenshot(w[1]);
+          waiting_ = false;
+          ++next_;
+          return true;
         } else if (cmd == "save") {
           host.scriptSave(w[1]);
         } else if (cmd == "stats") {

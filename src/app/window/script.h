@@ -1,12 +1,13 @@
 // Scripted sessions for tests and demos: one command per line, run at frame boundaries of the live window.
 //   frames N                 render N frames
 //   set NAME VALUE           a setting, as --set NAME=VALUE (see settingNamesHelp())
-//   screenshot FILE.png      the presented window image (panel included)
+//   screenshot FILE.png      the window image (panel included) of the next frame, before later commands apply
 //   save BASE                the render: BASE.png (tonemapped), BASE.exr (linear), BASE.json (parameters)
 //   stats FILE.json          the session's statistics now (samples, resets, shader errors, frame times)
 //   copy SRC DST             copy a file (e.g. a broken shader over a watched one)
-//   wait_reload [SECONDS]    render until the next shader reload is applied (default timeout 20 s)
-//   wait_samples N [SECONDS] render until N samples are accumulated (default timeout 60 s)
+//   wait_reload [SECONDS]    render until the next shader reload is applied (default 20 s; past it the
+//                            script fails: exit status 1 with the reason)
+//   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails)
 //   orbit DX DY              drag the orbit camera by DX, DY pixels
 //   resize W H               resize the window (the swapchain and the trace size follow)
 //   reset_camera | reset | reload | quit
