@@ -42,7 +42,7 @@ apt-get install -y -q --no-install-recommends \
   libglfw3-dev libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev \
   nlohmann-json3-dev libxxhash-dev libcli11-dev \
   libgtest-dev libgmock-dev googletest libbenchmark-dev \
-  xvfb xauth clang-format gnuplot-nox
+  xvfb xauth xdotool clang-format gnuplot-nox
 
 # Ray tracing capable lavapipe (Mesa 25.x) from backports.
 apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

@@ -413,3 +413,66 @@ TEST(Window, SppFlagIsTheTargetSpp) {
   const auto j = readJson(dir / "s.json");
   EXPECT_EQ(j["samples"].get<int>(), 2) << j.dump();
 }
+
+// At a few frames a second a quick key tap falls between two frames (the frame loop polled the key state
+// and lost it): every tap of a window key lands, as synthetic X input through xdotool shows. Four Tab taps
+// within one slow frame leave the panel shown and count four presses. Hiding the panel shows the same image
+// larger: the accumulation goes on.
+TEST(Window, QuickKeyTapsAtALowFrameRateAllLand) {
+  REQUIRE_XVFB();
+  ASSERT_EQ(runShell("command -v xdotool").code, 0) << "xdotool (scripts/setup.sh installs it) is missing";
+  const auto dir = tempDir("taps");
+  const fs::path go = dir / "go", script = dir / "s.txt", before = dir / "before.json",
+                 stats = dir / "s.json";
+  writeFile(script, "wait_samples 1 300\nstats " + before.string() + "\nwait_file " + go.string() +
+                        " 300\nframes 3\nstats " + stats.string() + "\n");
+  // A 300 ms trace budget: frames of about half a second, the four taps sent within one of them.
+  const std::string inner = std::string(WB_WORKBENCH_BIN) +
+                            " --window 640x480 --set budget_ms=300 --script " + script.string() +
+                            " & pid=$!; while [ ! -e " + before.string() +
+                            " ]; do sleep 0.05; done; "
+                            "xdotool mousemove 500 200; for i in 1 2 3 4; do xdotool key Tab; done; touch " +
+                            go.string() + "; wait $pid";
+  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + WB_XVFB_RUN +
+                    " -a -s '-screen 0 1024x768x24' sh -c \"" + inner + "\"");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto s = readJson(stats);
+  EXPECT_EQ(s["key_presses"], 4) << r.output;
+  EXPECT_EQ(s["panel_visible"], true) << "an even number of Tab taps";
+  EXPECT_EQ(s["resets"], readJson(before)["resets"]) << "hiding the panel restarted the accumulation";
+}
+
+// A wait that times out fails the script: exit status 1 with the line, not a script that goes on.
+TEST(Window, AFailedWaitFailsTheSession) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("waitfail");
+  writeFile(dir / "s.txt", "wait_reload 0.5\nstats " + (dir / "never.json").string() + "\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("wait_reload"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "never.json")) << "the script went on after the failed wait";
+}
+
+// A drag starts where the button went down: the motion made before the press is not part of it. The cursor
+// jumps across the image and the button goes down there; frames pass with the button held still; the
+// camera must not have moved.
+TEST(Window, ADragStartsAtThePressPosition) {
+  REQUIRE_XVFB();
+  ASSERT_EQ(runShell("command -v xdotool").code, 0) << "xdotool (scripts/setup.sh installs it) is missing";
+  const auto dir = tempDir("drag");
+  const fs::path a = dir / "a.json", b = dir / "b.json", go = dir / "go", go2 = dir / "go2";
+  writeFile(dir / "s.txt", "wait_samples 1 300\nstats " + a.string() + "\nwait_file " + go.string() +
+                               " 300\nframes 4\nstats " + b.string() + "\nwait_file " + go2.string() +
+                               " 300\n");
+  auto waitFor = [](const fs::path& p) { return "while [ ! -e " + p.string() + " ]; do sleep 0.05; done; "; };
+  const std::string inner =
+      std::string(WB_WORKBENCH_BIN) + " --window 640x480 --script " + (dir / "s.txt").string() +
+      " & pid=$!; " + waitFor(a) +
+      "xdotool mousemove 420 80; sleep 1; xdotool mousemove 600 400 mousedown 1; touch " + go.string() +
+      "; " + waitFor(b) + "xdotool mouseup 1; touch " + go2.string() + "; wait $pid";
+  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + WB_XVFB_RUN +
+                    " -a -s '-screen 0 1024x768x24' sh -c \"" + inner + "\"");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(readJson(a)["parameters"]["camera"], readJson(b)["parameters"]["camera"])
+      << "the jump before the press moved the camera";
+}

@@ -295,9 +295,13 @@ std::string humanCount(double v) {
   return buf;
 }
 
+float sidePanelWidth(float windowWidth) {
+  return std::min(400.0f, std::floor(windowWidth * 0.45f));
+}
+
 float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
   if (!c.state.showPanel) return 0.0f;
-  const float width = std::min(400.0f, std::floor(windowWidth * 0.45f));
+  const float width = sidePanelWidth(windowWidth);
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(width, windowHeight));
   ImGui::Begin("workbench", nullptr,

@@ -43,6 +43,8 @@ struct PanelContext {
   const eval::LiveError* liveError = nullptr;
 };
 
+// The side panel's width in a window of that width (when shown).
+float sidePanelWidth(float windowWidth);
 // The side panel; returns its width in pixels (0 when hidden).
 float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight);
 // Status line and the shader error banner over the image area.

@@ -10,7 +10,7 @@ namespace {
 
 const std::set<std::string> kCommands = {"frames", "set",    "screenshot",  "save",         "stats",
                                          "copy",   "orbit",  "wait_reload", "wait_samples", "reset_camera",
-                                         "reset",  "reload", "quit",        "resize"};
+                                         "reset",  "reload", "quit",        "resize",       "wait_file"};
 
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;
@@ -42,11 +42,11 @@ void Script::addLine(const std::string& line, const std::string& where) {
   if (!kCommands.count(c.words[0]))
     throw std::runtime_error(where + ": unknown command '" + c.words[0] + "'");
   const std::string& cmd = c.words[0];
-  const size_t need =
-      cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
-      : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" || cmd == "wait_samples"
-          ? 2
-          : 1;
+  const size_t need = cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
+                      : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" ||
+                              cmd == "wait_samples" || cmd == "wait_file"
+                          ? 2
+                          : 1;
   if (c.words.size() < need) throw std::runtime_error(where + ": '" + cmd + "' needs more arguments");
   if (cmd == "set" && c.words.size() > 3) {  // values with spaces (paths)
     for (size_t i = 3; i < c.words.size(); ++i) c.words[2] += " " + c.words[i];
@@ -91,6 +91,17 @@ bool Script::step(ScriptHost& host) {
         if (clock::now() < deadline_) return true;
         throw std::runtime_error(c.where + ": wait_samples: " + std::to_string(host.samples()) + " of " +
                                  std::to_string(want) + " samples after " +
+                                 std::to_string(numberArg(w, 2, 60, c.where)) + " s");
+      }
+    } else if (cmd == "wait_file") {
+      if (!waiting_) {
+        waiting_ = true;
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 2, 60, c.where)));
+      }
+      std::error_code ec;
+      if (!std::filesystem::exists(w[1], ec)) {
+        if (clock::now() < deadline_) return true;
+        throw std::runtime_error(c.where + ": wait_file: no '" + w[1] + "' after " +
                                  std::to_string(numberArg(w, 2, 60, c.where)) + " s");
       }
     } else {

@@ -8,6 +8,7 @@
 //   wait_reload [SECONDS]    render until the next shader reload is applied (default 20 s; past it the
 //                            script fails: exit status 1 with the reason)
 //   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails)
+//   wait_file PATH [SECONDS] render until PATH exists (another program's signal; default 60 s, then fails)
 //   orbit DX DY              drag the orbit camera by DX, DY pixels
 //   resize W H               resize the window (the swapchain and the trace size follow)
 //   reset_camera | reset | reload | quit

@@ -46,6 +46,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   glfwGetFramebufferSize(window_, &fbw, &fbh);
   swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
   display_ = std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass());
+  input_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
   gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
   progressive_ = std::make_unique<ProgressiveTracer>(ctx, session_->pathTracer());
   capture_ = std::make_unique<SwapchainCapture>(ctx);

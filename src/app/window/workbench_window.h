@@ -21,6 +21,7 @@
 #include "app/window/display_pass.h"
 #include "app/window/frame_stats.h"
 #include "app/window/gui_layer.h"
+#include "app/window/input_events.h"
 #include "app/window/panels.h"
 #include "app/window/pixel_picker.h"
 #include "app/window/progressive.h"
@@ -103,6 +104,7 @@ class WorkbenchWindow : public ScriptHost {
   std::unique_ptr<render::RenderSession> session_;
   std::unique_ptr<vk::Swapchain> swapchain_;
   std::unique_ptr<DisplayPass> display_;
+  std::unique_ptr<InputEvents> input_;  // before gui_: ImGui's callbacks chain to its
   std::unique_ptr<GuiLayer> gui_;
   std::unique_ptr<render::HotReload> hot_;
   std::unique_ptr<ProgressiveTracer> progressive_;
@@ -122,6 +124,8 @@ class WorkbenchWindow : public ScriptHost {
   glm::vec2 lastMouse_{-1.0f};
   glm::vec2 pressMouse_{0.0f};
   bool dragging_ = false;
+  int dragButton_ = -1;
+  uint64_t keyPressesHandled_ = 0;
   Script script_;
   bool hasScript_ = false;
   std::string screenshotPath_;
@@ -142,7 +146,6 @@ class WorkbenchWindow : public ScriptHost {
   gpu::Counters counters_{};
   FrameStats frames_;
   uint64_t frameCount_ = 0;
-  bool f12Down_ = false, f5Down_ = false, tabDown_ = false;
   float panelWidth_ = 0;
 };
 

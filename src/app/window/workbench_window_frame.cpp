@@ -176,12 +176,14 @@ int WorkbenchWindow::run() {
     drawOverlays(pc, imageRect(view));
     handleInput(view, dt);
 
-    // The trace resolution follows the view (times the resolution scale) unless --size fixed it.
+    // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
+    // fixed it; hiding the panel (Tab) shows the same image larger instead of restarting it.
     if (state_.fixedSize) {
       progressive_->setTargetSize(uint32_t(std::lround(state_.fixedWidth * state_.resolutionScale)),
                                   uint32_t(std::lround(state_.fixedHeight * state_.resolutionScale)));
     } else {
-      progressive_->setTargetSize(uint32_t(std::lround(view.w * state_.resolutionScale)),
+      const float traceViewWidth = std::max(W - sidePanelWidth(W), 1.0f);
+      progressive_->setTargetSize(uint32_t(std::lround(traceViewWidth * state_.resolutionScale)),
                                   uint32_t(std::lround(view.h * state_.resolutionScale)));
     }
     applyState();

@@ -134,30 +134,39 @@ void WorkbenchWindow::handleInput(const Rect& view, float dt) {
   glfwGetFramebufferSize(window_, &fw, &fh);
   const glm::vec2 mouse(float(mx) * float(fw) / float(std::max(ww, 1)),
                         float(my) * float(fh) / float(std::max(wh, 1)));
-  const glm::vec2 delta = lastMouse_.x < 0 ? glm::vec2(0.0f) : mouse - lastMouse_;
-  const bool overView = view.contains(mouse.x, mouse.y) && !io.WantCaptureMouse;
-  const bool left = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-  const bool right = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-  const bool middle = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
   const bool shift = glfwGetKey(window_, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
                      glfwGetKey(window_, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+
+  // Buttons from the event queue: a drag starts where its button went down (its first motion is measured
+  // from there), and a click shorter than a frame still counts.
+  const bool overPanel = io.WantCaptureMouse;
+  bool clicked = false;
+  for (const ButtonChange& b : input_->takeButtonChanges()) {
+    if (b.pressed) {
+      if (!dragging_ && view.contains(b.position.x, b.position.y) && !overPanel) {
+        dragging_ = true;
+        dragButton_ = b.button;
+        pressMouse_ = lastMouse_ = b.position;
+      }
+    } else if (dragging_ && b.button == dragButton_) {
+      dragging_ = false;
+      if (glm::length(b.position - pressMouse_) < 3.0f) clicked = true;
+    }
+  }
+  const glm::vec2 delta = lastMouse_.x < 0 ? glm::vec2(0.0f) : mouse - lastMouse_;
+  const bool overView = view.contains(mouse.x, mouse.y) && !overPanel;
 
   CameraInput in;
   in.dt = dt;
   in.fast = shift;
-  if (!dragging_ && overView && (left || right || middle)) {
-    dragging_ = true;
-    pressMouse_ = mouse;
-  }
   if (dragging_) {
     const bool orbit = camera_.mode() == CameraMode::Orbit;
+    const bool left = dragButton_ == GLFW_MOUSE_BUTTON_LEFT, right = dragButton_ == GLFW_MOUSE_BUTTON_RIGHT;
+    const bool middle = dragButton_ == GLFW_MOUSE_BUTTON_MIDDLE;
     if ((orbit && left && !shift) || (!orbit && right)) in.dragRotate = delta;
     if ((orbit && (middle || right || (left && shift))) || (!orbit && middle)) in.dragPan = delta;
-    if (!left && !right && !middle) {
-      dragging_ = false;
-      if (glm::length(mouse - pressMouse_) < 3.0f) pickPinned_ = !pickPinned_;  // a click pins the pick
-    }
   }
+  if (clicked) pickPinned_ = !pickPinned_;  // a click pins the pick
   if (overView) in.wheel = io.MouseWheel;
   if (!io.WantCaptureKeyboard && camera_.mode() == CameraMode::Fly) {
     auto key = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };
@@ -177,17 +186,26 @@ void WorkbenchWindow::handleInput(const Rect& view, float dt) {
   }
   lastMouse_ = mouse;
 
-  if (!io.WantCaptureKeyboard) {
-    const bool f12 = glfwGetKey(window_, GLFW_KEY_F12) == GLFW_PRESS;
-    if (f12 && !f12Down_) state_.saveRequest = "";
-    f12Down_ = f12;
-    const bool f5 = glfwGetKey(window_, GLFW_KEY_F5) == GLFW_PRESS;
-    if (f5 && !f5Down_) state_.reloadShaders = true;
-    f5Down_ = f5;
-    const bool tab = glfwGetKey(window_, GLFW_KEY_TAB) == GLFW_PRESS;
-    if (tab && !tabDown_) state_.showPanel = !state_.showPanel;
-    tabDown_ = tab;
-    if (glfwGetKey(window_, GLFW_KEY_HOME) == GLFW_PRESS) state_.resetCamera = true;
+  // Keys from the event queue: every press counts, however short and however slow the frame.
+  for (const KeyPress& k : input_->takeKeyPresses()) {
+    if (io.WantCaptureKeyboard) continue;
+    ++keyPressesHandled_;
+    switch (k.key) {
+      case GLFW_KEY_F12:
+        state_.saveRequest = "";
+        break;
+      case GLFW_KEY_F5:
+        state_.reloadShaders = true;
+        break;
+      case GLFW_KEY_TAB:
+        state_.showPanel = !state_.showPanel;
+        break;
+      case GLFW_KEY_HOME:
+        state_.resetCamera = true;
+        break;
+      default:
+        break;
+    }
   }
 }
 

@@ -1,0 +1,75 @@
+#include "app/window/input_events.h"
+
+#include <utility>
+
+#include <GLFW/glfw3.h>
+
+namespace wb::app {
+namespace {
+
+InputEvents* eventsOf(GLFWwindow* w) {
+  return static_cast<InputEvents*>(glfwGetWindowUserPointer(w));
+}
+
+}  // namespace
+
+InputEvents::InputEvents(GLFWwindow* window) : window_(window) {
+  glfwSetWindowUserPointer(window, this);
+  glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
+    if (auto* e = eventsOf(w)) e->onKey(key, action, mods);
+  });
+  glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int) {
+    if (auto* e = eventsOf(w)) e->onButton(button, action);
+  });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) {
+    if (auto* e = eventsOf(w)) e->onActivity();
+  });
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) {
+    if (auto* e = eventsOf(w)) e->onActivity();
+  });
+}
+
+InputEvents::~InputEvents() {
+  glfwSetWindowUserPointer(window_, nullptr);
+}
+
+void InputEvents::onKey(int key, int action, int mods) {
+  std::lock_guard lock(mutex_);
+  activity_ = true;
+  if (action == GLFW_PRESS) keys_.push_back({key, mods});
+}
+
+void InputEvents::onButton(int button, int action) {
+  double x = 0, y = 0;
+  glfwGetCursorPos(window_, &x, &y);
+  int ww = 0, wh = 0, fw = 0, fh = 0;
+  glfwGetWindowSize(window_, &ww, &wh);
+  glfwGetFramebufferSize(window_, &fw, &fh);
+  const glm::vec2 pos(float(x) * float(fw) / float(ww > 0 ? ww : 1),
+                      float(y) * float(fh) / float(wh > 0 ? wh : 1));
+  std::lock_guard lock(mutex_);
+  activity_ = true;
+  buttons_.push_back({button, action == GLFW_PRESS, pos});
+}
+
+void InputEvents::onActivity() {
+  std::lock_guard lock(mutex_);
+  activity_ = true;
+}
+
+std::vector<KeyPress> InputEvents::takeKeyPresses() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(keys_, {});
+}
+
+std::vector<ButtonChange> InputEvents::takeButtonChanges() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(buttons_, {});
+}
+
+bool InputEvents::takeActivity() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(activity_, false);
+}
+
+}  // namespace wb::app

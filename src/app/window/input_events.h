@@ -1,0 +1,53 @@
+// Key presses and mouse button changes as GLFW reports them through its callbacks, queued until the frame
+// loop takes them: at a few frames a second a quick tap happens between two frames, and polling the key state
+// would miss it. Every press is kept, with the cursor position of a button change (a drag starts where the
+// button went down, not where the cursor is when the next frame looks).
+#pragma once
+#include <mutex>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+struct GLFWwindow;
+
+namespace wb::app {
+
+struct KeyPress {
+  int key = 0;
+  int mods = 0;
+};
+
+struct ButtonChange {
+  int button = 0;
+  bool pressed = false;
+  glm::vec2 position{0.0f};  // framebuffer pixels
+};
+
+class InputEvents {
+ public:
+  // Installs the callbacks on `window` (before ImGui's backend installs its own, which then chain to these).
+  explicit InputEvents(GLFWwindow* window);
+  ~InputEvents();
+  InputEvents(const InputEvents&) = delete;
+  InputEvents& operator=(const InputEvents&) = delete;
+
+  // The events since the last call, in order.
+  std::vector<KeyPress> takeKeyPresses();
+  std::vector<ButtonChange> takeButtonChanges();
+  // Whether any input (key, button, scroll, cursor motion) arrived since the last call.
+  bool takeActivity();
+
+  // The callbacks' entry points (public for the C callbacks).
+  void onKey(int key, int action, int mods);
+  void onButton(int button, int action);
+  void onActivity();
+
+ private:
+  GLFWwindow* window_;
+  std::mutex mutex_;
+  std::vector<KeyPress> keys_;
+  std::vector<ButtonChange> buttons_;
+  bool activity_ = false;
+};
+
+}  // namespace wb::app
