@@ -476,3 +476,20 @@ TEST(Window, ADragStartsAtThePressPosition) {
   EXPECT_EQ(readJson(a)["parameters"]["camera"], readJson(b)["parameters"]["camera"])
       << "the jump before the press moved the camera";
 }
+
+// Every way out releases resources in a safe order: quitting after an environment change (the session was
+// destroyed before the environment it pointed at: Aborted), after a mode switch, and after both.
+TEST(Window, QuitsCleanlyAfterAnEnvironmentChangeAndAModeSwitch) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("quit");
+  auto r = runWindow("--set env_color=1,0,0 --frames 5");
+  EXPECT_EQ(r.code, 0) << r.output;
+  writeFile(dir / "s.txt",
+            "frames 2\nset mode hybrid\nframes 3\nset env_color 0,0,1\nframes 2\nset mode "
+            "reflections\nframes 2\nquit\n");
+  r = runWindow("--script " + (dir / "s.txt").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  writeFile(dir / "t.txt", "set mode hybrid\nframes 3\nquit\n");
+  r = runWindow("--script " + (dir / "t.txt").string());
+  EXPECT_EQ(r.code, 0) << r.output;
+}
