@@ -150,8 +150,8 @@ TEST(BadInput, TruncatedFlatHdrIsRefused) {
     for (unsigned char c : {0, 0, 0, 0}) b.push_back(c);  // flat (not run-length) black pixels
   const fs::path full = tempDir() / "flat.hdr", cut = tempDir() / "flat_cut.hdr";
   writeBytes(full, b);
-  b.resize(b.size() - 32 * 4 * 10);  // ten rows missing
-  writeBytes(cut, b);
+  const std::vector<unsigned char> truncated(b.begin(), b.end() - 32 * 4 * 10);  // ten rows missing
+  writeBytes(cut, truncated);
   const std::string out = " --out " + (tempDir() / "flat.png").string();
   const CommandResult ok = run("render " + box() + " --env " + full.string() + kSmall + out);
   EXPECT_EQ(ok.code, 0) << ok.output;

@@ -94,7 +94,13 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["display_gpu_ms_last"] = displayMs_;
   j["pixels_per_ms"] = progressive_->pixelsPerMs();
   const double secs = std::max(traceSeconds_, 1e-6);
-  j["paths_per_second"] = counters_.pathCount / secs;
+  j["paths_per_second"] = counters_.pathCount / secs;  // per second of GPU trace time
+  // What the window delivers: paths traced since the accumulation restarted, per second of wall time.
+  j["paths_traced"] = counters_.pathCount;
+  const double wall = activeHybrid() ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
+                                     : progressive_->secondsSinceReset();
+  j["seconds_since_reset"] = wall;
+  j["delivered_paths_per_second"] = wall > 0 ? counters_.pathCount / wall : 0.0;
   j["rays_per_second"] = counters_.rayCount / secs;
   j["nan_inf_dropped"] = counters_.droppedSamples;
   const std::string err = hot_->currentError();
