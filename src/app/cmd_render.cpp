@@ -8,6 +8,7 @@
 #include "app/render_options.h"
 #include "app/hybrid_json.h"
 #include "app/parameter_json.h"
+#include "app/progress.h"
 #include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"
@@ -70,7 +71,17 @@ int RenderCommand::run() {
     std::optional<eval::ImageRGBA> referenceImage;
     if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
     render::RenderSession session(so);  // prints the scene's and environment's warnings
-    const double seconds = session.render(ro.params.render.spp);
+    // Ctrl-C stops after the sample in progress; what was accumulated is written, marked partial.
+    InterruptRequest interrupt;
+    ProgressLine progress("render", "spp", ro.params.render.spp);
+    const double seconds = session.render(ro.params.render.spp, [&](uint32_t done, double s) {
+      progress.update(done, s);
+      return !interrupt.requested();
+    });
+    progress.finish();
+    const uint32_t spp = uint32_t(session.frameSeconds().size());
+    const bool partial = spp < ro.params.render.spp;
+    if (spp == 0) throw std::runtime_error("interrupted before the first sample finished: nothing written");
     const auto image = session.image();
     eval::writeImage(outPath, image, ro.params.display.exposure, ro.params.display.tonemap);
     if (ro.aovAlbedo) eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));
@@ -82,7 +93,7 @@ int RenderCommand::run() {
     }
     const double pixels = double(image.width) * image.height;
     for (double& m : mean) m /= pixels;
-    const double samples = pixels * ro.params.render.spp;
+    const double samples = pixels * spp;
     if (!stats.empty()) {
       nlohmann::json j;
       j["device"] = session.context().deviceName();
@@ -92,7 +103,9 @@ int RenderCommand::run() {
       j["width"] = image.width;
       j["height"] = image.height;
       j["size"] = std::to_string(image.width) + "x" + std::to_string(image.height);
-      j["spp"] = ro.params.render.spp;
+      j["spp"] = spp;  // samples rendered (fewer than asked when interrupted)
+      j["spp_requested"] = ro.params.render.spp;
+      j["partial"] = partial;
       j["mode"] = render::renderModeName(session.mode());
       const auto& frames = session.frameSeconds();
       j["frames"] = frames.size();
@@ -139,10 +152,16 @@ int RenderCommand::run() {
       if (!f.flush()) throw std::runtime_error("cannot write --stats file '" + stats + "'");
     }
     // Said last: every file is written.
-    std::printf("rendered %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
+    std::printf("%s %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",
+                partial ? "interrupted: partial render of" : "rendered",
                 session.scene().sourcePath.string().c_str(), unsigned(session.scene().triangleCount()),
-                image.width, image.height, ro.params.render.spp, seconds,
-                session.context().deviceName().c_str(), outPath.string().c_str());
+                image.width, image.height, spp, seconds, session.context().deviceName().c_str(),
+                outPath.string().c_str());
+    if (partial) {
+      std::printf("workbench render: %u of %u spp were rendered before the interrupt\n", spp,
+                  ro.params.render.spp);
+      return 128 + interrupt.signal();
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench render: error: %s\n", e.what());
     return 1;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
+#include <thread>
 
 namespace wb::render {
 namespace {
@@ -99,10 +101,8 @@ void HotReload::start() {
   if (running_) return;
   reloader_.start();
   running_ = true;
-  thread_ = std::thread([this] {
-    shader::lowerThreadPriority();  // pipeline builds yield the cores to the frames
-    run();
-  });
+  // Pipeline builds run at the render loop's priority: an edit goes first (the loop yields to it).
+  thread_ = std::thread([this] { run(); });
 }
 
 void HotReload::stop() {
@@ -118,6 +118,10 @@ void HotReload::reloadAll() {
 }
 
 void HotReload::run() {
+  // Programs of results dropped for a newer save: built with the next result, from the library's newest
+  // content (cached: nothing compiles twice).
+  std::set<shader::ShaderLibrary::ProgramId> carried;
+  std::set<std::string> carriedFiles;
   while (running_) {
     auto result = reloader_.poll();
     if (!result) {
@@ -127,19 +131,47 @@ void HotReload::run() {
     // With auto-reload off, file changes are noticed (the UI shows them) but only a manual reload applies.
     if (!autoReload_ && !manualRequest_.exchange(false)) continue;
     manualRequest_ = false;
+    prepareStart_ = std::chrono::steady_clock::now().time_since_epoch().count();
     preparing_ = true;
+    for (const auto& f : result->filesChanged) carriedFiles.insert(f.string());
+    // A newer save is already there: only the newest content is built.
+    auto supersede = [&] {
+      carried.insert(result->programs.begin(), result->programs.end());
+      carried.insert(result->failedPrograms.begin(), result->failedPrograms.end());
+      ++superseded_;
+      preparing_ = false;
+    };
+    if (reloader_.newerChange()) {
+      supersede();
+      continue;
+    }
+    for (auto id : result->programs) carried.erase(id);
+    for (auto id : result->failedPrograms) carried.erase(id);
+    // An unchanged program stays carried: its content may be the dropped build's, never installed.
+    std::erase_if(result->unchangedPrograms, [&](auto id) { return carried.count(id) > 0; });
+    for (auto id : carried) {
+      try {
+        result->builds.push_back(library_.buildProgram(id));
+        result->programs.push_back(id);
+      } catch (const shader::CompileError& e) {
+        result->ok = false;
+        result->failedPrograms.push_back(id);
+        result->error += (result->error.empty() ? "" : "\n") + library_.programName(id) + ":\n" + e.what();
+      }
+    }
     Pending p;
     p.editTime = result->editTime;
     p.event.editSeen = result->editTime;
     p.event.when = std::chrono::system_clock::now();
-    for (const auto& f : result->filesChanged) p.event.filesChanged.push_back(f.string());
+    p.event.filesChanged.assign(carriedFiles.begin(), carriedFiles.end());
     p.event.stagesRecompiled = result->stagesRecompiled;
     p.event.compileMs = result->compileMs;
     p.event.ok = result->ok;
     p.event.error = result->error;
     auto t0 = std::chrono::steady_clock::now();
     std::map<shader::ShaderLibrary::ProgramId, std::string> pipelineErrors;
-    for (size_t i = 0; i < result->programs.size(); ++i) {
+    bool dropped = false;
+    for (size_t i = 0; i < result->programs.size() && !dropped; ++i) {
       Target target;
       {
         std::lock_guard lock(mutex_);
@@ -166,19 +198,73 @@ void HotReload::run() {
         p.event.error += (p.event.error.empty() ? "" : "\n") + message;
         pipelineErrors[result->programs[i]] = message;
       }
+      dropped = reloader_.newerChange();  // the build just made is dropped as soon as a newer save is seen
     }
+    if (dropped) {
+      supersede();
+      continue;
+    }
+    carried.clear();
+    carriedFiles.clear();
     p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
     {
       std::lock_guard lock(mutex_);
       for (auto id : result->failedPrograms) {
         errors_[id] = result->error;
       }
-      for (const auto& [id, ptr] : p.built) errors_.erase(id);
-      for (const auto& [id, message] : pipelineErrors) errors_[id] = message;
+      for (const auto& [id, ptr] : p.built) {
+        errors_.erase(id);
+        pipelineFailed_.erase(id);
+      }
+      for (const auto& [id, message] : pipelineErrors) {
+        errors_[id] = message;
+        pipelineFailed_.insert(id);
+      }
+      // The same SPIR-V as the pipeline in use (or as the one that failed to build): nothing to do, except
+      // that a compile error fixed back to the working content is no longer current.
+      for (auto id : result->unchangedPrograms)
+        if (!pipelineFailed_.count(id)) errors_.erase(id);
       pending_.push_back(std::move(p));
       preparing_ = false;
     }
   }
+}
+
+HotReload::Status HotReload::status() const {
+  Status s;
+  s.superseded = superseded_;
+  const auto now = std::chrono::steady_clock::now();
+  auto since = [&](std::chrono::steady_clock::rep t) {
+    return msBetween(std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(t)), now);
+  };
+  if (reloader_.rebuilding()) {
+    s.stage = Status::Stage::Compiling;
+    s.elapsedMs = since(reloader_.rebuildStart().time_since_epoch().count());
+  } else if (preparing_) {
+    s.stage = Status::Stage::BuildingPipelines;
+    s.elapsedMs = since(prepareStart_);
+  } else {
+    std::lock_guard lock(mutex_);
+    if (!pending_.empty()) {
+      s.stage = Status::Stage::Installing;
+      s.elapsedMs = msBetween(pending_.front().editTime, now);
+    }
+  }
+  return s;
+}
+
+const char* HotReload::stageName(Status::Stage s) {
+  switch (s) {
+    case Status::Stage::Compiling:
+      return "compiling shaders";
+    case Status::Stage::BuildingPipelines:
+      return "building pipelines";
+    case Status::Stage::Installing:
+      return "installing";
+    case Status::Stage::Idle:
+      break;
+  }
+  return "idle";
 }
 
 std::optional<ReloadEvent> HotReload::poll() {
@@ -216,6 +302,12 @@ void HotReload::frameFinished(std::optional<std::chrono::steady_clock::time_poin
   history_.back().editToFirstFrameMs = msBetween(*awaitingFrame_, now);
   history_.back().frames = frameTimeline_.stats(*awaitingFrame_, true);
   awaitingFrame_.reset();
+}
+
+bool HotReload::busy() const {
+  if (compiling()) return true;
+  std::lock_guard lock(mutex_);
+  return !pending_.empty();
 }
 
 std::vector<ReloadEvent> HotReload::history() const {

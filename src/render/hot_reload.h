@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -91,6 +92,17 @@ class HotReload {
   // While a change is being compiled or its pipelines built (not yet waiting for the commit): on a CPU device
   // the render loop yields part of the cores to it (its frames are thrown away at the swap anyway).
   bool compiling() const { return reloader_.rebuilding() || preparing_; }
+  // A rebuild is compiling or its pipelines wait for poll() to install them.
+  bool busy() const;
+
+  // What the reload in flight is doing, for the window's indicator.
+  struct Status {
+    enum class Stage { Idle, Compiling, BuildingPipelines, Installing } stage = Stage::Idle;
+    double elapsedMs = 0;     // since the stage's reload began (the compile's start)
+    uint64_t superseded = 0;  // builds dropped for a newer save, since start
+  };
+  Status status() const;
+  static const char* stageName(Status::Stage s);
 
   std::vector<ReloadEvent> history() const;
   std::string currentError() const;  // empty when the last reload of every program succeeded
@@ -120,6 +132,10 @@ class HotReload {
   std::atomic<bool> autoReload_{true};
   std::atomic<bool> manualRequest_{false};
   std::atomic<bool> preparing_{false};
+  std::atomic<std::chrono::steady_clock::rep> prepareStart_{0};
+  std::atomic<uint64_t> superseded_{0};
+  std::set<shader::ShaderLibrary::ProgramId>
+      pipelineFailed_;  // last pipeline build failed (guarded by mutex_)
   mutable std::mutex mutex_;
   std::deque<Pending> pending_;
   std::vector<ReloadEvent> history_;

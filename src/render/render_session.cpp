@@ -170,12 +170,12 @@ void RenderSession::attachHotReload(HotReload* hot) {
   if (hot_) forEachRenderer([&](Renderer& r) { hot_->addRenderer(r); });
 }
 
-double RenderSession::render(uint32_t spp) {
+double RenderSession::render(uint32_t spp, const Renderer::Progress& progress) {
   auto t0 = std::chrono::steady_clock::now();
   Renderer& r = renderer();
   r.resetAccumulation();
   r.resetCounters();
-  frameSeconds_ = r.render(spp);
+  frameSeconds_ = r.render(spp, progress);
   return secondsSince(t0);
 }
 

@@ -88,7 +88,7 @@ class RenderSession {
 
   // Renders `spp` samples with the current renderer from scratch (hybrid modes: `spp` frames, shadows/AO
   // averaged over them); returns the wall time in seconds. frameSeconds() has each sample's.
-  double render(uint32_t spp);
+  double render(uint32_t spp, const Renderer::Progress& progress = {});
   const std::vector<double>& frameSeconds() const { return frameSeconds_; }
   eval::ImageRGBA image() const { return renderer().readImage(); }  // alpha = 1
   eval::ImageRGBA aov(Aov which) const;

@@ -13,14 +13,17 @@ CameraState cameraFromScene(const scene::Camera& camera) {
   return c;
 }
 
-std::vector<double> Renderer::render(uint32_t samples) {
+std::vector<double> Renderer::render(uint32_t samples, const Progress& progress) {
   std::vector<double> seconds;
   auto& ctx = context();
+  const auto start = std::chrono::steady_clock::now();
   for (uint32_t i = 0; i < samples; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
     advance();
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    const auto t1 = std::chrono::steady_clock::now();
+    seconds.push_back(std::chrono::duration<double>(t1 - t0).count());
+    if (progress && !progress(i + 1, std::chrono::duration<double>(t1 - start).count())) break;
   }
   return seconds;
 }

@@ -4,6 +4,7 @@
 // per mode.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,8 +70,11 @@ class Renderer {
   virtual void recordCompileOnly(VkCommandBuffer cmd) { record(cmd); }
   // Samples (frames) in the current accumulation.
   virtual uint32_t samplesAccumulated() const = 0;
-  // Renders `samples` samples, submitting and waiting for each; returns each one's wall time in seconds.
-  std::vector<double> render(uint32_t samples);
+  // Called after each sample with the samples done and the seconds so far; returning false stops the render.
+  using Progress = std::function<bool(uint32_t done, double seconds)>;
+  // Renders `samples` samples, submitting and waiting for each; returns each one's wall time in seconds
+  // (fewer than `samples` when `progress` stopped it).
+  std::vector<double> render(uint32_t samples, const Progress& progress = {});
 
   // Linear radiance (RGBA32F storage image, GENERAL layout), for a display pass.
   virtual const vk::Image& outputImage() const = 0;

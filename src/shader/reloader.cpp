@@ -65,10 +65,9 @@ void Reloader::start() {
   // edit, and its reload would report nothing recompiled.
   snapshot();
   running_ = true;
-  thread_ = std::thread([this] {
-    lowerThreadPriority();  // compiles yield the cores to the frames (lavapipe renders on the CPU)
-    run();
-  });
+  // The compile runs at the render loop's priority: an edit goes first (the loop yields to it, see
+  // render/hot_reload.h), and a lowered priority would starve it behind busy programs in the same session.
+  thread_ = std::thread([this] { run(); });
 }
 
 void Reloader::stop() {
@@ -106,22 +105,49 @@ void Reloader::snapshot() {
   }
 }
 
-void Reloader::rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::ProgramId> programs,
-                       Clock::time_point editTime) {
+bool Reloader::eventsWaiting() const {
+  pollfd fd{watcher_->fd(), POLLIN, 0};
+  return ::poll(&fd, 1, 0) > 0 && (fd.revents & POLLIN);
+}
+
+bool Reloader::newerChange() const {
+  if (rebuilding_ || changesPending_) return true;
+  std::lock_guard lock(mutex_);
+  return !results_.empty();
+}
+
+bool Reloader::rebuild(const std::vector<fs::path>& files,
+                       const std::vector<ShaderLibrary::ProgramId>& programs, Clock::time_point editTime,
+                       bool force) {
   const auto t0 = Clock::now();
+  rebuildStart_ = t0.time_since_epoch().count();
   rebuilding_ = true;
   lib_.invalidateFiles(files);
   ReloadResult r;
-  r.filesChanged = std::move(files);
+  r.filesChanged = files;
   r.editTime = editTime;
   std::set<std::string> recompiled;
+  std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> next;
   for (auto id : programs) {
+    // A save during the compile supersedes it: only the newest content is compiled and built.
+    if (!force && eventsWaiting()) {
+      rebuilding_ = false;
+      return false;
+    }
     try {
       auto b = lib_.buildProgram(id);
-      auto& prev = last_[id];
-      for (size_t i = 0; i < b.stages.size(); ++i)
-        if (i >= prev.size() || prev[i] != b.stages[i]) recompiled.insert(describe(b.stages[i]->key));
-      prev = b.stages;
+      const auto& prev = last_[id];
+      bool same = prev.size() == b.stages.size();
+      for (size_t i = 0; i < b.stages.size(); ++i) {
+        const bool stageSame = i < prev.size() && prev[i]->spirv == b.stages[i]->spirv;
+        if (!stageSame) recompiled.insert(describe(b.stages[i]->key));
+        same = same && stageSame;
+      }
+      next[id] = b.stages;
+      if (same && !force) {
+        r.unchangedPrograms.push_back(id);
+        continue;
+      }
       r.programs.push_back(id);
       r.builds.push_back(std::move(b));
     } catch (const CompileError& e) {
@@ -131,12 +157,14 @@ void Reloader::rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::P
       r.error += lib_.programName(id) + ":\n" + e.what();
     }
   }
+  for (auto& [id, stages] : next) last_[id] = std::move(stages);
   r.stagesRecompiled.assign(recompiled.begin(), recompiled.end());
   r.compileMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   ++reloads_;
   std::lock_guard lock(mutex_);
   results_.push_back(std::move(r));
   rebuilding_ = false;
+  return true;
 }
 
 void Reloader::run() {
@@ -158,7 +186,7 @@ void Reloader::run() {
       uint64_t v;
       [[maybe_unused]] auto n = ::read(wakeFd_, &v, sizeof v);
     }
-    if (reloadAll_.exchange(false)) rebuild({}, lib_.programs(), Clock::now());
+    if (reloadAll_.exchange(false)) rebuild({}, lib_.programs(), Clock::now(), true);
     // Folds newly read events into the burst; false when there were none.
     auto absorb = [&](const std::vector<DirWatcher::Event>& events) {
       for (const auto& e : events) {
@@ -179,6 +207,7 @@ void Reloader::run() {
       return !events.empty();
     };
     absorb(watcher_->read());
+    changesPending_ = !pending.empty() || overflow;
     if (pending.empty() && !overflow) continue;
     const auto quietFor = Clock::now() - last;
     if (quietFor < timing_.quiet) continue;
@@ -210,9 +239,21 @@ void Reloader::run() {
       for (auto id : lib_.programs()) programs.insert(id);
     pending.clear();
     writing.clear();
+    const bool wasOverflow = overflow;
     overflow = false;
-    if (programs.empty()) continue;
-    rebuild(std::move(files), {programs.begin(), programs.end()}, first);
+    if (programs.empty()) {
+      changesPending_ = false;
+      continue;
+    }
+    rebuilding_ = true;  // before the flag below drops: newerChange() stays true throughout
+    changesPending_ = false;
+    if (!rebuild(files, {programs.begin(), programs.end()}, first, false)) {
+      // Superseded by a newer save: its files join the next burst, which compiles the newest content.
+      pending.insert(files.begin(), files.end());
+      overflow = wasOverflow;
+      changesPending_ = true;
+      last = Clock::now();
+    }
   }
 }
 

@@ -13,13 +13,9 @@
 
 namespace wb::shader {
 
-// Lowers the calling thread's scheduling priority (nice +10, Linux threads have their own): background
-// compiles and pipeline builds then take the CPU only when the render loop and lavapipe's threads leave it.
-// Measured on lavapipe (`bench --only reload --edits 10`, alternating): frames during a rebuild 1.18-1.27x
-// the frame before (p50) at nice 10, 2.0x at nice 0, for edits 12-17% slower. It cannot be undone (raising a
-// priority needs privileges). The kernel's autogroups confine nice to a session: busy programs started from
-// another terminal share the CPU with the whole workbench; ones started from the same session starve its
-// rebuild threads (two busy loops: 12.9 s per edit instead of ~1.1 s; docs/bench/README.md).
+// Lowers the calling thread's scheduling priority (nice +10, Linux threads have their own): work that must
+// not compete with the frames (a warm-up device made ahead of the first edit) takes the CPU only when the
+// render loop and the driver's threads leave it. It cannot be undone (raising a priority needs privileges).
 void lowerThreadPriority();
 
 struct ReloadResult {
@@ -28,7 +24,10 @@ struct ReloadResult {
   std::vector<ShaderLibrary::ProgramId> programs;  // rebuilt successfully, parallel to builds
   std::vector<ShaderLibrary::ProgramBuild> builds;
   std::vector<ShaderLibrary::ProgramId> failedPrograms;  // keep their old pipelines
-  double compileMs = 0;                                  // wall time of the rebuild
+  // Built with the same SPIR-V as their last build (a save that changed nothing the compiler keeps, such as a
+  // touch or a comment): nothing to rebuild.
+  std::vector<ShaderLibrary::ProgramId> unchangedPrograms;
+  double compileMs = 0;  // wall time of the rebuild
   bool ok = true;
   std::string error;                               // file:line: severity: message lines of every failure
   std::chrono::steady_clock::time_point editTime;  // when the first change of the burst was seen
@@ -54,11 +53,22 @@ class Reloader {
   void requestReloadAll();
   uint64_t reloadCount() const { return reloads_; }
   bool rebuilding() const { return rebuilding_; }  // a coalesced change is being compiled right now
+  // A change newer than the last published result exists: files changed and not yet compiled, a compile in
+  // progress, or results not yet taken by poll(). A consumer building pipelines for an older result drops it.
+  bool newerChange() const;
+  // When the compile in progress began (meaningful while rebuilding()).
+  std::chrono::steady_clock::time_point rebuildStart() const {
+    return std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(rebuildStart_.load()));
+  }
 
  private:
   void run();
-  void rebuild(std::vector<fs::path> files, std::vector<ShaderLibrary::ProgramId> programs,
-               std::chrono::steady_clock::time_point editTime);
+  // Compiles `programs` and publishes the result. Returns false, publishing nothing, when a newer change
+  // arrives first (the caller then compiles again with it). `force` rebuilds programs whose SPIR-V is
+  // unchanged too.
+  bool rebuild(const std::vector<fs::path>& files, const std::vector<ShaderLibrary::ProgramId>& programs,
+               std::chrono::steady_clock::time_point editTime, bool force);
+  bool eventsWaiting() const;  // the watcher has unread events
   void snapshot();
 
   ShaderLibrary& lib_;
@@ -71,7 +81,9 @@ class Reloader {
   std::atomic<bool> reloadAll_{false};
   std::atomic<uint64_t> reloads_{0};
   std::atomic<bool> rebuilding_{false};
-  std::mutex mutex_;
+  std::atomic<bool> changesPending_{false};
+  std::atomic<std::chrono::steady_clock::rep> rebuildStart_{0};
+  mutable std::mutex mutex_;
   std::deque<ReloadResult> results_;
   std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> last_;
 };

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -88,10 +89,19 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   const pid_t pid = std::atoi(readFile(pidFile).c_str());
+  bool stopped = false;
   auto stop = [&] {
+    stopped = true;
     if (pid > 0) kill(pid, SIGINT);
     return pclose(proc);
   };
+  // A failed assertion returns early: the watch process is stopped anyway.
+  struct StopOnExit {
+    std::function<void()> f;
+    ~StopOnExit() { f(); }
+  } stopOnExit{[&] {
+    if (!stopped) stop();
+  }};
   if (readFile(out).find("watching") == std::string::npos) {
     stop();
     FAIL() << readFile(out);
@@ -99,7 +109,12 @@ TEST(Watch, EditBreakAndFixWhileRendering) {
 
   const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
   const std::string good = readFile(chit);
-  writeFile(chit, good + "\n// an edit\n");
+  // A real change (a comment alone changes no SPIR-V and rebuilds nothing).
+  std::string edited = good;
+  const std::string needle = "const float minCos = 1e-3;";
+  ASSERT_NE(edited.find(needle), std::string::npos);
+  edited.replace(edited.find(needle), needle.size(), "const float minCos = 1.0001e-3;");
+  writeFile(chit, edited);
   auto lines = waitForLog(log, 1);
   ASSERT_GE(lines.size(), 1u) << readFile(out);
   EXPECT_TRUE(lines[0]["ok"].get<bool>()) << lines[0].dump();

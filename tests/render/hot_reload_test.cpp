@@ -1,9 +1,14 @@
-// HotReload without a GPU: a program that compiles but whose pipeline cannot be built keeps the last good one
-// (nothing is committed) and is the current error until a later build succeeds.
+// HotReload without a GPU (pipelines are stand-ins): a program that compiles but whose pipeline cannot be
+// built keeps the last good one and is the current error until a later build succeeds; saves that arrive
+// while a build runs supersede it; a save that changes no SPIR-V rebuilds nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <map>
+#include <mutex>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -72,4 +77,135 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
   EXPECT_EQ(hot.currentError(), "");
   hot.stop();
   fs::remove_all(dir);
+}
+
+namespace {
+
+struct Fixture {
+  fs::path dir, file;
+  std::unique_ptr<wb::shader::ShaderLibrary> lib;
+  wb::shader::ShaderLibrary::ProgramId id{};
+
+  Fixture(const std::string& name) {
+    std::random_device rd;
+    dir = fs::temp_directory_path() / ("wb_hot_reload_" + name + std::to_string(rd()));
+    fs::create_directories(dir);
+    file = fs::canonical(dir) / "c.comp";
+    writeShader(file, 1001);
+    lib = std::make_unique<wb::shader::ShaderLibrary>(
+        wb::shader::ShaderLibrary::Options{.includeRoots = {dir}, .cacheDir = {}, .printWarnings = false});
+    id = lib->registerProgram("test", {{file}});
+    lib->buildProgram(id);
+  }
+  ~Fixture() { fs::remove_all(dir); }
+};
+
+// The constant a build of writeShader's program stores (its SPIR-V holds it as a literal word).
+bool buildHolds(const wb::shader::ShaderLibrary::ProgramBuild& b, uint32_t value) {
+  const auto& spirv = b.stages.at(0)->spirv;
+  return std::find(spirv.begin(), spirv.end(), value) != spirv.end();
+}
+
+template <class Pred>
+bool waitUntil(Pred pred) {
+  const auto deadline = std::chrono::steady_clock::now() + 300s;  // a cap for a busy machine, not a timing
+  while (!pred()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(5ms);
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(HotReload, SavesDuringABuildSupersedeItAndOnlyTheNewestIsInstalled) {
+  Fixture f("supersede");
+  std::mutex m;
+  std::condition_variable cv;
+  bool firstStarted = false, release = false;
+  std::vector<uint32_t> built, installed;  // the constant of each build / install
+  std::map<const wb::vk::BuiltPipeline*, uint32_t> tags;
+  auto valueOf = [](const wb::shader::ShaderLibrary::ProgramBuild& b) -> uint32_t {
+    for (uint32_t v : {1001u, 1002u, 1003u, 1004u})
+      if (buildHolds(b, v)) return v;
+    return 0;
+  };
+  wb::render::HotReload hot(*f.lib, {f.dir});
+  hot.addTarget(f.id, {"test pipeline",
+                       [&](const wb::shader::ShaderLibrary::ProgramBuild& b) {
+                         std::unique_lock lock(m);
+                         built.push_back(valueOf(b));
+                         if (!firstStarted) {  // the first build blocks until the test has saved twice more
+                           firstStarted = true;
+                           cv.notify_all();
+                           cv.wait(lock, [&] { return release; });
+                         }
+                         auto p = std::make_unique<wb::vk::BuiltPipeline>();
+                         tags[p.get()] = valueOf(b);
+                         return p;
+                       },
+                       [&](std::unique_ptr<wb::vk::BuiltPipeline> p) {
+                         std::lock_guard lock(m);
+                         installed.push_back(tags[p.get()]);
+                       }});
+  hot.start();
+  writeShader(f.file, 1002);
+  {
+    std::unique_lock lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, 300s, [&] { return firstStarted; })) << "no build after a save";
+  }
+  writeShader(f.file, 1003);
+  writeShader(f.file, 1004);
+  // The reloader has seen the newest save once the library holds its compile.
+  ASSERT_TRUE(waitUntil([&] { return buildHolds(f.lib->buildProgram(f.id), 1004); }));
+  {
+    std::lock_guard lock(m);
+    release = true;
+  }
+  cv.notify_all();
+  auto e = waitForEvent(hot);
+  ASSERT_TRUE(e) << "no reload";
+  EXPECT_TRUE(e->ok) << e->error;
+  std::lock_guard lock(m);
+  EXPECT_EQ(installed, std::vector<uint32_t>{1004}) << "only the newest save is installed";
+  EXPECT_EQ(std::count(built.begin(), built.end(), 1004u), 1) << "the newest content is built once";
+  EXPECT_EQ(std::count(built.begin(), built.end(), 1003u), 0) << "a save superseded before its build is "
+                                                                 "not built";
+  EXPECT_GE(hot.status().superseded, 1u);
+  EXPECT_EQ(hot.history().size(), 1u) << "one reload for the burst of saves";
+  EXPECT_FALSE(hot.poll()) << "nothing else pending";
+  hot.stop();
+}
+
+TEST(HotReload, ASaveThatChangesNoSpirvRebuildsNothing) {
+  Fixture f("unchanged");
+  std::atomic<int> builds{0};
+  wb::render::HotReload hot(*f.lib, {f.dir});
+  hot.addTarget(f.id, {"test pipeline",
+                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+                         ++builds;
+                         return std::make_unique<wb::vk::BuiltPipeline>();
+                       },
+                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) {}});
+  hot.start();
+  // The same bytes again (an editor's save without changes).
+  writeShader(f.file, 1001);
+  auto same = waitForEvent(hot);
+  ASSERT_TRUE(same) << "no reload event for a save";
+  EXPECT_TRUE(same->ok) << same->error;
+  EXPECT_TRUE(same->pipelinesRebuilt.empty());
+  EXPECT_EQ(builds.load(), 0);
+  // A comment only.
+  { std::ofstream(f.file, std::ios::app) << "// a comment changes no SPIR-V\n"; }
+  auto comment = waitForEvent(hot);
+  ASSERT_TRUE(comment);
+  EXPECT_TRUE(comment->pipelinesRebuilt.empty());
+  EXPECT_EQ(builds.load(), 0);
+  // A real change is built.
+  writeShader(f.file, 1002);
+  auto real = waitForEvent(hot);
+  ASSERT_TRUE(real);
+  EXPECT_EQ(real->pipelinesRebuilt, std::vector<std::string>{"test pipeline"});
+  EXPECT_EQ(builds.load(), 1);
+  hot.stop();
 }

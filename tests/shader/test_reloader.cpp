@@ -213,8 +213,10 @@ TEST_F(ReloaderFixture, Touch) {
   fs::last_write_time(dir / "g.frag", fs::file_time_type::clock::now());
   auto r = expectOne();
   EXPECT_TRUE(r.ok) << r.error;
-  EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
-  EXPECT_TRUE(r.stagesRecompiled.empty());  // contents unchanged: nothing recompiled
+  // Contents unchanged: the program is reported unchanged, with nothing to rebuild.
+  EXPECT_TRUE(r.programs.empty());
+  EXPECT_EQ(r.unchangedPrograms, std::vector<ShaderLibrary::ProgramId>{graphics});
+  EXPECT_TRUE(r.stagesRecompiled.empty());
 }
 
 TEST_F(ReloaderFixture, UnrelatedFileDoesNothing) {

@@ -173,7 +173,13 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
   const auto firstNewline = good.find('\n');
   writeFile(dir / "broken.rchit",
             good.substr(0, firstNewline + 1) + "this is not glsl;\n" + good.substr(firstNewline + 1));
-  writeFile(dir / "good.rchit", good);
+  // The fix is a real change too (the same text as before the break would rebuild nothing: its pipeline is
+  // still the one in use).
+  std::string fixedText = good;
+  const std::string needle = "const float minCos = 1e-3;";
+  ASSERT_NE(fixedText.find(needle), std::string::npos);
+  fixedText.replace(fixedText.find(needle), needle.size(), "const float minCos = 1.0001e-3;");
+  writeFile(dir / "good.rchit", fixedText);
   const auto script = dir / "script.txt";
   writeFile(script,
             "wait_samples 2 300\n"
@@ -221,6 +227,31 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
   EXPECT_GT(applied["frame_ms_median_before"].get<double>(), 0.0) << applied.dump();
   EXPECT_TRUE(applied["edit_to_first_frame_ms"].is_number()) << applied.dump();
   EXPECT_TRUE(b1["reloads"].back()["first_new_frame_ms"].is_null()) << "a failed build draws no new frame";
+}
+
+// A save that changes no SPIR-V (the same bytes, or a comment) rebuilds nothing and keeps the accumulation.
+TEST(Window, AnUnchangedSaveKeepsTheAccumulation) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("unchanged");
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  writeFile(dir / "commented.rchit", readFile(watched) + "// a comment\n");
+  const auto script = dir / "script.txt";
+  writeFile(script, "wait_samples 2 300\nstats " + (dir / "before.json").string() + "\ncopy " +
+                        (dir / "commented.rchit").string() + " " + watched.string() +
+                        "\nwait_reload 300\nstats " + (dir / "after.json").string() + "\n");
+  auto r = runWindow("--script " + script.string(), "WB_ROOT=" + root.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto before = readJson(dir / "before.json"), after = readJson(dir / "after.json");
+  ASSERT_FALSE(after["reloads"].empty());
+  const auto& e = after["reloads"].back();
+  EXPECT_TRUE(e["ok"].get<bool>()) << e.dump();
+  EXPECT_TRUE(e["pipelines_rebuilt"].empty()) << e.dump();
+  EXPECT_EQ(after["resets"], before["resets"]) << "the accumulation must go on";
+  EXPECT_GE(after["samples"].get<int>(), before["samples"].get<int>());
 }
 
 TEST(Window, NoDisplayFallsBackToHeadlessRender) {

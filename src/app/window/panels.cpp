@@ -337,6 +337,34 @@ void drawOverlays(PanelContext& c, const Rect& view) {
                     IM_COL32(0, 0, 0, 160), 3.0f);
   dl->AddText(pos, IM_COL32(230, 230, 230, 255), status);
 
+  // Top right: a rebuild or a mode switch in progress (stage, elapsed), else what the last edit cost.
+  char busy[192] = "";
+  bool active = true;
+  const auto hs = c.hot.status();
+  if (hs.stage != render::HotReload::Status::Stage::Idle) {
+    std::snprintf(busy, sizeof busy, "%s  %.1f s", render::HotReload::stageName(hs.stage),
+                  hs.elapsedMs * 1e-3);
+  } else if (!c.modeSwitch.empty()) {
+    std::snprintf(busy, sizeof busy, "preparing %s  %.1f s", c.modeSwitch.c_str(), c.modeSwitchSeconds);
+  } else if (const auto history = c.hot.history(); !history.empty() && history.back().ok) {
+    active = false;
+    const auto& e = history.back();
+    if (e.pipelinesRebuilt.empty()) {
+      std::snprintf(busy, sizeof busy, "last edit: unchanged SPIR-V, nothing rebuilt");
+    } else if (e.editToFirstFrameMs >= 0) {
+      std::snprintf(busy, sizeof busy,
+                    "last edit: compile %.0f ms + pipeline %.0f ms, on screen after %.2f s", e.compileMs,
+                    e.pipelineMs, e.editToFirstFrameMs * 1e-3);
+    }
+  }
+  if (busy[0]) {
+    const ImVec2 bs = ImGui::CalcTextSize(busy);
+    const ImVec2 bp(view.x + view.w - bs.x - 10, view.y + 6);
+    dl->AddRectFilled(ImVec2(bp.x - 4, bp.y - 2), ImVec2(bp.x + bs.x + 4, bp.y + bs.y + 2),
+                      active ? IM_COL32(170, 110, 0, 220) : IM_COL32(0, 0, 0, 140), 3.0f);
+    dl->AddText(bp, IM_COL32(255, 255, 255, 255), busy);
+  }
+
   const std::string err = c.hot.currentError();
   if (err.empty()) return;
   std::string text = "shader error (still rendering with the last good pipeline):\n";

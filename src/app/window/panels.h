@@ -41,6 +41,8 @@ struct PanelContext {
   uint32_t samples = 0;                            // finished samples (path tracer) or frames (hybrid)
   double secondsSinceReset = 0;
   const eval::LiveError* liveError = nullptr;
+  std::string modeSwitch;  // the mode being prepared off the frame loop (empty: none)
+  double modeSwitchSeconds = 0;
 };
 
 // The side panel's width in a window of that width (when shown).

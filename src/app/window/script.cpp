@@ -55,6 +55,12 @@ void Script::addLine(const std::string& line, const std::string& where) {
   commands_.push_back(std::move(c));
 }
 
+bool Script::waitingForEvent() const {
+  if (!waiting_ || next_ >= commands_.size()) return false;
+  const std::string& cmd = commands_[next_].words[0];
+  return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file";
+}
+
 bool Script::step(ScriptHost& host) {
   using clock = std::chrono::steady_clock;
   while (next_ < commands_.size()) {

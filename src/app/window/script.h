@@ -47,6 +47,9 @@ class Script {
   // command has run. Command failures throw std::runtime_error naming the script line.
   bool step(ScriptHost& host);
   bool finished() const { return next_ >= commands_.size(); }
+  // Whether the current command waits for an event (a reload, samples, a file) rather than for frames: the
+  // window may trace without presenting meanwhile.
+  bool waitingForEvent() const;
 
  private:
   struct Command {

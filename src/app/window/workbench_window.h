@@ -88,7 +88,16 @@ class WorkbenchWindow : public ScriptHost {
   nlohmann::json parametersJson();
   Rect imageRect(const Rect& view) const;
   void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const Rect& image);
-  void readTimestamps();
+  // Reads the last submission's GPU times: trace only, or trace and display.
+  void readTimestamps(bool withDisplay);
+  // Whether the loop may trace without drawing or presenting: converging at full resolution, no input for a
+  // moment, no rebuild in flight, no script command waiting for frames, and the last present recent enough.
+  bool traceOnlyAllowed(Clock::time_point now) const;
+  // One submission of trace strips without the panel, the display pass or a present. Returns false when it
+  // traced nothing.
+  bool traceOnly();
+  // Whether the next frame has nothing new to show (nothing to trace, no input, no rebuild, no script step).
+  bool nothingToDo() const;
   // The hybrid renderer of the current mode (nullptr when path tracing).
   render::HybridRenderer* activeHybrid() const { return session_->hybrid(); }
   // Makes the state's mode the session's (its renderer is made on first use, at the trace size).
@@ -146,6 +155,9 @@ class WorkbenchWindow : public ScriptHost {
   gpu::Counters counters_{};
   FrameStats frames_;
   uint64_t frameCount_ = 0;
+  uint64_t traceOnlySubmits_ = 0;
+  Clock::time_point lastPresent_ = Clock::now();
+  Clock::time_point lastInput_ = Clock::now();
   float panelWidth_ = 0;
 };
 

@@ -9,15 +9,27 @@
 
 namespace wb::app {
 
-void WorkbenchWindow::readTimestamps() {
+namespace {
+
+// While converging untouched, the image is presented this often; between presents the loop only traces.
+constexpr double kIdlePresentSeconds = 0.5;
+// Input within this long keeps every frame presented (the user is interacting).
+constexpr double kInteractionSeconds = 0.5;
+// The trace time of one trace-only submission: input that arrives meanwhile waits at most this long.
+constexpr double kTraceOnlyBudgetMs = 60.0;
+
+}  // namespace
+
+void WorkbenchWindow::readTimestamps(bool withDisplay) {
   uint64_t ts[3] = {};
-  if (vkGetQueryPoolResults(session_->context().device(), queries_, 0, 3, sizeof ts, ts, sizeof(uint64_t),
-                            VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) {
+  const uint32_t count = withDisplay ? 3 : 2;
+  if (vkGetQueryPoolResults(session_->context().device(), queries_, 0, count, sizeof(uint64_t) * count, ts,
+                            sizeof(uint64_t), VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) {
     return;
   }
   const double period = session_->context().timestampPeriodNs() * 1e-6;
   traceMs_ = double(ts[1] - ts[0]) * period;
-  displayMs_ = double(ts[2] - ts[1]) * period;
+  if (withDisplay) displayMs_ = double(ts[2] - ts[1]) * period;
   if (!lastFrameHybrid_) progressive_->reportTraceTime(tracedPixels_, traceMs_);
   if (progressive_->generation() != traceGeneration_) {
     traceGeneration_ = progressive_->generation();
@@ -85,6 +97,64 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
   WB_VK(vkEndCommandBuffer(cmd));
 }
 
+bool WorkbenchWindow::traceOnlyAllowed(Clock::time_point now) const {
+  using Seconds = std::chrono::duration<double>;
+  if (activeHybrid() || dragging_ || state_.paused || hot_->busy()) return false;
+  if (!screenshotPath_.empty() || state_.saveRequest) return false;
+  if (hasScript_ && !script_.waitingForEvent()) return false;
+  if (progressive_->inPreview() || progressive_->samples() == 0 || progressive_->done()) return false;
+  if (Seconds(now - lastInput_).count() < kInteractionSeconds) return false;
+  return Seconds(now - lastPresent_).count() < kIdlePresentSeconds;
+}
+
+bool WorkbenchWindow::traceOnly() {
+  auto& ctx = session_->context();
+  progressive_->options().stopAtSamples =
+      liveError_.nextCheckpoint(progressive_->samples(), progressive_->secondsSinceReset());
+  const double frameBudget = progressive_->options().budgetMs;
+  progressive_->options().budgetMs = std::max(frameBudget, kTraceOnlyBudgetMs);
+  progressive_->beginFrame();
+  if (progressive_->inPreview() || progressive_->done()) {
+    progressive_->options().budgetMs = frameBudget;
+    return false;
+  }
+  WB_VK(vkResetCommandBuffer(cmd_, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  WB_VK(vkBeginCommandBuffer(cmd_, &bi));
+  vkCmdResetQueryPool(cmd_, queries_, 0, 3);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+  lastFrameHybrid_ = false;
+  tracedPixels_ = progressive_->record(cmd_);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+  WB_VK(vkEndCommandBuffer(cmd_));
+  progressive_->options().budgetMs = frameBudget;
+  if (tracedPixels_ == 0) return false;
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  WB_VK(vkResetFences(ctx.device(), 1, &fence_));
+  {
+    std::lock_guard lock(ctx.queueMutex());
+    WB_VK(vkQueueSubmit(ctx.queue(), 1, &si, fence_));
+  }
+  WB_VK(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  readTimestamps(false);
+  counters_ = session_->renderer().readCounters();
+  updateLiveError();
+  ++traceOnlySubmits_;
+  return true;
+}
+
+bool WorkbenchWindow::nothingToDo() const {
+  const bool tracing =
+      activeHybrid() ? !state_.paused && (state_.params.render.spp == 0 ||
+                                          activeHybrid()->samplesAccumulated() < state_.params.render.spp)
+                     : !state_.paused && !progressive_->done();
+  return !tracing && !hot_->busy() && !dragging_ && screenshotPath_.empty() && !state_.saveRequest &&
+         (!hasScript_ || script_.waitingForEvent()) && !options_.frames;
+}
+
 int WorkbenchWindow::run() {
   auto& ctx = session_->context();
   auto last = Clock::now();
@@ -100,7 +170,7 @@ int WorkbenchWindow::run() {
     if (frameInFlight_) {
       WB_VK(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
       frameInFlight_ = false;
-      readTimestamps();
+      readTimestamps(true);
       hot_->frameFinished(frameBegin);
       if (restRatio > 0 && hot_->compiling()) {
         const auto end = Clock::now();
@@ -118,6 +188,34 @@ int WorkbenchWindow::run() {
         captureTarget_.clear();
       }
     }
+    if (input_->takeActivity()) lastInput_ = Clock::now();
+    // Converging untouched: trace without drawing or presenting until the next present is due. Input, a
+    // rebuild or a script step ends it at once; the script's waits are checked after each submission.
+    while (!frameInFlight_ && traceOnlyAllowed(Clock::now()) && traceOnly()) {
+      glfwPollEvents();
+      if (input_->takeActivity()) {
+        lastInput_ = Clock::now();
+        break;
+      }
+      if (hasScript_) {
+        try {
+          if (!script_.step(*this) || !script_.waitingForEvent()) break;
+        } catch (const std::exception& e) {
+          fatalScriptError_ = e.what();
+          exitCode = 1;
+          state_.quit = true;
+          break;
+        }
+      }
+    }
+    if (state_.quit) break;
+    // Nothing to trace and nothing happening: sleep until input (or a short timeout for the panel's clocks
+    // and the script's waits) instead of redrawing the same frame.
+    if (!frameInFlight_ && nothingToDo() &&
+        std::chrono::duration<double>(Clock::now() - lastInput_).count() > kInteractionSeconds) {
+      glfwWaitEventsTimeout(0.25);
+      if (input_->takeActivity()) lastInput_ = Clock::now();
+    }
     const auto now = Clock::now();
     const float dt = std::chrono::duration<float>(now - last).count();
     if (frameCount_ > 0) frames_.add(dt * 1000.0f);
@@ -125,7 +223,7 @@ int WorkbenchWindow::run() {
     frameBegin = now;
 
     if (options_.frames && frameCount_ >= options_.frames) break;
-    if (hasScript_) {
+    if (hasScript_ && screenshotPath_.empty()) {  // a requested screenshot is drawn before the script goes on
       try {
         // A finished script still lets a requested screenshot reach the screen.
         if (!script_.step(*this) && !options_.frames && screenshotPath_.empty()) break;
@@ -249,6 +347,7 @@ int WorkbenchWindow::run() {
       WB_VK(vkQueueSubmit(ctx.queue(), 1, &si, fence_));
     }
     frameInFlight_ = true;
+    lastPresent_ = Clock::now();
     if (!swapchain_->present(*index, done)) {
       glfwGetFramebufferSize(window_, &fbw, &fbh);
       vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
@@ -259,7 +358,7 @@ int WorkbenchWindow::run() {
   }
   if (frameInFlight_) {
     vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
-    readTimestamps();
+    readTimestamps(true);
     counters_ = session_->renderer().readCounters();
     if (!captureTarget_.empty()) {
       capture_->write(captureTarget_);

@@ -61,7 +61,8 @@ nlohmann::json WorkbenchWindow::parametersJson() {
 nlohmann::json WorkbenchWindow::statsJson() {
   nlohmann::json j;
   j["frames"] = frameCount_;
-  j["key_presses"] = keyPressesHandled_;  // the window's keys (F5, F12, Tab, Home) acted on
+  j["trace_only_submits"] = traceOnlySubmits_;  // trace submissions between presents while converging
+  j["key_presses"] = keyPressesHandled_;        // the window's keys (F5, F12, Tab, Home) acted on
   j["panel_visible"] = state_.showPanel;
   j["samples"] = currentSamples();
   j["preview"] = !activeHybrid() && progressive_->inPreview();
