@@ -16,9 +16,7 @@ struct CommandResult {
 
 // Prefix for a command line that starts a program in a session of its own, as a user's terminal would
 // (`setsid --wait`: the exit status is the program's). The kernel's autogroup scheduling then shares the CPU
-// between it and the tests ctest runs beside it; in one session their threads would starve the workbench's
-// rebuild threads, which run at nice 10 so that frames stay smooth (render/hot_reload.h), and a 1 s hot
-// reload took 14 s (two busy loops in the same session; none in another one).
+// between it and the tests ctest runs beside it, as between two terminals.
 inline constexpr const char* kOwnSession = "setsid --wait ";
 
 inline CommandResult runCommand(const std::string& line, bool captureStderr = true) {
