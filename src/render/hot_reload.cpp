@@ -305,7 +305,7 @@ void HotReload::frameFinished(std::optional<std::chrono::steady_clock::time_poin
 }
 
 bool HotReload::busy() const {
-  if (compiling()) return true;
+  if (compiling() || reloader_.newerChange()) return true;
   std::lock_guard lock(mutex_);
   return !pending_.empty();
 }

@@ -92,7 +92,7 @@ class HotReload {
   // While a change is being compiled or its pipelines built (not yet waiting for the commit): on a CPU device
   // the render loop yields part of the cores to it (its frames are thrown away at the swap anyway).
   bool compiling() const { return reloader_.rebuilding() || preparing_; }
-  // A rebuild is compiling or its pipelines wait for poll() to install them.
+  // A change is seen and not yet compiled, a rebuild is compiling, or its pipelines wait for poll().
   bool busy() const;
 
   // What the reload in flight is doing, for the window's indicator.

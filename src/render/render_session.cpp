@@ -99,6 +99,8 @@ RenderSession::RenderSession(const SessionOptions& options)
 }
 
 RenderSession::~RenderSession() {
+  for (auto& f : preparing_)
+    if (f.valid()) f.wait();
   if (ctx_) vkDeviceWaitIdle(ctx_->device());
   for (auto& r : renderers_) r.reset();
   env_.reset();
@@ -109,21 +111,57 @@ RendererResources RenderSession::resources() const {
   return {*ctx_, *library_, scene_, *gpuScene_, *env_};
 }
 
+std::unique_ptr<Renderer> RenderSession::constructRenderer(RenderMode mode, const RenderSettings& settings,
+                                                           const HybridSettings& hybrid) const {
+  if (mode == RenderMode::PathTrace)
+    return std::make_unique<PathTracer>(resources(), settings, featuresFor(scene_, settings));
+  return std::make_unique<HybridRenderer>(resources(), settings, mode, hybrid);
+}
+
+void RenderSession::adopt(Renderer& r) {
+  r.setCamera(camera_);
+  r.setLights(lights_);
+  if (hot_) hot_->addRenderer(r);
+}
+
 std::unique_ptr<Renderer> RenderSession::makeRenderer(RenderMode mode, const RenderSettings& settings) {
-  std::unique_ptr<Renderer> r;
-  if (mode == RenderMode::PathTrace) {
-    r = std::make_unique<PathTracer>(resources(), settings, featuresFor(scene_, settings));
-  } else {
-    r = std::make_unique<HybridRenderer>(resources(), settings, mode, hybrid_);
-  }
-  r->setCamera(camera_);
-  r->setLights(lights_);
-  if (hot_) hot_->addRenderer(*r);
+  auto r = constructRenderer(mode, settings, hybrid_);
+  adopt(*r);
   return r;
+}
+
+void RenderSession::prepareMode(RenderMode mode, const RenderSettings& settings) {
+  const size_t m = size_t(mode);
+  if (renderers_[m] || preparing_[m].valid()) return;
+  preparing_[m] = std::async(std::launch::async, [this, mode, settings, hybrid = hybrid_] {
+    return constructRenderer(mode, settings, hybrid);
+  });
+}
+
+bool RenderSession::modeReady(RenderMode mode) {
+  const size_t m = size_t(mode);
+  if (renderers_[m]) return true;
+  auto& f = preparing_[m];
+  if (!f.valid() || f.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+  renderers_[m] = f.get();
+  adopt(*renderers_[m]);
+  return true;
+}
+
+void RenderSession::finishPreparing() {
+  for (size_t m = 0; m < preparing_.size(); ++m) {
+    if (!preparing_[m].valid()) continue;
+    preparing_[m].wait();
+    modeReady(RenderMode(m));
+  }
 }
 
 Renderer& RenderSession::setMode(RenderMode mode, const RenderSettings& settings) {
   auto& slot = renderers_[size_t(mode)];
+  if (!slot && preparing_[size_t(mode)].valid()) {
+    preparing_[size_t(mode)].wait();
+    modeReady(mode);
+  }
   if (!slot) slot = makeRenderer(mode, settings);
   mode_ = mode;
   return *slot;
@@ -149,17 +187,20 @@ void RenderSession::setEnvironment(const RenderSettings& settings) {
   if (!quiet_)
     for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   auto env = std::make_unique<GpuEnvironment>(*ctx_, data);
+  finishPreparing();  // a renderer being made points at the current environment
   forEachRenderer([&](Renderer& r) { r.setEnvironment(*env); });  // each waits for the device
   env_ = std::move(env);                                          // the previous one is no longer referenced
 }
 
 void RenderSession::setLights(const std::vector<gpu::DirectionalLight>& lights) {
+  finishPreparing();  // a renderer being made reads the scene's light buffer
   lights_ = lights;
   gpuScene_->updateLights(lights);
   forEachRenderer([&](Renderer& r) { r.setLights(lights); });
 }
 
 void RenderSession::setHybridSettings(const HybridSettings& hybrid) {
+  finishPreparing();
   hybrid_ = hybrid;
   for (size_t m = 1; m < renderers_.size(); ++m)
     if (renderers_[m]) static_cast<HybridRenderer&>(*renderers_[m]).setHybridSettings(hybrid);

@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -64,6 +65,12 @@ class RenderSession {
   Renderer& setMode(RenderMode mode, const RenderSettings& settings);
   // The renderer of `mode`, or nullptr when it has not been made.
   Renderer* rendererFor(RenderMode mode) { return renderers_[size_t(mode)].get(); }
+  // Starts making `mode`'s renderer on a worker thread (unless it is made or being made), so that a frame
+  // loop keeps drawing the current mode while the other one's pipelines are created. Render thread only.
+  void prepareMode(RenderMode mode, const RenderSettings& settings);
+  // Whether `mode`'s renderer is made; one the worker finished is taken here and given the session's camera,
+  // lights and hot reload. Rethrows the worker's failure. Render thread only.
+  bool modeReady(RenderMode mode);
   // Every renderer made so far, the path tracer first.
   void forEachRenderer(const std::function<void(Renderer&)>& f);
   // The path tracer (always made: the AOVs, debug views and pixel statistics are its).
@@ -96,6 +103,11 @@ class RenderSession {
  private:
   RendererResources resources() const;
   std::unique_ptr<Renderer> makeRenderer(RenderMode mode, const RenderSettings& settings);
+  // The part of makeRenderer a worker thread may run: reads only what does not change while it runs.
+  std::unique_ptr<Renderer> constructRenderer(RenderMode mode, const RenderSettings& settings,
+                                              const HybridSettings& hybrid) const;
+  void adopt(Renderer& r);
+  void finishPreparing();  // waits for every renderer being made and takes it
 
   std::unique_ptr<vk::Context> ctx_;
   std::unique_ptr<shader::ShaderLibrary> library_;
@@ -104,6 +116,7 @@ class RenderSession {
   std::unique_ptr<GpuEnvironment> env_;
   // By RenderMode; [0] (the path tracer) always made. Declared after the resources: destroyed first.
   std::array<std::unique_ptr<Renderer>, 3> renderers_;
+  std::array<std::future<std::unique_ptr<Renderer>>, 3> preparing_;  // renderers being made by a worker
   RenderMode mode_ = RenderMode::PathTrace;
   HybridSettings hybrid_;
   CameraState camera_, sceneCamera_;

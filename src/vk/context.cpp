@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "common/env.h"
 #include "vk/device_select.h"
@@ -175,9 +177,10 @@ void Context::createInstance(const ContextOptions& options) {
   const char* kValidation = "VK_LAYER_KHRONOS_validation";
   bool wantValidation = options.validation || env::enabled("WB_VALIDATION");
   validation_ = wantValidation && layerAvailable(kValidation);
-  if (wantValidation && !validation_) {
-    std::fprintf(stderr, "warning: validation requested but %s is not installed\n", kValidation);
-  }
+  // Validation that was asked for and cannot run is a failure, never a silent pass.
+  if (wantValidation && !validation_)
+    throw std::runtime_error(std::string("validation requested (WB_VALIDATION=1) but ") + kValidation +
+                             " is not installed (Debian: vulkan-validationlayers)");
 
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "rt-workbench";

@@ -389,7 +389,10 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
 
   const VkPipeline shadowBefore = hybrid.pipelineHandle(Pass::ShadowAo);
   const VkPipeline reflectBefore = hybrid.pipelineHandle(Pass::Reflection);
-  shaders.append("hybrid/raster.glsl", "\n#define WB_TEST_RASTER_EDIT 1\n");
+  // Real edits (an unused global changes the SPIR-V; a define alone would not, and would rebuild nothing).
+  shaders.append(
+      "hybrid/raster.glsl",
+      "\n#ifndef WB_TEST_RASTER_EDIT\n#define WB_TEST_RASTER_EDIT\nfloat wbTestRasterEdit = 1.0;\n#endif\n");
   auto e1 = waitForReload();
   ASSERT_TRUE(e1.has_value()) << "no reload after the raster-only edit";
   EXPECT_TRUE(e1->ok) << e1->error;
@@ -401,7 +404,9 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
   EXPECT_EQ(hybrid.pipelineHandle(Pass::ShadowAo), shadowBefore);
   EXPECT_EQ(hybrid.pipelineHandle(Pass::Reflection), reflectBefore);
 
-  shaders.append("hybrid/common.glsl", "\n#define WB_TEST_SHARED_EDIT 1\n");
+  shaders.append(
+      "hybrid/common.glsl",
+      "\n#ifndef WB_TEST_SHARED_EDIT\n#define WB_TEST_SHARED_EDIT\nfloat wbTestSharedEdit = 1.0;\n#endif\n");
   auto e2 = waitForReload();
   ASSERT_TRUE(e2.has_value()) << "no reload after the shared edit";
   EXPECT_TRUE(e2->ok) << e2->error;

@@ -61,6 +61,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   registerHotReload();
   session_->attachHotReload(hot_.get());  // every renderer, the modes made later too
   hot_->start();
+  applyMode(true);  // the mode the window opens in (--mode) is there from the first frame
 
   VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -134,12 +135,26 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
   return {std::floor(view.x + (view.w - w) * 0.5f), std::floor(view.y + (view.h - h) * 0.5f), w, h};
 }
 
-void WorkbenchWindow::applyMode() {
-  if (session_->mode() == state_.params.mode) return;
+void WorkbenchWindow::applyMode(bool wait) {
+  if (session_->mode() == state_.params.mode) {
+    modeSwitch_.clear();
+    return;
+  }
   render::RenderSettings s = state_.params.render;
   s.width = progressive_->targetWidth();
   s.height = progressive_->targetHeight();
+  // The other mode's renderer is made off the frame loop; the current mode keeps drawing until it is ready.
+  if (!wait && !session_->modeReady(state_.params.mode)) {
+    session_->prepareMode(state_.params.mode, s);
+    const std::string name = render::renderModeName(state_.params.mode);
+    if (modeSwitch_ != name) {
+      modeSwitch_ = name;
+      modeSwitchStart_ = Clock::now();
+    }
+    return;
+  }
   session_->setMode(state_.params.mode, s);
+  modeSwitch_.clear();
 }
 
 uint32_t WorkbenchWindow::currentSamples() const {

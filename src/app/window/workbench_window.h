@@ -61,6 +61,10 @@ class WorkbenchWindow : public ScriptHost {
   void scriptSet(const std::string& name, const std::string& value) override {
     applySetting(state_, name, value);
     applyState();  // at a frame boundary: what the next script line sees is the new state
+    if (state_.params.mode != session_->mode()) {
+      applyMode(true);
+      applyState();
+    }
   }
   void scriptScreenshot(const std::string& path) override { screenshotPath_ = path; }
   void scriptSave(const std::string& base) override { state_.saveRequest = base; }
@@ -100,8 +104,9 @@ class WorkbenchWindow : public ScriptHost {
   bool nothingToDo() const;
   // The hybrid renderer of the current mode (nullptr when path tracing).
   render::HybridRenderer* activeHybrid() const { return session_->hybrid(); }
-  // Makes the state's mode the session's (its renderer is made on first use, at the trace size).
-  void applyMode();
+  // Makes the state's mode the session's (its renderer is made on first use, at the trace size): at once with
+  // `wait`, otherwise once a worker has made it (the current mode draws meanwhile).
+  void applyMode(bool wait = false);
   uint32_t currentSamples() const;  // finished samples (path tracer) or frames (hybrid modes)
   eval::ImageRGBA currentImage();   // linear radiance of what is shown (waits for the device)
   void updateLiveError();
@@ -156,6 +161,8 @@ class WorkbenchWindow : public ScriptHost {
   FrameStats frames_;
   uint64_t frameCount_ = 0;
   uint64_t traceOnlySubmits_ = 0;
+  std::string modeSwitch_;  // the mode being made off the frame loop (empty: none)
+  Clock::time_point modeSwitchStart_;
   Clock::time_point lastPresent_ = Clock::now();
   Clock::time_point lastInput_ = Clock::now();
   float panelWidth_ = 0;

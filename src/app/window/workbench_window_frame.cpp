@@ -99,7 +99,7 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
 
 bool WorkbenchWindow::traceOnlyAllowed(Clock::time_point now) const {
   using Seconds = std::chrono::duration<double>;
-  if (activeHybrid() || dragging_ || state_.paused || hot_->busy()) return false;
+  if (activeHybrid() || dragging_ || state_.paused || hot_->busy() || !modeSwitch_.empty()) return false;
   if (!screenshotPath_.empty() || state_.saveRequest) return false;
   if (hasScript_ && !script_.waitingForEvent()) return false;
   if (progressive_->inPreview() || progressive_->samples() == 0 || progressive_->done()) return false;
@@ -151,8 +151,8 @@ bool WorkbenchWindow::nothingToDo() const {
       activeHybrid() ? !state_.paused && (state_.params.render.spp == 0 ||
                                           activeHybrid()->samplesAccumulated() < state_.params.render.spp)
                      : !state_.paused && !progressive_->done();
-  return !tracing && !hot_->busy() && !dragging_ && screenshotPath_.empty() && !state_.saveRequest &&
-         (!hasScript_ || script_.waitingForEvent()) && !options_.frames;
+  return !tracing && !hot_->busy() && !dragging_ && modeSwitch_.empty() && screenshotPath_.empty() &&
+         !state_.saveRequest && (!hasScript_ || script_.waitingForEvent()) && !options_.frames;
 }
 
 int WorkbenchWindow::run() {
@@ -160,8 +160,8 @@ int WorkbenchWindow::run() {
   auto last = Clock::now();
   auto frameBegin = last;  // when the work of the frame in flight began (after any rest)
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
-  // cores (render/hot_reload.h): the panel and the present cost ~20 ms per frame on lavapipe besides the
-  // trace budget, and without rests an edit took 2.6-3.0 s to reach the window instead of 1.3-1.6 s.
+  // cores (render/hot_reload.h): the panel and the present cost CPU time besides the trace budget
+  // (docs/bench/README.md has the measurements).
   const double restRatio = ctx.policy().windowRestRatio;
   int exitCode = 0;
   while (!glfwWindowShouldClose(window_) && !state_.quit) {
@@ -267,7 +267,9 @@ int WorkbenchWindow::run() {
         currentSamples(),
         activeHybrid() ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
                        : progressive_->secondsSinceReset(),
-        &liveError_};
+        &liveError_,
+        modeSwitch_,
+        std::chrono::duration<double>(Clock::now() - modeSwitchStart_).count()};
     const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
     panelWidth_ = drawSidePanel(pc, W, H);
     const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
