@@ -257,3 +257,40 @@ TEST(PathInspector, PixelTracedAloneGetsTheSameSamples) {
   EXPECT_EQ(pixelOf(session->pathTracer().readAccumulation(), 24, 7, 15), fullPixel);
   expectNoValidationErrors(*session);
 }
+
+TEST(PathInspector, NamesWhereAnInfiniteValueEnters) {
+  // An environment of infinite radiance: a camera ray that misses the sphere adds it at its escape; one that
+  // hits the sphere meets it first in the environment's light sample at the first vertex, unless that sample
+  // fell below the surface (then at the escape of the continuation).
+  render::SessionOptions o;
+  o.sceneData = makeFurnaceScene(lambert(glm::vec3(0.5f)));
+  o.settings.width = o.settings.height = 16;
+  o.settings.envColor = glm::vec3(3.0e38f);
+  o.settings.envIntensity = 10.0f;
+  auto session = makeSession(o);
+  size_t atEscape = 0, atLightSample = 0;
+  for (auto [x, y] : {std::pair{0u, 0u}, std::pair{8u, 8u}}) {
+    const auto samples = inspect(*session, x, y, 4);
+    ASSERT_EQ(samples.size(), 4u);
+    for (const auto& s : samples) {
+      EXPECT_FALSE(s.record.accumulated) << "an infinite sample is dropped";
+      ASSERT_TRUE(s.firstNonFinite.has_value());
+      const bool lightTraced = !s.vertices.empty() && !s.vertices[0].lights.empty() &&
+                               s.vertices[0].lights[0].status == WB_INSPECT_NEE_TRACED;
+      if (lightTraced) {
+        EXPECT_EQ(s.firstNonFinite->vertex, 0);
+        EXPECT_EQ(s.firstNonFinite->term, uint32_t(WB_INSPECT_NAN_LIGHT));
+        atLightSample++;
+      } else {
+        EXPECT_EQ(s.firstNonFinite->vertex, -1);
+        EXPECT_EQ(s.firstNonFinite->term, uint32_t(WB_INSPECT_NAN_ENVIRONMENT));
+        atEscape++;
+      }
+    }
+    EXPECT_EQ(render::estimateOf(samples).dropped(), 4u);
+    EXPECT_EQ(render::estimateOf(samples).count(), 0u);
+  }
+  EXPECT_GE(atEscape, 4u) << "pixel 0,0 sees past the sphere";
+  EXPECT_GT(atLightSample, 0u) << "pixel 8,8 sees the sphere";
+  expectNoValidationErrors(*session);
+}
