@@ -22,6 +22,12 @@
 #define WB_BIND_AOV_INFO 14     // rgba16f storage image: first-hit geometric normal, a = path vertices traced
 #define WB_BIND_EMITTERS 15     // storage buffer EmissiveTriangle[] (world space), for next-event estimation
 #define WB_BIND_EMITTER_ALIAS 16  // storage buffer EnvAliasEntry[] over emitters, weights = luminance * area
+// rgba32f storage image, the heat maps' data (AOV): r = mean luminance^2 of the accumulated samples (with the
+// accumulation's mean: per-pixel variance), g = fraction of paths Russian roulette ended, b = mean over all paths
+// of the bounce where it ended them (0 for the others: b / g is the mean over those it ended), a = the lowest
+// bounce at which a sample became NaN/Inf (WB_NO_NON_FINITE: none)
+#define WB_BIND_AOV_STATS 20
+#define WB_NO_NON_FINITE 1.0e30
 // The path inspector's buffers, declared only by the WB_INSPECT build of the path tracer (shaders/pathtracer/inspect.glsl).
 #define WB_BIND_INSPECT_HEADER 17    // storage buffer InspectHeader: which pixel and how many records
 #define WB_BIND_INSPECT_SAMPLES 18   // storage buffer InspectSample[]: one per recorded sample

@@ -152,8 +152,9 @@ void PathTracer::createImages() {
   albedo_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
   normal_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
   info_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+  stats_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_}) {
+    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_, &stats_}) {
       vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       VkClearColorValue zero{};
       VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -170,6 +171,7 @@ void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
   s.writeStorageImage(0, WB_BIND_AOV_NORMAL, normal_.view());
   s.writeStorageImage(0, WB_BIND_AOV_INFO, info_.view());
+  s.writeStorageImage(0, WB_BIND_AOV_STATS, stats_.view());
   s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
   s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
@@ -372,7 +374,11 @@ std::vector<float> PathTracer::readAccumulation() const {
 }
 
 std::vector<float> PathTracer::readAov(Aov aov) const {
-  return halvesToFloats(aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL));
+  const auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
+  if (aov != Aov::Stats) return halvesToFloats(bytes);
+  std::vector<float> out(bytes.size() / sizeof(float));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
 }
 
 gpu::Counters PathTracer::readCounters() const {

@@ -12,8 +12,9 @@
 
 namespace wb::render {
 
-// The AOV images the path tracer keeps when settings.aov is on (see gpu_types.h for their channels).
-enum class Aov { Albedo, Normal, Info };
+// The AOV images the path tracer keeps when settings.aov is on (see gpu_types.h for their channels); Stats
+// holds the heat maps' data (rgba32f).
+enum class Aov { Albedo, Normal, Info, Stats };
 
 struct PixelRegion {
   uint32_t x = 0, y = 0, width = 0, height = 0;
@@ -109,9 +110,9 @@ class PathTracer final : public Renderer {
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
-  std::vector<float> readAov(Aov aov) const;    // RGBA, from the half-float AOV images
+  std::vector<float> readAov(Aov aov) const;    // RGBA, from the AOV images
   const vk::Image& aovImage(Aov aov) const {
-    return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : info_;
+    return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : aov == Aov::Info ? info_ : stats_;
   }
   const vk::Image& accumulationImage() const { return accum_; }
   const vk::PipelineLayout& layout() const { return *pipeline_->layout; }
@@ -150,7 +151,7 @@ class PathTracer final : public Renderer {
   // Before pipeline_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<vk::BuiltPipeline> pipeline_;
-  vk::Image accum_, albedo_, normal_, info_;
+  vk::Image accum_, albedo_, normal_, info_, stats_;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_;
   uint32_t sampleIndex_ = 0;

@@ -214,7 +214,8 @@ int WorkbenchWindow::run() {
     display_->setSources({hybrid ? hybrid->outputImage().view() : tracer.accumulationImage().view(),
                           tracer.aovImage(render::Aov::Albedo).view(),
                           tracer.aovImage(render::Aov::Normal).view(),
-                          tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view()});
+                          tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view(),
+                          tracer.aovImage(render::Aov::Stats).view()});
 
     auto index = swapchain_->acquire(imageAvailable_);
     if (!index) {
