@@ -6,6 +6,7 @@
 
 #include "app/window/camera_controller.h"
 #include "app/window/frame_stats.h"
+#include "app/window/path_inspector_view.h"
 #include "app/window/pixel_picker.h"
 #include "app/window/progressive.h"
 #include "app/window/workbench_state.h"
@@ -41,6 +42,7 @@ struct PanelContext {
   uint32_t samples = 0;                            // finished samples (path tracer) or frames (hybrid)
   double secondsSinceReset = 0;
   const eval::LiveError* liveError = nullptr;
+  const InspectorView* inspector = nullptr;  // the path inspector's records (Inspect tab, image overlay)
 };
 
 // The side panel's width in a window of that width (when shown).

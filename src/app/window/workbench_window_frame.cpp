@@ -111,6 +111,7 @@ int WorkbenchWindow::run() {
       }
       counters_ = session_->renderer().readCounters();
       updateLiveError();
+      updateInspection();
       if (!captureTarget_.empty()) {
         capture_->write(captureTarget_);
         std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
@@ -169,7 +170,8 @@ int WorkbenchWindow::run() {
         currentSamples(),
         activeHybrid() ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
                        : progressive_->secondsSinceReset(),
-        &liveError_};
+        &liveError_,
+        &inspector_};
     const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
     panelWidth_ = drawSidePanel(pc, W, H);
     const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
