@@ -560,3 +560,23 @@ TEST(Window, AClickPicksThePixelToInspect) {
   EXPECT_NEAR(j["pixel"][0].get<int>(), 88, 2) << j["pixel"];
   EXPECT_NEAR(j["pixel"][1].get<int>(), 120, 2) << j["pixel"];
 }
+
+// The heat-map views read their data in the display pass: each shows something else than the image, and
+// nan_source on a scene without NaN/Inf is the image dimmed.
+TEST(Window, HeatMapViewsShowTheirData) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("heatmaps");
+  std::string script = "wait_samples 2 300\n";
+  for (const char* view : {"beauty", "rr_end", "variance", "nan_source"}) {
+    script += std::string("set view ") + view + "\nframes 2\nscreenshot " + (dir / view).string() +
+              ".png\nframes 1\n";
+  }
+  writeFile(dir / "s.txt", script);
+  auto r = runWindow("--spp 2 --rr-start 1 --script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto beauty = dir / "beauty.png";
+  EXPECT_GT(imageAreaDifference(dir / "rr_end.png", beauty, 144), 5.0);
+  EXPECT_GT(imageAreaDifference(dir / "variance.png", beauty, 144), 5.0);
+  EXPECT_GT(imageAreaDifference(dir / "rr_end.png", dir / "variance.png", 144), 5.0);
+  EXPECT_LT(imageAreaMean(dir / "nan_source.png", 144), 0.6 * imageAreaMean(beauty, 144));
+}
