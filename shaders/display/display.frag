@@ -9,6 +9,7 @@ layout(set = 0, binding = WB_DISPLAY_BIND_ALBEDO, rgba16f) uniform readonly imag
 layout(set = 0, binding = WB_DISPLAY_BIND_NORMAL, rgba16f) uniform readonly image2D normalImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_INFO, rgba16f) uniform readonly image2D infoImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_PREVIEW, rgba32f) uniform readonly image2D previewImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_STATS, rgba32f) uniform readonly image2D statsImage;
 
 layout(push_constant) uniform Push { DisplayPush pc; };
 
@@ -22,7 +23,8 @@ void main() {
   const ivec2 p = ivec2(uv * vec2(pc.imageSize));
   vec3 color;
   bool display = true;  // false: the view is data, shown without tonemapping
-  if (pc.view == WB_VIEW_BEAUTY || pc.view == WB_VIEW_DROPPED) {
+  const float lastBounce = max(pc.maxVertices - 1.0, 1.0);
+  if (pc.view == WB_VIEW_BEAUTY || pc.view == WB_VIEW_DROPPED || pc.view == WB_VIEW_NAN_SOURCE) {
     if (uint(p.y) >= pc.tracedRows && pc.previewSize.x > 0u) {
       color = imageLoad(previewImage, ivec2(uv * vec2(pc.previewSize))).rgb;
     } else {
@@ -32,6 +34,10 @@ void main() {
     if (pc.view == WB_VIEW_DROPPED) {
       const float dropped = imageLoad(albedoImage, p).a;
       color = dropped > 0.0 ? vec3(1.0, 0.0, 1.0) : color * 0.25;
+    } else if (pc.view == WB_VIEW_NAN_SOURCE) {
+      const float bounce = imageLoad(statsImage, p).a;
+      color = bounce < 1.0e29 ? heatRamp(bounce / lastBounce) : color * 0.25;
+      display = bounce >= 1.0e29;
     }
   } else if (pc.view == WB_VIEW_ALBEDO) {
     color = imageLoad(albedoImage, p).rgb;
@@ -44,6 +50,18 @@ void main() {
   } else if (pc.view == WB_VIEW_DEPTH) {
     const float d = imageLoad(normalImage, p).a;
     color = d < 0.0 ? vec3(0.1, 0.0, 0.15) : vec3(1.0 - d / (d + pc.sceneScale));
+    display = false;
+  } else if (pc.view == WB_VIEW_RR_END) {
+    const vec4 s = imageLoad(statsImage, p);
+    color = s.g > 0.0 ? heatRamp(s.b / s.g / lastBounce) : vec3(0.1, 0.0, 0.15);
+    display = false;
+  } else if (pc.view == WB_VIEW_VARIANCE) {
+    // Relative standard deviation r of one sample, shown as r / (1 + r): 1 (as much noise as signal) is mid-scale,
+    // a pixel with fireflies (a few samples many times the mean) goes to red.
+    const float mean = dot(imageLoad(accumImage, p).rgb, vec3(0.2126, 0.7152, 0.0722));
+    const float variance = max(imageLoad(statsImage, p).r - mean * mean, 0.0);
+    const float r = mean > 0.0 ? sqrt(variance) / mean : 0.0;
+    color = heatRamp(r / (1.0 + r));
     display = false;
   } else {
     const float vertices = imageLoad(infoImage, p).a;

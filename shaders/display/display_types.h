@@ -9,6 +9,7 @@
 #define WB_DISPLAY_BIND_NORMAL 2   // rgba16f AOV: shading normal, a = first-hit distance (-1 = miss)
 #define WB_DISPLAY_BIND_INFO 3     // rgba16f AOV: geometric normal, a = path vertices
 #define WB_DISPLAY_BIND_PREVIEW 4  // rgba32f low-resolution preview shown under rows not yet traced
+#define WB_DISPLAY_BIND_STATS 5    // rgba32f AOV: the heat maps' data (WB_BIND_AOV_STATS in shared/gpu_types.h)
 
 // What the display shows (the Inspect panel's debug view). Switching never resets accumulation.
 #define WB_VIEW_BEAUTY 0u
@@ -16,9 +17,12 @@
 #define WB_VIEW_SHADING_NORMAL 2u
 #define WB_VIEW_GEOMETRIC_NORMAL 3u
 #define WB_VIEW_DEPTH 4u
-#define WB_VIEW_BOUNCES 5u
+#define WB_VIEW_BOUNCES 5u     // heat map: path length (rays per path, full scale max bounces + 1)
 #define WB_VIEW_DROPPED 6u
-#define WB_VIEW_COUNT 7u
+#define WB_VIEW_RR_END 7u      // heat map: mean bounce where Russian roulette ended paths; dark where it ended none
+#define WB_VIEW_VARIANCE 8u    // heat map: relative standard deviation of one sample (fireflies are red)
+#define WB_VIEW_NAN_SOURCE 9u  // heat map: lowest bounce where a sample became NaN/Inf; elsewhere the dimmed image
+#define WB_VIEW_COUNT 10u
 
 // Tonemappers, in the order of eval::Tonemap.
 #define WB_TONEMAP_CLAMP 0u

@@ -85,6 +85,9 @@ void main() {
 
   // Emission, from the front face only unless the material is double-sided.
   vec3 radiance = vec3(0.0);
+#if WB_INSPECT
+  float emissionMis = 1.0;
+#endif
 #if WB_HAS_EMISSIVE
   if (frontFace || (m.flags & WB_MATERIAL_DOUBLE_SIDED) != 0u) {
     // A BRDF-sampled ray (pdf > 0) that hits an emitter is the second strategy for it when NEE sampled it too.
@@ -103,10 +106,40 @@ void main() {
       }
     }
     radiance += emissive * w;
+#if WB_INSPECT
+    emissionMis = w;
+#endif
   }
 #endif
 
   const uint bounce = payload.bounce;
+#if WB_INSPECT
+  // The vertex's record: the surface here, its light samples in the loop below, its BRDF sample at the end.
+  const uint iv = inspectVertex(bounce);
+  uint inspectLights = 0u;
+  if (iv != WB_INSPECT_NONE) {
+    inspectVertices[iv].position = position;
+    inspectVertices[iv].distance = gl_HitTEXT;
+    inspectVertices[iv].geometricNormal = ng;
+    inspectVertices[iv].shadingNormal = ns;
+    inspectVertices[iv].incoming = gl_WorldRayDirectionEXT;
+    inspectVertices[iv].flags = (frontFace ? WB_INSPECT_FRONT_FACE : 0u) | (nsFlipped ? WB_INSPECT_NORMAL_FLIPPED : 0u);
+    inspectVertices[iv].instance = gl_InstanceID;
+    inspectVertices[iv].primitive = gl_PrimitiveID;
+    inspectVertices[iv].geometry = int(gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT);
+    inspectVertices[iv].material = int(g.materialIndex);
+    inspectVertices[iv].emitted = radiance;
+    inspectVertices[iv].emissionMis = emissionMis;
+    inspectVertices[iv].lobe = WB_LOBE_DIFFUSE;
+    inspectVertices[iv].lobeProbability = 0.0;
+    inspectVertices[iv].direction = vec3(0.0);
+    inspectVertices[iv].brdf = vec3(0.0);
+    inspectVertices[iv].weight = vec3(0.0);
+    inspectVertices[iv].pdf = 0.0;
+    inspectVertices[iv].cosine = 0.0;
+  }
+  uint inspectNan = inspectNonFinite(ns, WB_INSPECT_NAN_SHADING_NORMAL) | inspectNonFinite(radiance, WB_INSPECT_NAN_EMISSION);
+#endif
   // The vertex's sample dimensions (WB_DIM_LOBE .. WB_DIM_LIGHT + 2). A CPU device JIT-compiles every inlined copy
   // of the sampler: there they come from one loop up front (lavapipe's JIT of the pipeline ~15% shorter); GPUs
   // draw each where it is used (the loop cost the H200 6% of its trace rate).
@@ -136,6 +169,12 @@ void main() {
       float tMax = 1.0e30;
       vec3 le = vec3(0.0);        // radiance arriving along wi
       float lightPdf = -1.0;      // solid-angle pdf of the strategy; 0 = delta light (no MIS); < 0: no sample
+#if WB_INSPECT
+      uint lightKind = i < WB_LIGHT_COUNT ? WB_INSPECT_LIGHT_DIRECTIONAL
+                       : uChoice < frame.envSelectProbability ? WB_INSPECT_LIGHT_ENVIRONMENT
+                                                              : WB_INSPECT_LIGHT_EMITTER;
+      int lightIndex = i < WB_LIGHT_COUNT ? int(i) : -1;
+#endif
       if (i < WB_LIGHT_COUNT) {
         wi = -lights[i].direction;
         shadowDir = wi;
@@ -157,6 +196,9 @@ void main() {
         // From the shadow ray's origin, like the continuation ray whose MIS weight closest-hit computes there.
         const EmitterSample es = sampleEmitter(originOut, ul.x, min(uCoin, 0.99999994), vec2(ul.y, ul.z));
         lightPdf = (1.0 - frame.envSelectProbability) * es.pdf;
+#if WB_INSPECT
+        lightIndex = int(es.index);
+#endif
         if (lightPdf > 0.0) {
           wi = es.wi;
           le = es.radiance;
@@ -169,14 +211,52 @@ void main() {
         }
 #endif
       }
+#if WB_INSPECT
+      // Every light sample is recorded, those that end here with the reason.
+      const uint il = iv != WB_INSPECT_NONE && inspectLights < WB_INSPECT_MAX_LIGHT_SAMPLES ? inspectLights : WB_INSPECT_NONE;
+      ++inspectLights;
+      if (il != WB_INSPECT_NONE) {
+        inspectVertices[iv].lights[il].direction = wi;
+        inspectVertices[iv].lights[il].kind = lightKind;
+        inspectVertices[iv].lights[il].index = lightIndex;
+        inspectVertices[iv].lights[il].radiance = le;
+        inspectVertices[iv].lights[il].lightPdf = lightPdf;
+        inspectVertices[iv].lights[il].distance = tMax;
+        inspectVertices[iv].lights[il].brdfCos = vec3(0.0);
+        inspectVertices[iv].lights[il].brdfPdf = 0.0;
+        inspectVertices[iv].lights[il].misWeight = 0.0;
+        inspectVertices[iv].lights[il].contribution = vec3(0.0);
+        inspectVertices[iv].lights[il].status = lightPdf < 0.0 ? WB_INSPECT_NEE_NO_SAMPLE
+                                                : dot(wi, ng) <= 0.0 ? WB_INSPECT_NEE_BELOW_SURFACE
+                                                                     : WB_INSPECT_NEE_ZERO_BRDF;
+      }
+#endif
       if (lightPdf < 0.0 || dot(wi, ng) <= 0.0) continue;
       const vec3 f = brdfEval(sm, ns, wo, wi);
+#if WB_INSPECT
+      if (il != WB_INSPECT_NONE) {
+        inspectVertices[iv].lights[il].brdfCos = f;
+        inspectVertices[iv].lights[il].brdfPdf = brdfPdf(sm, ns, wo, wi);
+      }
+#endif
       if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
       vec3 contribution = f * le;
+      float misWeight = 1.0;  // delta lights, and light sampling alone (noMis): plain light sampling
       if (lightPdf != 0.0) {
-        const float w = noMis ? 1.0 : powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
-        contribution *= w / lightPdf;
+        if (!noMis) misWeight = powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
+        contribution *= misWeight / lightPdf;
       }
+#if WB_INSPECT
+      inspectNan |= inspectNonFinite(contribution, WB_INSPECT_NAN_LIGHT) | inspectNonFinite(le, WB_INSPECT_NAN_LIGHT) |
+                    inspectNonFinite(misWeight, WB_INSPECT_NAN_LIGHT);
+      if (il != WB_INSPECT_NONE) {
+        inspectVertices[iv].lights[il].misWeight = misWeight;
+        inspectVertices[iv].lights[il].contribution = contribution;
+        inspectVertices[iv].lights[il].status = WB_INSPECT_NEE_TRACED;
+      }
+      // Raygen finds the record of the shadow ray's outcome through the request's spare field.
+      payload.shadowRequests[shadowRequests].pad = il == WB_INSPECT_NONE ? -1.0 : float(il);
+#endif
       payload.shadowRequests[shadowRequests].direction = shadowDir;
       payload.shadowRequests[shadowRequests].tMax = tMax;
       payload.shadowRequests[shadowRequests].radiance = contribution;
@@ -189,6 +269,25 @@ void main() {
   // Continuation ray by BRDF sampling.
   const vec3 uBrdf = vec3(VERTEX_SAMPLE(WB_DIM_LOBE), VERTEX_SAMPLE(WB_DIM_BRDF), VERTEX_SAMPLE(WB_DIM_BRDF + 1u));
   const BrdfSample s = brdfSample(sm, ns, wo, uBrdf);
+#if WB_INSPECT
+  if (iv != WB_INSPECT_NONE) {
+    const float pDiffuse = brdfDiffuseProbability(sm, dot(ns, wo));
+    const float cosine = dot(ns, s.wi);
+    const vec3 fCos = brdfEval(sm, ns, wo, s.wi);
+    inspectNan |= s.pdf > 0.0 ? inspectNonFinite(fCos, WB_INSPECT_NAN_BRDF) : 0u;
+    inspectNan |= inspectNonFinite(s.pdf, WB_INSPECT_NAN_PDF) | inspectNonFinite(s.weight, WB_INSPECT_NAN_WEIGHT);
+    inspectVertices[iv].lightSamples = inspectLights;
+    inspectVertices[iv].lobe = s.lobe;
+    inspectVertices[iv].lobeProbability = s.lobe == WB_LOBE_DIFFUSE ? pDiffuse : 1.0 - pDiffuse;
+    inspectVertices[iv].direction = s.wi;
+    inspectVertices[iv].pdf = s.pdf;
+    inspectVertices[iv].weight = s.weight;
+    inspectVertices[iv].cosine = cosine;
+    inspectVertices[iv].brdf = cosine > 0.0 ? fCos / cosine : vec3(0.0);
+    inspectVertices[iv].nonFinite = inspectNan;
+    if (s.pdf > 0.0 && dot(s.wi, ng) > 0.0) inspectVertices[iv].flags |= WB_INSPECT_CONTINUED;
+  }
+#endif
   if (s.pdf <= 0.0 || dot(s.wi, ng) <= 0.0) {
     payload.status = PAYLOAD_ABSORBED;  // below the geometric surface: would leak light through it
     return;

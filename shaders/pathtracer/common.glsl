@@ -55,4 +55,13 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u
 
+// WB_INSPECT=1: the path inspector's build, which records every vertex of the inspected pixel's paths
+// (inspect.glsl). The host compiles it only while a pixel is inspected.
+#ifndef WB_INSPECT
+#define WB_INSPECT 0
+#endif
+#if WB_INSPECT
+#include "inspect.glsl"
+#endif
+
 #endif

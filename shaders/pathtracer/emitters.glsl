@@ -47,6 +47,9 @@ struct EmitterSample {
   float pdf;     // solid-angle pdf at the shading point (0 = invalid)
   float dist;
   vec3 wi;
+#if WB_INSPECT
+  uint index;    // the emissive triangle (for the path inspector's records)
+#endif
 };
 
 // Emitter counts up to this pick the alias table entry with the point's first number (the remainder keeps at
@@ -74,6 +77,9 @@ EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
   const EnvAliasEntry e = emitterAlias[i];
   if (uCoin >= e.prob) i = e.alias;
   const EmissiveTriangle t = emitters[i];
+#if WB_INSPECT
+  s.index = i;
+#endif
   s.normal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
   vec3 b;
 #if WB_EMITTER_SOLID_ANGLE

@@ -18,6 +18,13 @@ void main() {
     misWeight = 0.0;  // light sampling only: the environment is reached through NEE alone
   }
   payload.radiance = envRadiance(dir) * misWeight;
+#if WB_INSPECT
+  const uint slot = inspectSlot();
+  if (slot != WB_INSPECT_NONE) {
+    inspectSamples[slot].escapeEnvironment = envRadiance(dir);
+    inspectSamples[slot].escapeMis = misWeight;
+  }
+#endif
   payload.status = PAYLOAD_MISS;
   payload.hitT = -1.0;
   payload.albedo = vec3(0.0);

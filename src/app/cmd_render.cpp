@@ -9,6 +9,7 @@
 #include "app/hybrid_json.h"
 #include "app/parameter_json.h"
 #include "app/progress.h"
+#include "app/render_inspect.h"
 #include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"
@@ -28,18 +29,27 @@ std::filesystem::path aovPath(const std::filesystem::path& out, const std::strin
 
 void RenderCommand::addFlags(CLI::App& cli) {
   addRenderOptions(cli, options);
-  cli.add_option("--out", out, "output image (.png tonemapped, .exr linear)")->required();
+  cli.add_option("--out", out, "output image (.png tonemapped, .exr linear); required unless --inspect-out");
   cli.add_option("--stats", stats, "write statistics as JSON");
   cli.add_option(
       "--reference", reference,
       "converged reference .exr of the same view: adds error_vs_reference (RMSE, relative MSE) to --stats");
+  cli.add_option("--inspect-pixel", inspectPixel,
+                 "path inspector: record the paths of pixel X,Y (0,0 = top left)");
+  cli.add_option(
+      "--inspect-samples", inspectSamples,
+      "path inspector: samples to record (default and at most: --spp; without --out only the pixel is "
+      "traced)");
+  cli.add_option("--inspect-out", inspectOut,
+                 "path inspector: write the records as JSON (docs/path_inspector.md)");
 }
 
 void RenderCommand::finish() {
   finishRenderOptions(options);
   if (options.params.render.spp == 0) throw std::invalid_argument("--spp: at least 1 sample per pixel");
+  finishInspectFlags(*this);
   const std::string ext = std::filesystem::path(out).extension().string();
-  if (ext != ".png" && ext != ".exr")
+  if (!out.empty() && ext != ".png" && ext != ".exr")
     throw std::invalid_argument("--out must end in .png or .exr, got '" + out + "'");
 }
 
@@ -53,7 +63,8 @@ int RenderCommand::run() {
   const std::filesystem::path outPath(out);
   try {
     // Every output is checked before the render: a render never ends in "cannot write" after the work.
-    requireWritableFile(outPath, "--out");
+    if (!out.empty()) requireWritableFile(outPath, "--out");
+    if (!inspectOut.empty()) requireWritableFile(inspectOut, "--inspect-out");
     if (ro.aovAlbedo) requireWritableFile(aovPath(outPath, "albedo"), "--aov albedo");
     if (ro.aovNormal) requireWritableFile(aovPath(outPath, "normal"), "--aov normal");
     if (!stats.empty()) requireWritableFile(stats, "--stats");
@@ -71,6 +82,8 @@ int RenderCommand::run() {
     std::optional<eval::ImageRGBA> referenceImage;
     if (!reference.empty()) referenceImage = eval::readExr(reference);  // fail before the render
     render::RenderSession session(so);  // prints the scene's and environment's warnings
+    if (!inspectOut.empty() && out.empty()) return runInspectOnly(*this, session);
+    if (!inspectOut.empty()) startInspection(*this, session);
     // Ctrl-C stops after the sample in progress; what was accumulated is written, marked partial.
     InterruptRequest interrupt;
     ProgressLine progress("render", "spp", ro.params.render.spp);
@@ -82,6 +95,7 @@ int RenderCommand::run() {
     const uint32_t spp = uint32_t(session.frameSeconds().size());
     const bool partial = spp < ro.params.render.spp;
     if (spp == 0) throw std::runtime_error("interrupted before the first sample finished: nothing written");
+    if (!inspectOut.empty()) writeInspection(*this, session, spp);
     const auto image = session.image();
     eval::writeImage(outPath, image, ro.params.display.exposure, ro.params.display.tonemap);
     if (ro.aovAlbedo) eval::writeImage(aovPath(outPath, "albedo"), session.aov(render::Aov::Albedo));

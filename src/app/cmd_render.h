@@ -1,5 +1,6 @@
 // `workbench render [SCENE] --size WxH --spp N --out FILE.png|FILE.exr [--stats FILE.json] ...`: a headless
-// render to an image file.
+// render to an image file; with --inspect-pixel X,Y --inspect-out FILE.json also (or, without --out, only)
+// the path inspector's records of that pixel's samples.
 #pragma once
 #include <string>
 #include <vector>
@@ -19,6 +20,10 @@ class RenderCommand : public Command {
 
   RenderOptions options;
   std::string out, stats, reference;
+  // The path inspector (--inspect-pixel X,Y --inspect-out FILE.json [--inspect-samples N]).
+  std::string inspectPixel, inspectOut;
+  uint32_t inspectSamples = 0;  // 0: --spp
+  uint32_t inspectX = 0, inspectY = 0;
 };
 
 int runRenderCommand(const std::vector<std::string>& args);

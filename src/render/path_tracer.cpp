@@ -1,8 +1,11 @@
 #include "render/path_tracer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/half.h"
@@ -16,13 +19,14 @@ constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays t
 
 }  // namespace
 
-std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features,
-                                                     bool cpuDeviceCode) {
+std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
+                                                     bool inspect) {
   const auto dir = shaderDir() / "pathtracer";
   auto defines = scene::featureDefines(features);
   const bool userChose = std::any_of(features.extraDefines.begin(), features.extraDefines.end(),
                                      [](const shader::Define& d) { return d.name == "WB_CPU_DEVICE"; });
   if (cpuDeviceCode && !userChose) defines.insert(defines.begin(), {"WB_CPU_DEVICE", "1"});
+  if (inspect) defines.push_back({"WB_INSPECT", "1"});
   std::vector<shader::ShaderKey> keys = {
       {dir / "raygen.rgen", std::nullopt, defines},
       {dir / "miss.rmiss", std::nullopt, defines},
@@ -48,6 +52,7 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   blueNoise_ = vk::makeBuffer(ctx_, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
+  createInspectBuffers();
   {
     vk::DescriptorSets recorder(ctx_);
     writeDescriptors(recorder);
@@ -58,23 +63,82 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
 
 bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
   if (pipeline_ && features == features_) return false;
+  useVariant(features, inspectVariant_);
+  return true;
+}
+
+void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) {
   shader::ShaderLibrary::ProgramId id = 0;
   bool found = false;
-  for (const auto& [f, p] : variants_) {
-    if (f == features) {
-      id = p;
+  for (const auto& v : variants_) {
+    if (v.features == features && v.inspect == inspect) {
+      id = v.program;
       found = true;
     }
   }
   if (!found) {
-    id = library_.registerProgram(features.generic ? "pathtracer" : "pathtracer (specialised)",
-                                  stageKeys(features, cpuDeviceCode_));
-    variants_.emplace_back(features, id);
+    std::string name = features.generic ? "pathtracer" : "pathtracer (specialised)";
+    if (inspect) name += " (inspect)";
+    id = library_.registerProgram(name, stageKeys(features, cpuDeviceCode_, inspect));
+    variants_.push_back({features, inspect, id});
   }
   program_ = id;
   features_ = features;
+  inspectVariant_ = inspect;
   installPipeline(id, buildPipeline(id, library_.buildProgram(id)));
+}
+
+bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
+  vkDeviceWaitIdle(ctx_.device());  // the buffers and descriptor sets may be in flight
+  inspection_ = request;
+  createInspectBuffers();
+  writeDescriptors(*sets_);
+  sampleIndex_ = 0;
+  if (request.has_value() == inspectVariant_) return false;
+  useVariant(features_, request.has_value());
   return true;
+}
+
+void PathTracer::createInspectBuffers() {
+  // Without a request: one empty slot, so the descriptors always point at a buffer (capacity 0 records
+  // nothing).
+  uint32_t samples = 1, vertices = 1;
+  if (inspection_) {
+    samples = std::clamp(inspection_->samples, 1u, kMaxInspectSamples);
+    vertices = inspection_->vertices ? inspection_->vertices : settings_.maxBounces + 1;
+    vertices = std::clamp(vertices, 1u, kMaxInspectVertices);
+  }
+  const VkDeviceSize vertexBytes = VkDeviceSize(samples) * vertices * sizeof(gpu::InspectVertex);
+  if (vertexBytes > (VkDeviceSize(256) << 20)) {
+    throw std::invalid_argument("path inspector: " + std::to_string(samples) + " samples of " +
+                                std::to_string(vertices) + " vertices need more than 256 MiB of records");
+  }
+  inspectHeader_ = vk::Buffer(ctx_, sizeof(gpu::InspectHeader), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  inspectSamples_ = vk::Buffer(ctx_, samples * sizeof(gpu::InspectSample),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  inspectVertices_ = vk::Buffer(ctx_, vertexBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  gpu::InspectHeader h{};
+  if (inspection_) {
+    h.pixel = glm::uvec2(inspection_->x, inspection_->y);
+    h.mode = inspection_->ring ? WB_INSPECT_RING : WB_INSPECT_FIRST;
+    h.sampleCapacity = samples;
+  }
+  h.vertexCapacity = vertices;
+  std::memcpy(inspectHeader_.mapped(), &h, sizeof(h));
+  std::memset(inspectSamples_.mapped(), 0xff, samples * sizeof(gpu::InspectSample));  // WB_INSPECT_NO_SAMPLE
+  std::memset(inspectVertices_.mapped(), 0, vertexBytes);
+  lastRecordedSample_ = 0;
+}
+
+InspectBuffers PathTracer::readInspection() const {
+  InspectBuffers b;
+  std::memcpy(&b.header, inspectHeader_.mapped(), sizeof(b.header));
+  b.samples.resize(inspectSamples_.size() / sizeof(gpu::InspectSample));
+  std::memcpy(b.samples.data(), inspectSamples_.mapped(), b.samples.size() * sizeof(gpu::InspectSample));
+  b.vertices.resize(inspectVertices_.size() / sizeof(gpu::InspectVertex));
+  std::memcpy(b.vertices.data(), inspectVertices_.mapped(), b.vertices.size() * sizeof(gpu::InspectVertex));
+  if (b.header.sampleCapacity == 0) b.samples.clear();
+  return b;
 }
 
 PathTracer::~PathTracer() {
@@ -88,8 +152,9 @@ void PathTracer::createImages() {
   albedo_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
   normal_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
   info_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+  stats_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_}) {
+    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_, &stats_}) {
       vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       VkClearColorValue zero{};
       VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -106,6 +171,7 @@ void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
   s.writeStorageImage(0, WB_BIND_AOV_NORMAL, normal_.view());
   s.writeStorageImage(0, WB_BIND_AOV_INFO, info_.view());
+  s.writeStorageImage(0, WB_BIND_AOV_STATS, stats_.view());
   s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
   s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
@@ -118,6 +184,10 @@ void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeBuffer(0, WB_BIND_SOBOL, sobol_.handle());
   s.writeBuffer(0, WB_BIND_EMITTERS, gpuScene_.emitters().handle());
   s.writeBuffer(0, WB_BIND_EMITTER_ALIAS, gpuScene_.emitterAlias().handle());
+  // Used by the WB_INSPECT variant only (the others' layouts skip them).
+  s.writeBuffer(0, WB_BIND_INSPECT_HEADER, inspectHeader_.handle());
+  s.writeBuffer(0, WB_BIND_INSPECT_SAMPLES, inspectSamples_.handle());
+  s.writeBuffer(0, WB_BIND_INSPECT_VERTICES, inspectVertices_.handle());
 }
 
 std::vector<RendererProgram> PathTracer::programs() const {
@@ -171,10 +241,14 @@ void PathTracer::setCamera(const CameraState& camera) {
 
 void PathTracer::setSettings(const RenderSettings& settings) {
   const bool resized = settings.width != settings_.width || settings.height != settings_.height;
+  // The inspector's vertex records follow max bounces unless the request sized them.
+  const bool inspectResized =
+      inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
   settings_ = settings;
-  if (resized) {
+  if (resized || inspectResized) {
     vkDeviceWaitIdle(ctx_.device());
-    createImages();
+    if (resized) createImages();
+    if (inspectResized) createInspectBuffers();
     writeDescriptors(*sets_);
   }
   sampleIndex_ = 0;
@@ -220,6 +294,12 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
   if (gpuScene_.emitterVersion() != emitterVersion_) writeDescriptors(*sets_);
   if (sampleIndex_ == 0 && r.x == 0 && r.y == 0) updateFrameUniforms();
+  // A restart: the inspector's slots still hold the previous accumulation's samples.
+  if (inspection_ && sampleIndex_ == 0 && lastRecordedSample_ != 0) {
+    vkCmdFillBuffer(cmd, inspectSamples_.handle(), 0, VK_WHOLE_SIZE, WB_INSPECT_NO_SAMPLE);
+    vk::memoryBarrier(cmd);
+  }
+  lastRecordedSample_ = sampleIndex_;
   gpu::PushConstants pc{};
   pc.sampleIndex = sampleIndex_;
   pc.maxBounces = settings_.maxBounces;
@@ -261,6 +341,22 @@ void PathTracer::record(VkCommandBuffer cmd) {
   }
 }
 
+std::vector<double> PathTracer::renderPixel(uint32_t x, uint32_t y, uint32_t samples) {
+  if (x >= settings_.width || y >= settings_.height) throw std::invalid_argument("pixel outside the image");
+  std::vector<double> seconds;
+  sampleIndex_ = 0;
+  for (uint32_t i = 0; i < samples; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+      if (sampleIndex_ == 0) updateFrameUniforms();
+      recordRegion(cmd, PixelRegion{x, y, 1, 1});
+    });
+    advance();
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return seconds;
+}
+
 eval::ImageRGBA PathTracer::readImage() const {
   eval::ImageRGBA img;
   img.width = settings_.width;
@@ -278,7 +374,11 @@ std::vector<float> PathTracer::readAccumulation() const {
 }
 
 std::vector<float> PathTracer::readAov(Aov aov) const {
-  return halvesToFloats(aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL));
+  const auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
+  if (aov != Aov::Stats) return halvesToFloats(bytes);
+  std::vector<float> out(bytes.size() / sizeof(float));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
 }
 
 gpu::Counters PathTracer::readCounters() const {

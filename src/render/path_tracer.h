@@ -12,11 +12,30 @@
 
 namespace wb::render {
 
-// The AOV images the path tracer keeps when settings.aov is on (see gpu_types.h for their channels).
-enum class Aov { Albedo, Normal, Info };
+// The AOV images the path tracer keeps when settings.aov is on (see gpu_types.h for their channels); Stats
+// holds the heat maps' data (rgba32f).
+enum class Aov { Albedo, Normal, Info, Stats };
 
 struct PixelRegion {
   uint32_t x = 0, y = 0, width = 0, height = 0;
+};
+
+// What the path inspector records (render/path_inspector.h reads it back): the paths of one pixel.
+struct InspectRequest {
+  uint32_t x = 0, y = 0;  // the pixel
+  uint32_t samples = 16;  // sample records
+  uint32_t vertices = 0;  // vertex records per sample; 0: max bounces + 1, at most kMaxInspectVertices
+  bool ring = false;      // false: the first `samples` samples; true: every sample, the latest `samples` kept
+  bool operator==(const InspectRequest&) const = default;
+};
+inline constexpr uint32_t kMaxInspectVertices = 256;
+inline constexpr uint32_t kMaxInspectSamples = 1u << 16;
+
+// The inspector's buffers as read back: header, then every sample slot and its vertex records.
+struct InspectBuffers {
+  gpu::InspectHeader header{};
+  std::vector<gpu::InspectSample> samples;   // header.sampleCapacity slots
+  std::vector<gpu::InspectVertex> vertices;  // header.vertexCapacity per slot
 };
 
 class PathTracer final : public Renderer {
@@ -28,7 +47,9 @@ class PathTracer final : public Renderer {
   // Shader stages of the path tracer for a feature set: no any-hit stage when every material is opaque.
   // cpuDeviceCode defines WB_CPU_DEVICE=1: code shaped for a driver that JIT-compiles every inlined copy of a
   // function at the first trace (shaders/pathtracer/common.glsl).
-  static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode);
+  // inspect defines WB_INSPECT=1: the path inspector's variant.
+  static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
+                                                  bool inspect = false);
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
   shader::ShaderLibrary::ProgramId program() const { return program_; }
@@ -36,6 +57,15 @@ class PathTracer final : public Renderer {
   // Switches to the variant for `features` (registering it once; compiled variants come from the cache) and
   // rebuilds the pipeline. Returns true when the program changed (hot reload follows programs()).
   bool setFeatures(const scene::SceneFeatures& features);
+
+  // Path inspector: with a request the tracer switches to its WB_INSPECT variant (registered once, cached
+  // like the scene variants; the images it renders are the same) and records the paths of the requested
+  // pixel; nullopt switches back. Returns true when the program changed (hot reload follows programs()).
+  // Restarts accumulation.
+  bool setInspection(const std::optional<InspectRequest>& request);
+  const std::optional<InspectRequest>& inspection() const { return inspection_; }
+  // The records so far (reads host-visible memory: call when the traces that wrote them finished).
+  InspectBuffers readInspection() const;
 
   // Renderer
   RenderMode mode() const override { return RenderMode::PathTrace; }
@@ -67,6 +97,10 @@ class PathTracer final : public Renderer {
   // Records one sample for `region` into cmd (the window traces a sample in strips over several frames);
   // call advance() once every region of the image got this sample.
   void recordRegion(VkCommandBuffer cmd, const PixelRegion& region);
+  // Traces `samples` samples of pixel (x, y) alone from scratch, each submitted and waited for (the path
+  // inspector without an image): the pixel gets the samples a full render gives it, the rest of the image
+  // stays as it was. Returns each sample's wall time in seconds.
+  std::vector<double> renderPixel(uint32_t x, uint32_t y, uint32_t samples);
 
   double lastPipelineMs() const { return pipelineMs_; }
   // On GPUs with VK_KHR_pipeline_library (DevicePolicy::pipelineLibraries) pipelines are linked from
@@ -76,9 +110,9 @@ class PathTracer final : public Renderer {
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
-  std::vector<float> readAov(Aov aov) const;    // RGBA, from the half-float AOV images
+  std::vector<float> readAov(Aov aov) const;    // RGBA, from the AOV images
   const vk::Image& aovImage(Aov aov) const {
-    return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : info_;
+    return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : aov == Aov::Info ? info_ : stats_;
   }
   const vk::Image& accumulationImage() const { return accum_; }
   const vk::PipelineLayout& layout() const { return *pipeline_->layout; }
@@ -88,6 +122,9 @@ class PathTracer final : public Renderer {
   // Writes every descriptor the path tracer provides into s (a recorder lists them: provided_).
   void writeDescriptors(vk::DescriptorSets& s);
   void updateFrameUniforms();
+  // Makes the program for (features, inspect) current, registering it on first use; rebuilds the pipeline.
+  void useVariant(const scene::SceneFeatures& features, bool inspect);
+  void createInspectBuffers();
 
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
@@ -98,15 +135,25 @@ class PathTracer final : public Renderer {
   shader::ShaderLibrary::ProgramId program_ = 0;
   scene::SceneFeatures features_;
   bool cpuDeviceCode_ = false;
-  std::vector<std::pair<scene::SceneFeatures, shader::ShaderLibrary::ProgramId>> variants_;
+  struct Variant {
+    scene::SceneFeatures features;
+    bool inspect = false;
+    shader::ShaderLibrary::ProgramId program = 0;
+  };
+  std::vector<Variant> variants_;
+  std::optional<InspectRequest> inspection_;
+  bool inspectVariant_ = false;  // the current program is the WB_INSPECT build
+  // Sample index of the last region recorded: a restart after sample 0 clears the inspector's sample slots.
+  uint32_t lastRecordedSample_ = 0;
   std::unique_ptr<vk::DescriptorSets> sets_;
   std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
   uint64_t emitterVersion_ = 0;                // the scene's emitter buffers the descriptors point at
   // Before pipeline_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<vk::BuiltPipeline> pipeline_;
-  vk::Image accum_, albedo_, normal_, info_;
+  vk::Image accum_, albedo_, normal_, info_, stats_;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
+  vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_;
   uint32_t sampleIndex_ = 0;
   uint32_t installs_ = 0;
   double pipelineMs_ = 0;

@@ -310,3 +310,94 @@ TEST(Cli, DefineIsAShaderVariant) {
   EXPECT_NE(bad.output.find("--define"), std::string::npos) << bad.output;
   EXPECT_EQ(lineCount(bad.output), 1u) << bad.output;
 }
+
+TEST(Cli, InspectPixelWritesThePathRecordsAsJson) {
+  const auto dir = tempDir();
+  const auto json = dir / "inspect.json", png = dir / "inspect.png";
+  // Without --out only the pixel is traced; with it the image too, and the records are the same samples.
+  CommandResult alone = run("render --size 16x16 --spp 3 --inspect-pixel 8,9 --inspect-out " + json.string());
+  ASSERT_EQ(alone.code, 0) << alone.output;
+  EXPECT_NE(alone.output.find("inspected pixel 8,9: 3 samples"), std::string::npos) << alone.output;
+  std::ifstream f(json);
+  const auto j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["schema"], "workbench-path-inspector/1");
+  EXPECT_EQ(j["pixel"], nlohmann::json::array({8, 9}));
+  EXPECT_EQ(j["size"], nlohmann::json::array({16, 16}));
+  ASSERT_EQ(j["samples"].size(), 3u);
+  EXPECT_EQ(j["pixel_samples"], 3.0);
+  EXPECT_TRUE(j["parameters"].contains("max_bounces"));
+  for (int c = 0; c < 3; ++c) {
+    const double pixel = j["pixel_value"][c], mean = j["estimate"]["mean"][c];
+    EXPECT_NEAR(pixel, mean, 1e-5 * std::max(1.0, pixel));
+  }
+  const auto& s0 = j["samples"][0];
+  for (const char* key : {"index", "jitter", "camera_origin", "camera_direction", "radiance", "accumulated",
+                          "end", "vertex_count", "vertices_truncated", "shadow_rays", "vertices", "escape",
+                          "sum_of_added", "first_non_finite"}) {
+    EXPECT_TRUE(s0.contains(key)) << key;
+  }
+  ASSERT_FALSE(s0["vertices"].empty()) << "pixel 8,9 of the default scene sees the room";
+  const auto& v0 = s0["vertices"][0];
+  for (const char* key : {"bounce",
+                          "position",
+                          "distance",
+                          "incoming",
+                          "geometric_normal",
+                          "shading_normal",
+                          "front_face",
+                          "normal_flipped",
+                          "instance",
+                          "geometry",
+                          "primitive",
+                          "material",
+                          "emitted",
+                          "emission_mis_weight",
+                          "light_samples",
+                          "lights",
+                          "continued",
+                          "lobe",
+                          "lobe_probability",
+                          "direction",
+                          "brdf",
+                          "pdf",
+                          "cosine",
+                          "weight",
+                          "throughput_in",
+                          "rr_probability",
+                          "rr_outcome",
+                          "throughput",
+                          "added"}) {
+    EXPECT_TRUE(v0.contains(key)) << key;
+  }
+  for (const auto& l : v0["lights"]) {
+    for (const char* key : {"kind", "index", "status", "direction", "radiance", "light_pdf", "delta",
+                            "brdf_cos", "brdf_pdf", "mis_weight", "contribution", "distance", "visible"}) {
+      EXPECT_TRUE(l.contains(key)) << key;
+    }
+  }
+
+  const auto json2 = dir / "inspect_image.json";
+  CommandResult withImage = run("render --size 16x16 --spp 3 --inspect-pixel 8,9 --inspect-samples 2 --out " +
+                                png.string() + " --inspect-out " + json2.string());
+  ASSERT_EQ(withImage.code, 0) << withImage.output;
+  EXPECT_TRUE(fs::exists(png));
+  std::ifstream f2(json2);
+  const auto j2 = nlohmann::json::parse(f2);
+  ASSERT_EQ(j2["samples"].size(), 2u);
+  EXPECT_EQ(j2["pixel_samples"], 3.0);
+  EXPECT_EQ(j2["samples"][1]["radiance"], j["samples"][1]["radiance"]) << "the same sample either way";
+}
+
+TEST(Cli, InspectFlagsAreChecked) {
+  const auto dir = tempDir();
+  const std::string out = " --inspect-out " + (dir / "i.json").string();
+  for (const std::string& args :
+       {std::string("--inspect-pixel 3,4"), "--inspect-pixel 16,0" + out, "--inspect-pixel 3" + out,
+        "--inspect-pixel 3,4 --inspect-samples 5" + out, "--inspect-pixel 1,1 --mode hybrid" + out,
+        "--inspect-pixel 1,1 --inspect-out " + (dir / "i.txt").string(),
+        "--inspect-pixel 1,1 --stats x.json" + out, std::string("")}) {
+    CommandResult r = run("render --size 16x16 --spp 4 " + args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_EQ(lineCount(r.output), 1u) << args << ": " << r.output;
+  }
+}

@@ -41,9 +41,10 @@ std::map<std::string, size_t> blockSizes(const std::vector<uint32_t>& spirv) {
   return sizes;
 }
 
-std::map<std::string, size_t> moduleBlocks(const std::string& rel) {
+std::map<std::string, size_t> moduleBlocks(const std::string& rel,
+                                           std::vector<wb::shader::Define> defines = {}) {
   wb::shader::ShaderLibrary lib({.includeRoots = {wb::shaderDir()}, .cacheDir = {}, .printWarnings = false});
-  const auto compiled = lib.compile({wb::shaderDir() / rel});
+  const auto compiled = lib.compile({wb::shaderDir() / rel, std::nullopt, defines});
   return blockSizes(compiled->spirv);
 }
 
@@ -81,4 +82,25 @@ TEST(GpuTypesLayout, HybridAndDisplayBlocksMatchTheHostStructs) {
   const auto display = moduleBlocks("display/display.frag");
   ASSERT_TRUE(display.count("Push"));
   EXPECT_EQ(display.at("Push"), sizeof(DisplayPush));
+}
+
+TEST(GpuTypesLayout, PathInspectorBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  for (const char* stage :
+       {"pathtracer/raygen.rgen", "pathtracer/closesthit.rchit", "pathtracer/miss.rmiss"}) {
+    const auto blocks = moduleBlocks(stage, {{"WB_INSPECT", "1"}});
+    for (const auto& [block, size] :
+         std::map<std::string, size_t>{{"InspectHeaderBlock", sizeof(InspectHeader)},
+                                       {"InspectSampleBlock", sizeof(InspectSample)},
+                                       {"InspectVertexBlock", sizeof(InspectVertex)}}) {
+      if (!blocks.count(block)) continue;  // a stage that does not use it
+      EXPECT_EQ(blocks.at(block), size) << stage << " " << block;
+    }
+  }
+  const auto chit = moduleBlocks("pathtracer/closesthit.rchit", {{"WB_INSPECT", "1"}});
+  EXPECT_TRUE(chit.count("InspectVertexBlock"));
+  const auto raygen = moduleBlocks("pathtracer/raygen.rgen", {{"WB_INSPECT", "1"}});
+  EXPECT_TRUE(raygen.count("InspectSampleBlock") && raygen.count("InspectHeaderBlock"));
+  // The normal build declares none of them.
+  EXPECT_FALSE(moduleBlocks("pathtracer/raygen.rgen").count("InspectSampleBlock"));
 }

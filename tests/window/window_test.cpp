@@ -524,3 +524,90 @@ TEST(Window, QuitsCleanlyAfterAnEnvironmentChangeAndAModeSwitch) {
   r = runWindow("--script " + (dir / "t.txt").string());
   EXPECT_EQ(r.code, 0) << r.output;
 }
+
+namespace {
+
+// Pixels of the image area (right of the panel) in the inspector's pixel marker colour (pure yellow).
+size_t markerPixels(const fs::path& png, int panelWidth) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* px = stbi_load(png.c_str(), &w, &h, &n, 4);
+  if (!px) return 0;
+  size_t count = 0;
+  for (int y = 0; y < h - 24; ++y) {
+    for (int x = panelWidth + 4; x < w; ++x) {
+      const unsigned char* p = px + 4 * (size_t(y) * w + x);
+      count += p[0] > 235 && p[1] > 235 && p[2] < 40;
+    }
+  }
+  stbi_image_free(px);
+  return count;
+}
+
+}  // namespace
+
+// The path inspector in the window: a pixel set by script is recorded by the inspecting variant while the
+// image accumulates; the records' running estimate is the pixel's value, and the overlay marks the pixel.
+TEST(Window, PathInspectorRecordsThePixelAndDrawsItsPath) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("inspect");
+  const fs::path records = dir / "records.json", with = dir / "with.png", without = dir / "without.png";
+  writeFile(dir / "s.txt", "set inspect_pixel 40,60\nwait_samples 4 300\nframes 2\ninspect " +
+                               records.string() + "\nscreenshot " + with.string() +
+                               "\nframes 1\nset inspect_pixel off\nframes 2\n" + "screenshot " +
+                               without.string() + "\n");
+  auto r = runWindow("--spp 4 --script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = readJson(records);
+  EXPECT_EQ(j["pixel"], nlohmann::json::array({40, 60}));
+  ASSERT_EQ(j["samples"].size(), 4u) << "every sample of the target is kept";
+  EXPECT_EQ(j["running_estimate"]["samples"].get<int>() + j["running_estimate"]["dropped"].get<int>(), 4);
+  EXPECT_EQ(j["pixel_samples"], 4.0);
+  for (int c = 0; c < 3; ++c) {
+    const double pixel = j["pixel_value"][c], mean = j["running_estimate"]["mean"][c];
+    EXPECT_NEAR(mean, pixel, 1e-5 * std::max(1.0, pixel)) << j.dump();
+  }
+  for (const auto& s : j["samples"]) EXPECT_FALSE(s["vertices"].empty()) << "pixel 40,60 sees the room";
+  EXPECT_GT(markerPixels(with, 144), 8u) << "the inspected pixel is marked over the image";
+  EXPECT_EQ(markerPixels(without, 144), 0u);
+}
+
+// A click on the image picks the pixel to inspect (synthetic X input through xdotool): the middle of the
+// image area of a 640x480 window (panel 288 px wide, image 352x480, traced at 176x240).
+TEST(Window, AClickPicksThePixelToInspect) {
+  REQUIRE_XVFB();
+  ASSERT_EQ(runShell("command -v xdotool").code, 0) << "xdotool (scripts/setup.sh installs it) is missing";
+  const auto dir = tempDir("inspectclick");
+  const fs::path ready = dir / "ready.json", go = dir / "go", records = dir / "records.json";
+  writeFile(dir / "s.txt", "wait_samples 1 300\nstats " + ready.string() + "\nwait_file " + go.string() +
+                               " 300\nframes 3\ninspect " + records.string() + "\n");
+  const std::string inner = std::string(WB_WORKBENCH_BIN) + " --window 640x480 --script " +
+                            (dir / "s.txt").string() + " & pid=$!; while [ ! -e " + ready.string() +
+                            " ]; do sleep 0.05; done; xdotool mousemove 464 240 click 1; touch " +
+                            go.string() + "; wait $pid";
+  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + WB_XVFB_RUN +
+                    " -a -s '-screen 0 1024x768x24' sh -c \"" + inner + "\"");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = readJson(records);
+  EXPECT_NEAR(j["pixel"][0].get<int>(), 88, 2) << j["pixel"];
+  EXPECT_NEAR(j["pixel"][1].get<int>(), 120, 2) << j["pixel"];
+}
+
+// The heat-map views read their data in the display pass: each shows something else than the image, and
+// nan_source on a scene without NaN/Inf is the image dimmed.
+TEST(Window, HeatMapViewsShowTheirData) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("heatmaps");
+  std::string script = "wait_samples 2 300\n";
+  for (const char* view : {"beauty", "rr_end", "variance", "nan_source"}) {
+    script += std::string("set view ") + view + "\nframes 2\nscreenshot " + (dir / view).string() +
+              ".png\nframes 1\n";
+  }
+  writeFile(dir / "s.txt", script);
+  auto r = runWindow("--spp 2 --rr-start 1 --script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto beauty = dir / "beauty.png";
+  EXPECT_GT(imageAreaDifference(dir / "rr_end.png", beauty, 144), 5.0);
+  EXPECT_GT(imageAreaDifference(dir / "variance.png", beauty, 144), 5.0);
+  EXPECT_GT(imageAreaDifference(dir / "rr_end.png", dir / "variance.png", 144), 5.0);
+  EXPECT_LT(imageAreaMean(dir / "nan_source.png", 144), 0.6 * imageAreaMean(beauty, 144));
+}

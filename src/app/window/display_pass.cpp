@@ -101,6 +101,7 @@ void DisplayPass::writeDescriptors(vk::DescriptorSets& s) {
   s.writeStorageImage(0, WB_DISPLAY_BIND_NORMAL, sources_.normal);
   s.writeStorageImage(0, WB_DISPLAY_BIND_INFO, sources_.info);
   s.writeStorageImage(0, WB_DISPLAY_BIND_PREVIEW, sources_.preview);
+  s.writeStorageImage(0, WB_DISPLAY_BIND_STATS, sources_.stats);
 }
 
 void DisplayPass::record(VkCommandBuffer cmd, const gpu::DisplayPush& push) const {

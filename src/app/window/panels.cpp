@@ -72,6 +72,8 @@ void inspectPanel(PanelContext& c) {
   } else {
     ImGui::TextDisabled("debug views are the path tracer's");
   }
+  if (c.inspector) drawInspectorSection(st, *c.inspector, st.params.mode == render::RenderMode::PathTrace);
+  ImGui::Separator();
   ImGui::TextDisabled("hover the image to pick; click to pin");
   if (!c.pick) {
     ImGui::TextUnformatted("no hit under the cursor");
@@ -310,7 +312,16 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
   ImGui::PushItemWidth(std::floor(ImGui::GetContentRegionAvail().x * 0.55f));
   if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) renderPanel(c);
   if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) statsPanel(c);
-  if (ImGui::CollapsingHeader("Inspect")) inspectPanel(c);
+  // A pixel was just picked: open the Inspect section and scroll the panel to it.
+  const bool showInspect = c.state.inspectOpenPanel > 0;
+  if (showInspect) {
+    --c.state.inspectOpenPanel;
+    ImGui::SetNextItemOpen(true);
+  }
+  if (ImGui::CollapsingHeader("Inspect")) {
+    if (showInspect) ImGui::SetScrollHereY(0.0f);
+    inspectPanel(c);
+  }
   if (ImGui::CollapsingHeader("Lights and environment")) lightsPanel(c);
   if (ImGui::CollapsingHeader("Shaders", c.hot.currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     shadersPanel(c);
@@ -320,6 +331,11 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
 }
 
 void drawOverlays(PanelContext& c, const Rect& view) {
+  if (c.inspector && !c.hybrid) {
+    const float radius = 0.5f * glm::length(c.scene.bounds.max - c.scene.bounds.min);
+    drawInspectorOverlay(c.state, *c.inspector, c.camera.state(), c.traceWidth, c.traceHeight, view,
+                         std::max(radius, 1e-3f));
+  }
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const auto& pt = c.progressive;
   char status[192];

@@ -6,6 +6,7 @@
 
 #include "app/window/camera_controller.h"
 #include "app/window/frame_stats.h"
+#include "app/window/path_inspector_view.h"
 #include "app/window/pixel_picker.h"
 #include "app/window/progressive.h"
 #include "app/window/workbench_state.h"
@@ -43,6 +44,7 @@ struct PanelContext {
   const eval::LiveError* liveError = nullptr;
   std::string modeSwitch;  // the mode being prepared off the frame loop (empty: none)
   double modeSwitchSeconds = 0;
+  const InspectorView* inspector = nullptr;  // the path inspector's records (Inspect tab, image overlay)
 };
 
 // The side panel's width in a window of that width (when shown).

@@ -8,9 +8,9 @@
 namespace wb::app {
 namespace {
 
-const std::set<std::string> kCommands = {"frames", "set",    "screenshot",  "save",         "stats",
-                                         "copy",   "orbit",  "wait_reload", "wait_samples", "reset_camera",
-                                         "reset",  "reload", "quit",        "resize",       "wait_file"};
+const std::set<std::string> kCommands = {
+    "frames",       "set",          "screenshot", "save",   "stats", "copy",   "orbit",     "wait_reload",
+    "wait_samples", "reset_camera", "reset",      "reload", "quit",  "resize", "wait_file", "inspect"};
 
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;
@@ -44,7 +44,7 @@ void Script::addLine(const std::string& line, const std::string& where) {
   const std::string& cmd = c.words[0];
   const size_t need = cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
                       : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" ||
-                              cmd == "wait_samples" || cmd == "wait_file"
+                              cmd == "wait_samples" || cmd == "wait_file" || cmd == "inspect"
                           ? 2
                           : 1;
   if (c.words.size() < need) throw std::runtime_error(where + ": '" + cmd + "' needs more arguments");
@@ -124,6 +124,8 @@ bool Script::step(ScriptHost& host) {
           host.scriptSave(w[1]);
         } else if (cmd == "stats") {
           host.scriptStats(w[1]);
+        } else if (cmd == "inspect") {
+          host.scriptInspect(w[1]);
         } else if (cmd == "copy") {
           std::filesystem::copy_file(w[1], w[2], std::filesystem::copy_options::overwrite_existing);
         } else if (cmd == "resize") {

@@ -9,6 +9,8 @@
 //                            script fails: exit status 1 with the reason)
 //   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails)
 //   wait_file PATH [SECONDS] render until PATH exists (another program's signal; default 60 s, then fails)
+//   inspect FILE.json        the path inspector's records of the inspected pixel now (set inspect_pixel X,Y
+//                            first), as `render --inspect-out` writes them plus the running estimate
 //   orbit DX DY              drag the orbit camera by DX, DY pixels
 //   resize W H               resize the window (the swapchain and the trace size follow)
 //   reset_camera | reset | reload | quit
@@ -17,6 +19,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,6 +35,10 @@ class ScriptHost {
   virtual void scriptOrbit(float dx, float dy) = 0;
   virtual void scriptResize(int width, int height) = 0;
   virtual void scriptCommand(const std::string& name) = 0;  // reset_camera, reset, reload, quit
+  virtual void scriptInspect(const std::string& path) {
+    (void)path;
+    throw std::runtime_error("inspect: no path inspector here");
+  }
   virtual size_t reloadCount() const = 0;
   virtual uint32_t samples() const = 0;
 };

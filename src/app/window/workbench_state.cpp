@@ -51,7 +51,8 @@ glm::vec3 toVec3(const std::string& name, const std::string& v) {
 
 const char* kWindowSettings =
     "scale, preview, budget_ms, vsync, panel, paused, reference PATH.exr (empty = noise estimate), "
-    "sun_direction X,Y,Z, sun_intensity, material.N.roughness|metallic|base_color R,G,B";
+    "sun_direction X,Y,Z, sun_intensity, material.N.roughness|metallic|base_color R,G,B, "
+    "inspect_pixel X,Y|off, inspect_samples N, inspect_on_click, inspect_all";
 
 // The window's own settings (not render parameters). False when `name` is none of them.
 bool applyWindowSetting(WorkbenchState& st, const std::string& name, const std::string& value) {
@@ -73,6 +74,24 @@ bool applyWindowSetting(WorkbenchState& st, const std::string& name, const std::
     st.paused = toBool(name, value);
   } else if (name == "reference") {
     st.referencePath = value;
+  } else if (name == "inspect_pixel") {
+    if (value == "off") {
+      st.inspectPixel.reset();
+    } else {
+      const auto comma = value.find(',');
+      if (comma == std::string::npos) throw std::invalid_argument("inspect_pixel: expected X,Y or off");
+      st.inspectPixel =
+          glm::uvec2(toUint(name, value.substr(0, comma)), toUint(name, value.substr(comma + 1)));
+      st.inspectOpenPanel = 2;
+    }
+  } else if (name == "inspect_samples") {
+    const uint32_t n = toUint(name, value);
+    if (n < 1 || n > 4096) throw std::invalid_argument("inspect_samples: expected 1 .. 4096");
+    st.inspectSamples = n;
+  } else if (name == "inspect_on_click") {
+    st.inspectOnClick = toBool(name, value);
+  } else if (name == "inspect_all") {
+    st.inspectAllSamples = toBool(name, value);
   } else if (name == "sun_direction" || name == "sun_intensity") {
     if (st.lights.empty()) throw std::invalid_argument(name + ": the scene has no directional light");
     auto& l = st.lights[0];

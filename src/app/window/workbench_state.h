@@ -31,6 +31,19 @@ struct WorkbenchState {
   std::vector<gpu::DirectionalLight> lights;  // live copies, edited in Lights
   bool lightsDirty = false;
 
+  // The path inspector (Inspect tab): the pixel of the trace image whose paths are recorded (nullopt: off;
+  // setting one switches the path tracer to its inspecting variant and restarts accumulation), how many of
+  // the latest samples are kept, which one the table and the overlay show (-1: the latest), whether a click
+  // on the image picks the pixel.
+  std::optional<glm::uvec2> inspectPixel;
+  uint32_t inspectSamples = 64;
+  int inspectShown = -1;
+  bool inspectOnClick = true;
+  bool inspectAllSamples = false;  // the overlay draws every kept sample's path, not only the shown one
+  // A pixel was picked: the panel opens the Inspect section and scrolls to it for this many frames (the
+  // panel's scroll range includes the section's contents from the frame after it opened).
+  int inspectOpenPanel = 0;
+
   // One-shot requests (the frame loop clears them).
   bool resetAccumulation = false;
   bool resetCamera = false;

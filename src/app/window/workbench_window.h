@@ -76,6 +76,7 @@ class WorkbenchWindow : public ScriptHost {
   }
   void scriptCommand(const std::string& name) override;
   void scriptResize(int width, int height) override { glfwSetWindowSize(window_, width, height); }
+  void scriptInspect(const std::string& path) override;  // workbench_window_inspect.cpp
   size_t reloadCount() const override { return hot_->history().size(); }
   uint32_t samples() const override {
     if (activeHybrid()) return activeHybrid()->samplesAccumulated();
@@ -110,6 +111,11 @@ class WorkbenchWindow : public ScriptHost {
   uint32_t currentSamples() const;  // finished samples (path tracer) or frames (hybrid modes)
   eval::ImageRGBA currentImage();   // linear radiance of what is shown (waits for the device)
   void updateLiveError();
+  // The path inspector (workbench_window_inspect.cpp): the state's pixel to the path tracer (true when that
+  // restarted accumulation), the records read after a frame, a click on the image picking the pixel.
+  bool applyInspection();
+  void updateInspection();
+  void inspectClick(const Rect& image, glm::vec2 at);
 
   GLFWwindow* window_;
   WindowOptions options_;
@@ -134,6 +140,7 @@ class WorkbenchWindow : public ScriptHost {
   CameraController camera_;
   bool cameraChanged_ = true;
   std::optional<PickResult> pick_;
+  InspectorView inspector_;
   bool pickPinned_ = false;
   glm::vec2 lastMouse_{-1.0f};
   glm::vec2 pressMouse_{0.0f};

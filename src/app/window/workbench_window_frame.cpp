@@ -181,6 +181,7 @@ int WorkbenchWindow::run() {
       }
       counters_ = session_->renderer().readCounters();
       updateLiveError();
+      updateInspection();
       if (!captureTarget_.empty()) {
         capture_->write(captureTarget_);
         std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
@@ -269,7 +270,9 @@ int WorkbenchWindow::run() {
                        : progressive_->secondsSinceReset(),
         &liveError_,
         modeSwitch_,
-        std::chrono::duration<double>(Clock::now() - modeSwitchStart_).count()};
+        std::chrono::duration<double>(Clock::now() - modeSwitchStart_).count(),
+
+        &inspector_};
     const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
     panelWidth_ = drawSidePanel(pc, W, H);
     const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
@@ -314,7 +317,8 @@ int WorkbenchWindow::run() {
     display_->setSources({hybrid ? hybrid->outputImage().view() : tracer.accumulationImage().view(),
                           tracer.aovImage(render::Aov::Albedo).view(),
                           tracer.aovImage(render::Aov::Normal).view(),
-                          tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view()});
+                          tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view(),
+                          tracer.aovImage(render::Aov::Stats).view()});
 
     auto index = swapchain_->acquire(imageAvailable_);
     if (!index) {

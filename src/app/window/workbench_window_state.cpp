@@ -83,6 +83,7 @@ void WorkbenchWindow::applyState() {
   }
   if (st.params.mode != applied_.params.mode) restart = true;
   applyMode();
+  if (applyInspection()) restart = true;
   if (st.referencePath != referenceTried_) {
     referenceTried_ = st.referencePath;
     if (st.referencePath.empty()) {
@@ -167,6 +168,7 @@ void WorkbenchWindow::handleInput(const Rect& view, float dt) {
     if ((orbit && (middle || right || (left && shift))) || (!orbit && middle)) in.dragPan = delta;
   }
   if (clicked) pickPinned_ = !pickPinned_;  // a click pins the pick
+  if (clicked) inspectClick(imageRect(view), pressMouse_);
   if (overView) in.wheel = io.MouseWheel;
   if (!io.WantCaptureKeyboard && camera_.mode() == CameraMode::Fly) {
     auto key = [&](int k) { return glfwGetKey(window_, k) == GLFW_PRESS ? 1.0f : 0.0f; };

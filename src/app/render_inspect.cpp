@@ -1,0 +1,93 @@
+#include "app/render_inspect.h"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/inspect_json.h"
+#include "app/parameter_json.h"
+#include "common/json_text.h"
+
+namespace wb::app {
+
+void finishInspectFlags(RenderCommand& c) {
+  const bool any = !c.inspectPixel.empty() || !c.inspectOut.empty() || c.inspectSamples != 0;
+  if (!any) {
+    if (c.out.empty()) throw std::invalid_argument("--out: required (or --inspect-pixel with --inspect-out)");
+    return;
+  }
+  if (c.inspectPixel.empty())
+    throw std::invalid_argument("--inspect-pixel: required by the path inspector's flags");
+  if (c.inspectOut.empty()) throw std::invalid_argument("--inspect-out: required with --inspect-pixel");
+  unsigned x = 0, y = 0;
+  char comma = 0, extra = 0;
+  std::istringstream in(c.inspectPixel);
+  if (c.inspectPixel.find_first_not_of("0123456789,") != std::string::npos || !(in >> x >> comma >> y) ||
+      comma != ',' || (in >> extra)) {
+    throw std::invalid_argument("--inspect-pixel: expected X,Y, got '" + c.inspectPixel + "'");
+  }
+  const auto& s = c.options.params.render;
+  if (x >= s.width || y >= s.height) {
+    throw std::invalid_argument("--inspect-pixel: " + c.inspectPixel + " is outside the " +
+                                std::to_string(s.width) + "x" + std::to_string(s.height) + " image");
+  }
+  if (c.options.params.mode != render::RenderMode::PathTrace)
+    throw std::invalid_argument(
+        "--inspect-pixel: the path inspector records the path tracer (--mode pathtrace)");
+  if (c.out.empty() && (!c.stats.empty() || !c.reference.empty() || !c.options.aov.empty()))
+    throw std::invalid_argument("--stats, --reference and --aov describe an image: they need --out");
+  if (c.inspectSamples == 0) c.inspectSamples = s.spp;
+  if (c.inspectSamples > s.spp) {
+    throw std::invalid_argument("--inspect-samples: at most --spp (" + std::to_string(s.spp) + "), got " +
+                                std::to_string(c.inspectSamples));
+  }
+  if (c.inspectSamples > render::kMaxInspectSamples)
+    throw std::invalid_argument("--inspect-samples: at most " + std::to_string(render::kMaxInspectSamples));
+  if (std::filesystem::path(c.inspectOut).extension() != ".json")
+    throw std::invalid_argument("--inspect-out must end in .json, got '" + c.inspectOut + "'");
+  c.inspectX = x;
+  c.inspectY = y;
+}
+
+void startInspection(const RenderCommand& c, render::RenderSession& session) {
+  render::InspectRequest r;
+  r.x = c.inspectX;
+  r.y = c.inspectY;
+  r.samples = c.inspectSamples;
+  session.pathTracer().setInspection(r);
+}
+
+void writeInspection(const RenderCommand& c, render::RenderSession& session, uint32_t spp) {
+  auto& tracer = session.pathTracer();
+  const auto samples = render::inspectedSamples(tracer.readInspection());
+  const auto accum = tracer.readAccumulation();
+  const auto& s = tracer.settings();
+  InspectContext ctx;
+  ctx.x = c.inspectX;
+  ctx.y = c.inspectY;
+  ctx.width = s.width;
+  ctx.height = s.height;
+  ctx.samplesRequested = c.inspectSamples;
+  ctx.scene = session.scene().sourcePath.string();
+  const size_t i = (size_t(c.inspectY) * s.width + c.inspectX) * 4;
+  ctx.pixelValue = glm::vec4(accum[i], accum[i + 1], accum[i + 2], accum[i + 3]);
+  ctx.spp = spp;
+  auto j = inspectJson(ctx, samples);
+  j["parameters"] = parametersJson(c.options.params);
+  j["device"] = session.context().deviceName();
+  std::ofstream f(c.inspectOut);
+  f << jsonText(j, 2) << "\n";
+  if (!f.flush()) throw std::runtime_error("cannot write --inspect-out file '" + c.inspectOut + "'");
+  std::printf("inspected pixel %u,%u: %zu samples -> %s\n", c.inspectX, c.inspectY, samples.size(),
+              c.inspectOut.c_str());
+}
+
+int runInspectOnly(const RenderCommand& c, render::RenderSession& session) {
+  startInspection(c, session);
+  session.pathTracer().renderPixel(c.inspectX, c.inspectY, c.inspectSamples);
+  writeInspection(c, session, c.inspectSamples);
+  return 0;
+}
+
+}  // namespace wb::app

@@ -1,0 +1,75 @@
+// The workbench window's path inspector: the Inspect tab's pixel to the path tracer, the records read after
+// each frame, the pixel picked by a click, and the `inspect FILE.json` script command.
+#include <fstream>
+#include <stdexcept>
+
+#include "app/inspect_json.h"
+#include "app/window/workbench_window.h"
+#include "common/json_text.h"
+
+namespace wb::app {
+
+bool WorkbenchWindow::applyInspection() {
+  auto& tracer = session_->pathTracer();
+  std::optional<render::InspectRequest> want;
+  if (state_.inspectPixel && state_.params.mode == render::RenderMode::PathTrace &&
+      state_.inspectPixel->x < progressive_->targetWidth() &&
+      state_.inspectPixel->y < progressive_->targetHeight()) {
+    render::InspectRequest r;
+    r.x = state_.inspectPixel->x;
+    r.y = state_.inspectPixel->y;
+    r.samples = state_.inspectSamples;
+    r.ring = true;  // the latest samples stay; the running estimate sees every one
+    want = r;
+  }
+  if (want == tracer.inspection()) return false;
+  if (tracer.setInspection(want)) hot_->addRenderer(tracer);  // the other variant's program
+  state_.inspectShown = -1;
+  return true;
+}
+
+void WorkbenchWindow::updateInspection() {
+  // The frame's traces have finished: every sample below the count is complete. The preview's samples are of
+  // another resolution: none count.
+  const uint32_t finished = progressive_->inPreview() ? 0 : progressive_->samples();
+  inspector_.update(session_->pathTracer(), finished, progressive_->generation());
+}
+
+void WorkbenchWindow::inspectClick(const Rect& image, glm::vec2 at) {
+  if (!state_.inspectOnClick || state_.params.mode != render::RenderMode::PathTrace) return;
+  if (!image.contains(at.x, at.y)) return;
+  const glm::vec2 rel = (at - glm::vec2(image.x, image.y)) / glm::vec2(image.w, image.h);
+  const glm::uvec2 size(progressive_->targetWidth(), progressive_->targetHeight());
+  state_.inspectPixel = glm::min(glm::uvec2(rel * glm::vec2(size)), size - 1u);
+  state_.inspectOpenPanel = 2;
+}
+
+void WorkbenchWindow::scriptInspect(const std::string& path) {
+  const auto& tracer = session_->pathTracer();
+  if (!tracer.inspection())
+    throw std::runtime_error("inspect: no pixel is inspected (set inspect_pixel X,Y)");
+  updateInspection();
+  const auto& s = tracer.settings();
+  InspectContext ctx;
+  ctx.x = tracer.inspection()->x;
+  ctx.y = tracer.inspection()->y;
+  ctx.width = s.width;
+  ctx.height = s.height;
+  ctx.samplesRequested = tracer.inspection()->samples;
+  ctx.scene = session_->scene().sourcePath.string();
+  const auto accum = tracer.readAccumulation();  // the device is idle at a script step
+  const size_t i = (size_t(ctx.y) * s.width + ctx.x) * 4;
+  if (i + 3 < accum.size()) ctx.pixelValue = glm::vec4(accum[i], accum[i + 1], accum[i + 2], accum[i + 3]);
+  ctx.spp = tracer.samplesAccumulated();
+  auto j = inspectJson(ctx, inspector_.samples());
+  const auto& e = inspector_.estimate();
+  j["running_estimate"] = {{"samples", e.count()},
+                           {"dropped", e.dropped()},
+                           {"mean", {e.mean().x, e.mean().y, e.mean().z}},
+                           {"variance", {e.variance().x, e.variance().y, e.variance().z}}};
+  std::ofstream f(path);
+  f << jsonText(j, 2) << "\n";
+  if (!f.flush()) throw std::runtime_error("inspect: cannot write '" + path + "'");
+}
+
+}  // namespace wb::app

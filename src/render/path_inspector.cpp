@@ -1,0 +1,170 @@
+#include "render/path_inspector.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shared/brdf.h"
+
+namespace wb::render {
+namespace {
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The first set bit of a vertex's or a sample's non-finite terms, in the order they are computed.
+std::optional<uint32_t> firstTerm(uint32_t bits) {
+  for (uint32_t bit = 1; bit <= WB_INSPECT_NAN_RADIANCE; bit <<= 1)
+    if (bits & bit) return bit;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<InspectedSample> inspectedSamples(const InspectBuffers& b, uint32_t sampleLimit) {
+  std::vector<InspectedSample> out;
+  const uint32_t capacity = b.header.vertexCapacity;
+  for (size_t slot = 0; slot < b.samples.size(); ++slot) {
+    const gpu::InspectSample& rec = b.samples[slot];
+    if (rec.sampleIndex == WB_INSPECT_NO_SAMPLE || rec.sampleIndex >= sampleLimit) continue;
+    InspectedSample s;
+    s.record = rec;
+    const uint32_t recorded = std::min(rec.vertexCount, capacity);
+    s.truncated = rec.vertexCount > capacity;
+    for (uint32_t k = 0; k < recorded; ++k) {
+      InspectedVertex v;
+      v.record = b.vertices.at(slot * capacity + k);
+      const uint32_t lights = std::min(v.record.lightSamples, WB_INSPECT_MAX_LIGHT_SAMPLES);
+      v.lights.assign(v.record.lights, v.record.lights + lights);
+      glm::vec3 reaching = v.record.emitted;
+      for (const auto& l : v.lights) {
+        if (l.status == WB_INSPECT_NEE_TRACED && l.visible) reaching += l.contribution;
+      }
+      v.added = v.record.throughputIn * reaching;
+      s.sum += v.added;
+      const uint32_t bits = v.record.nonFinite | v.record.pathNonFinite;
+      if (!s.firstNonFinite) {
+        if (auto term = firstTerm(bits)) s.firstNonFinite = NonFiniteSource{int(k), *term};
+      }
+      s.vertices.push_back(std::move(v));
+    }
+    if (rec.escaped) {
+      s.escapeAdded = rec.escapeThroughput * rec.escapeRadiance;
+      s.sum += s.escapeAdded;
+    }
+    if (!s.firstNonFinite) {
+      if (auto term = firstTerm(rec.nonFinite)) s.firstNonFinite = NonFiniteSource{-1, *term};
+    }
+    out.push_back(std::move(s));
+  }
+  std::sort(out.begin(), out.end(), [](const InspectedSample& a, const InspectedSample& b) {
+    return a.record.sampleIndex < b.record.sampleIndex;
+  });
+  return out;
+}
+
+void RunningEstimate::add(const glm::dvec3& value) {
+  ++count_;
+  const glm::dvec3 delta = value - mean_;
+  mean_ += delta / double(count_);
+  m2_ += delta * (value - mean_);
+}
+
+RunningEstimate estimateOf(const std::vector<InspectedSample>& samples) {
+  RunningEstimate e;
+  for (const auto& s : samples) {
+    if (s.record.accumulated && finite(s.record.radiance)) {
+      e.add(glm::dvec3(s.record.radiance));
+    } else {
+      e.addDropped();
+    }
+  }
+  return e;
+}
+
+const char* inspectEndName(uint32_t end) {
+  switch (end) {
+    case WB_INSPECT_END_ESCAPED:
+      return "escaped";
+    case WB_INSPECT_END_ABSORBED:
+      return "absorbed";
+    case WB_INSPECT_END_MAX_BOUNCES:
+      return "max_bounces";
+    case WB_INSPECT_END_RUSSIAN_ROULETTE:
+      return "russian_roulette";
+    case WB_INSPECT_END_ZERO_THROUGHPUT:
+      return "zero_throughput";
+    default:
+      return "unknown";
+  }
+}
+
+const char* inspectLobeName(uint32_t lobe) {
+  return lobe == WB_LOBE_SPECULAR ? "specular" : "diffuse";
+}
+
+const char* inspectRrName(uint32_t outcome) {
+  switch (outcome) {
+    case WB_INSPECT_RR_SURVIVED:
+      return "survived";
+    case WB_INSPECT_RR_TERMINATED:
+      return "terminated";
+    default:
+      return "not_applied";
+  }
+}
+
+const char* inspectLightKindName(uint32_t kind) {
+  switch (kind) {
+    case WB_INSPECT_LIGHT_DIRECTIONAL:
+      return "directional";
+    case WB_INSPECT_LIGHT_ENVIRONMENT:
+      return "environment";
+    case WB_INSPECT_LIGHT_EMITTER:
+      return "emitter";
+    default:
+      return "unknown";
+  }
+}
+
+const char* inspectLightStatusName(uint32_t status) {
+  switch (status) {
+    case WB_INSPECT_NEE_TRACED:
+      return "traced";
+    case WB_INSPECT_NEE_NO_SAMPLE:
+      return "no_sample";
+    case WB_INSPECT_NEE_BELOW_SURFACE:
+      return "below_surface";
+    case WB_INSPECT_NEE_ZERO_BRDF:
+      return "zero_brdf";
+    default:
+      return "unknown";
+  }
+}
+
+const char* inspectNonFiniteName(uint32_t term) {
+  switch (term) {
+    case WB_INSPECT_NAN_SHADING_NORMAL:
+      return "shading_normal";
+    case WB_INSPECT_NAN_EMISSION:
+      return "emission";
+    case WB_INSPECT_NAN_LIGHT:
+      return "light_sample";
+    case WB_INSPECT_NAN_BRDF:
+      return "brdf";
+    case WB_INSPECT_NAN_PDF:
+      return "pdf";
+    case WB_INSPECT_NAN_WEIGHT:
+      return "brdf_weight";
+    case WB_INSPECT_NAN_THROUGHPUT:
+      return "throughput";
+    case WB_INSPECT_NAN_ENVIRONMENT:
+      return "environment";
+    case WB_INSPECT_NAN_RADIANCE:
+      return "sample_sum";
+    default:
+      return "unknown";
+  }
+}
+
+}  // namespace wb::render
