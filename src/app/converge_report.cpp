@@ -139,7 +139,8 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
   md << "- Errors are averaged over the runs; variance is the mean per-pixel variance between runs (the "
         "noise "
         "part of the MSE), bias^2 ~ MSE - variance (when the reference is itself a render, its own noise is "
-        "part of this bias^2 floor). Each run's seed is an independent randomisation with every sampler (owen: "
+        "part of this bias^2 floor). Each run's seed is an independent randomisation with every sampler "
+        "(owen: "
         "its own Owen scrambles; sobol: every dimension its own random shift; pcg: its own hashes). Hybrid "
         "modes (`--mode hybrid|reflections`) count frames as spp; their bias^2 is what the approximation "
         "costs against the path-traced reference. Efficiency = 1 / (MSE x time).\n";

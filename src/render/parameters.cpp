@@ -131,10 +131,10 @@ std::vector<ParameterInfo> makeList() {
   l.push_back(boolean("mis", "--no-mis", false, "Render", "MIS",
                       "MIS of light and BRDF sampling (--no-mis: light sampling only)", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.mis; }));
-  l.push_back(choice<SamplerKind>("sampler", "Render", "sampler",
-                                  "sample sequence: owen (Owen-scrambled Sobol), sobol (Sobol + blue noise), pcg",
-                                  samplerNames(),
-                                  kPathTraceMode, [](P& p) -> SamplerKind& { return p.render.sampler; }));
+  l.push_back(choice<SamplerKind>(
+      "sampler", "Render", "sampler",
+      "sample sequence: owen (Owen-scrambled Sobol), sobol (Sobol + blue noise), pcg", samplerNames(),
+      kPathTraceMode, [](P& p) -> SamplerKind& { return p.render.sampler; }));
   l.push_back(unsignedInt("seed", "Render", "seed", "random seed", 0, 4294967295.0, 0, 0, kAllModes,
                           [](P& p) -> uint32_t& { return p.render.seed; }));
   l.push_back(boolean("generic", "--generic", true, "Render", "generic shaders",

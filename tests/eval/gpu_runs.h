@@ -6,8 +6,9 @@
 
 namespace wb::testing {
 
-inline std::vector<eval::ImageRGBA> renderRuns(render::RenderSession& session, render::RenderSettings settings,
-                                               uint32_t runs, uint32_t spp, uint32_t firstSeed,
+inline std::vector<eval::ImageRGBA> renderRuns(render::RenderSession& session,
+                                               render::RenderSettings settings, uint32_t runs, uint32_t spp,
+                                               uint32_t firstSeed,
                                                render::SamplerKind sampler = render::SamplerKind::Pcg) {
   // Independent runs need independent randomisations: PCG samples are independent across seeds, and so are
   // owen's (every seed its own Owen scrambles and index shuffles). The sobol sampler's seeds shift its

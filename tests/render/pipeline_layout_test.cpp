@@ -39,6 +39,7 @@ TEST(PathTracerLayout, ReflectedBindingsMatchTheSharedHeader) {
       {WB_BIND_AOV_ALBEDO, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
       {WB_BIND_AOV_NORMAL, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
       {WB_BIND_AOV_INFO, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
+      {WB_BIND_AOV_STATS, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, rgen, false}},
       {WB_BIND_COUNTERS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen, false}},
       {WB_BIND_BLUE_NOISE, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen | chit, false}},
       {WB_BIND_SOBOL, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen | chit, false}},

@@ -8,8 +8,8 @@
 
 namespace wb::testing {
 
-Estimate estimateMean(render::RenderSession& session, render::RenderSettings settings, int batches, uint32_t spp,
-                      uint32_t seedBase, render::SamplerKind sampler) {
+Estimate estimateMean(render::RenderSession& session, render::RenderSettings settings, int batches,
+                      uint32_t spp, uint32_t seedBase, render::SamplerKind sampler) {
   settings.sampler = sampler;
   const size_t pixels = size_t(settings.width) * settings.height;
   std::vector<double> sum(pixels, 0.0), sum2(pixels, 0.0);

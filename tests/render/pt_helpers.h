@@ -22,8 +22,9 @@ struct Estimate {
 // an independent randomisation per seed too, sobol is not). Per pixel p the batch values x_pk are iid, so the
 // image mean M = sum_pk x_pk / (P K) has Var(M) = sum_p Var(x_p) / (K P^2); Var(x_p) is estimated by the
 // unbiased per-pixel sample variance across batches.
-Estimate estimateMean(render::RenderSession& session, render::RenderSettings settings, int batches, uint32_t spp,
-                      uint32_t seedBase, render::SamplerKind sampler = render::SamplerKind::Pcg);
+Estimate estimateMean(render::RenderSession& session, render::RenderSettings settings, int batches,
+                      uint32_t spp, uint32_t seedBase,
+                      render::SamplerKind sampler = render::SamplerKind::Pcg);
 
 // Writes a small equirectangular Radiance .hdr (rgb floats, row 0 = top) and returns its path (temp dir).
 std::filesystem::path writeHdr(const std::string& name, int width, int height, const std::vector<float>& rgb);
