@@ -318,6 +318,7 @@ WB_NAMESPACE_END
 #define WB_BIND_HYBRID_HISTORY 47    // rgba16f storage image: r shadow, g AO running averages
 #define WB_BIND_REFLECTION 48        // rgba16f storage image: rgb reflected radiance, a 1 where traced
 #define WB_BIND_HYBRID_OUTPUT 49     // rgba32f storage image: composited linear radiance
+#define WB_BIND_HYBRID_INSPECT 50    // storage buffer HybridInspectRecord: the rays of the inspected pixel
 
 #define WB_HYBRID_FLAG_REFLECTIONS 1u  // the reflection pass ran: composite uses WB_BIND_REFLECTION
 #define WB_HYBRID_FLAG_AO 2u           // ambient occlusion rays are traced
@@ -347,8 +348,56 @@ struct HybridUniforms {
   uint envMapPresent;
   uint seed;
   float reflectionMinMetallic;   // ... and metallic at least this (0 = smooth dielectrics too)
+  uint inspectX;  // the pixel whose rays are recorded in WB_BIND_HYBRID_INSPECT (WB_HYBRID_NO_INSPECT: none)
+  uint inspectY;
+};
+
+#define WB_HYBRID_NO_INSPECT 0xffffffffu
+#define WB_HYBRID_INSPECT_MAX_AO 64u          // AO rays recorded (ao_rays is at most 64)
+#define WB_HYBRID_INSPECT_MAX_REFLECTIONS 16u  // reflection bounces recorded (reflection_depth is at most 16)
+
+// A shadow or AO ray of the inspected pixel.
+struct HybridInspectRay {
+  vec3 direction;
+  uint traced;   // 0: not traced (a sun below the surface)
+  vec3 origin;
+  uint visible;  // 1: nothing hit within its length (lit / open)
+};
+
+// One bounce of the inspected pixel's reflection.
+struct HybridInspectBounce {
+  vec3 direction;      // of the ray traced
+  uint hit;            // 0: it escaped to the environment
+  vec3 position;       // the hit
+  float roughness;
+  vec3 normal;         // shading normal at the hit
+  float metallic;
+  vec3 throughput;     // of the ray traced
+  float sunVisible;    // the hit's shadow ray (0 also when the sun is below it)
+  vec3 added;          // radiance this bounce added to the reflection (throughput included)
+  float pad0;
+};
+
+// The rays of the inspected pixel in the last frame: written by the shadow/AO raygen (G-buffer point, shadow and
+// AO rays, this frame's values and the temporal averages) and the reflection raygen.
+struct HybridInspectRecord {
+  uint frameIndex;   // the frame that wrote it (WB_HYBRID_NO_INSPECT: none yet)
+  uint covered;      // 1: the G-buffer has a surface at the pixel
+  uint aoRays;
+  uint reflectionBounces;  // recorded bounces (0: no reflection traced)
+  vec3 position;
+  float shadow;      // this frame's sun visibility
+  vec3 normal;
+  float ao;          // this frame's open fraction
+  float shadowAverage;  // what the shadow mask holds (temporal average)
+  float aoAverage;
+  uint reflected;    // 1: the reflection pass traced this pixel
+  float pad0;
+  vec3 reflection;   // the reflected radiance the pass wrote
   float pad1;
-  float pad2;
+  HybridInspectRay shadowRay;
+  HybridInspectRay aoRay[WB_HYBRID_INSPECT_MAX_AO];
+  HybridInspectBounce bounces[WB_HYBRID_INSPECT_MAX_REFLECTIONS];
 };
 
 // Push constants of the G-buffer draw: one draw per (instance, primitive).

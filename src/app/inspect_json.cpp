@@ -1,5 +1,6 @@
 #include "app/inspect_json.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace wb::app {
@@ -127,6 +128,52 @@ json inspectJson(const InspectContext& c, const std::vector<render::InspectedSam
             {"standard_error",
              vec(e.count() > 0 ? glm::sqrt(e.variance() / double(e.count())) : glm::dvec3(0.0))}}},
           {"samples", list}};
+}
+
+json hybridInspectJson(const InspectContext& c, const gpu::HybridInspectRecord& r, const std::string& mode) {
+  auto ray = [](const gpu::HybridInspectRay& x) {
+    return json{{"direction", vec(x.direction)},
+                {"origin", vec(x.origin)},
+                {"traced", x.traced != 0},
+                {"visible", x.traced != 0 && x.visible != 0}};
+  };
+  json ao = json::array();
+  for (uint32_t i = 0; i < std::min(r.aoRays, WB_HYBRID_INSPECT_MAX_AO); ++i) ao.push_back(ray(r.aoRay[i]));
+  json bounces = json::array();
+  for (uint32_t i = 0; i < std::min(r.reflectionBounces, WB_HYBRID_INSPECT_MAX_REFLECTIONS); ++i) {
+    const auto& b = r.bounces[i];
+    json j = {{"direction", vec(b.direction)},
+              {"hit", b.hit != 0},
+              {"throughput", vec(b.throughput)},
+              {"added", vec(b.added)}};
+    if (b.hit) {
+      j["position"] = vec(b.position);
+      j["normal"] = vec(b.normal);
+      j["roughness"] = number(b.roughness);
+      j["metallic"] = number(b.metallic);
+      j["sun_visible"] = b.sunVisible > 0.0f;
+    }
+    bounces.push_back(j);
+  }
+  const bool written = r.frameIndex != WB_HYBRID_NO_INSPECT;
+  json j = {{"schema", "workbench-hybrid-inspector/1"},
+            {"scene", c.scene},
+            {"mode", mode},
+            {"pixel", json::array({c.x, c.y})},
+            {"size", json::array({c.width, c.height})},
+            {"frames", c.spp},
+            {"pixel_value", vec(glm::vec3(c.pixelValue))},
+            {"recorded", written},
+            {"frame", written ? json(r.frameIndex) : json(nullptr)},
+            {"covered", written && r.covered != 0}};
+  if (!written || !r.covered) return j;
+  j["position"] = vec(r.position);
+  j["normal"] = vec(r.normal);
+  j["shadow"] = {
+      {"ray", ray(r.shadowRay)}, {"visibility", number(r.shadow)}, {"average", number(r.shadowAverage)}};
+  j["ao"] = {{"rays", ao}, {"open", number(r.ao)}, {"average", number(r.aoAverage)}};
+  j["reflection"] = r.reflected ? json{{"radiance", vec(r.reflection)}, {"bounces", bounces}} : json(nullptr);
+  return j;
 }
 
 }  // namespace wb::app

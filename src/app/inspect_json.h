@@ -23,5 +23,9 @@ struct InspectContext {
 nlohmann::json inspectJson(const InspectContext& context,
                            const std::vector<render::InspectedSample>& samples);
 nlohmann::json inspectSampleJson(const render::InspectedSample& sample);
+// The hybrid modes' record of the pixel's shadow, AO and reflection rays in the last frame
+// ("workbench-hybrid-inspector/1").
+nlohmann::json hybridInspectJson(const InspectContext& context, const gpu::HybridInspectRecord& record,
+                                 const std::string& mode);
 
 }  // namespace wb::app

@@ -32,11 +32,17 @@ void finishInspectFlags(RenderCommand& c) {
     throw std::invalid_argument("--inspect-pixel: " + c.inspectPixel + " is outside the " +
                                 std::to_string(s.width) + "x" + std::to_string(s.height) + " image");
   }
-  if (c.options.params.mode != render::RenderMode::PathTrace)
-    throw std::invalid_argument(
-        "--inspect-pixel: the path inspector records the path tracer (--mode pathtrace)");
   if (c.out.empty() && (!c.stats.empty() || !c.reference.empty() || !c.options.aov.empty()))
     throw std::invalid_argument("--stats, --reference and --aov describe an image: they need --out");
+  if (std::filesystem::path(c.inspectOut).extension() != ".json")
+    throw std::invalid_argument("--inspect-out must end in .json, got '" + c.inspectOut + "'");
+  c.inspectX = x;
+  c.inspectY = y;
+  if (c.options.params.mode != render::RenderMode::PathTrace) {  // the hybrid modes' rays of the last frame
+    if (c.inspectSamples != 0)
+      throw std::invalid_argument("--inspect-samples: the hybrid modes record the last frame's rays");
+    return;
+  }
   if (c.inspectSamples == 0) c.inspectSamples = s.spp;
   if (c.inspectSamples > s.spp) {
     throw std::invalid_argument("--inspect-samples: at most --spp (" + std::to_string(s.spp) + "), got " +
@@ -44,13 +50,13 @@ void finishInspectFlags(RenderCommand& c) {
   }
   if (c.inspectSamples > render::kMaxInspectSamples)
     throw std::invalid_argument("--inspect-samples: at most " + std::to_string(render::kMaxInspectSamples));
-  if (std::filesystem::path(c.inspectOut).extension() != ".json")
-    throw std::invalid_argument("--inspect-out must end in .json, got '" + c.inspectOut + "'");
-  c.inspectX = x;
-  c.inspectY = y;
 }
 
 void startInspection(const RenderCommand& c, render::RenderSession& session) {
+  if (auto* hybrid = session.hybrid()) {
+    hybrid->setInspectPixel(glm::uvec2(c.inspectX, c.inspectY));
+    return;
+  }
   render::InspectRequest r;
   r.x = c.inspectX;
   r.y = c.inspectY;
@@ -59,6 +65,27 @@ void startInspection(const RenderCommand& c, render::RenderSession& session) {
 }
 
 void writeInspection(const RenderCommand& c, render::RenderSession& session, uint32_t spp) {
+  if (auto* hybrid = session.hybrid()) {
+    InspectContext ctx;
+    ctx.x = c.inspectX;
+    ctx.y = c.inspectY;
+    ctx.width = hybrid->settings().width;
+    ctx.height = hybrid->settings().height;
+    ctx.scene = session.scene().sourcePath.string();
+    ctx.spp = spp;
+    const auto out = hybrid->readOutput();
+    const size_t i = (size_t(c.inspectY) * ctx.width + c.inspectX) * 4;
+    ctx.pixelValue = glm::vec4(out[i], out[i + 1], out[i + 2], 1.0f);
+    auto j = hybridInspectJson(ctx, hybrid->readInspection(), render::renderModeName(session.mode()));
+    j["parameters"] = parametersJson(c.options.params);
+    j["device"] = session.context().deviceName();
+    std::ofstream f(c.inspectOut);
+    f << jsonText(j, 2) << "\n";
+    if (!f.flush()) throw std::runtime_error("cannot write --inspect-out file '" + c.inspectOut + "'");
+    std::printf("inspected pixel %u,%u of the last frame -> %s\n", c.inspectX, c.inspectY,
+                c.inspectOut.c_str());
+    return;
+  }
   auto& tracer = session.pathTracer();
   const auto samples = render::inspectedSamples(tracer.readInspection());
   const auto accum = tracer.readAccumulation();
@@ -85,6 +112,11 @@ void writeInspection(const RenderCommand& c, render::RenderSession& session, uin
 
 int runInspectOnly(const RenderCommand& c, render::RenderSession& session) {
   startInspection(c, session);
+  if (session.hybrid()) {  // a hybrid frame is the whole image
+    session.render(c.options.params.render.spp);
+    writeInspection(c, session, c.options.params.render.spp);
+    return 0;
+  }
   session.pathTracer().renderPixel(c.inspectX, c.inspectY, c.inspectSamples);
   writeInspection(c, session, c.inspectSamples);
   return 0;

@@ -391,13 +391,32 @@ TEST(Cli, InspectPixelWritesThePathRecordsAsJson) {
 TEST(Cli, InspectFlagsAreChecked) {
   const auto dir = tempDir();
   const std::string out = " --inspect-out " + (dir / "i.json").string();
-  for (const std::string& args :
-       {std::string("--inspect-pixel 3,4"), "--inspect-pixel 16,0" + out, "--inspect-pixel 3" + out,
-        "--inspect-pixel 3,4 --inspect-samples 5" + out, "--inspect-pixel 1,1 --mode hybrid" + out,
-        "--inspect-pixel 1,1 --inspect-out " + (dir / "i.txt").string(),
-        "--inspect-pixel 1,1 --stats x.json" + out, std::string("")}) {
+  for (const std::string& args : {std::string("--inspect-pixel 3,4"), "--inspect-pixel 16,0" + out,
+                                  "--inspect-pixel 3" + out, "--inspect-pixel 3,4 --inspect-samples 5" + out,
+                                  "--inspect-pixel 1,1 --mode hybrid --inspect-samples 2" + out,
+                                  "--inspect-pixel 1,1 --inspect-out " + (dir / "i.txt").string(),
+                                  "--inspect-pixel 1,1 --stats x.json" + out, std::string("")}) {
     CommandResult r = run("render --size 16x16 --spp 4 " + args);
     EXPECT_EQ(r.code, 2) << args << ": " << r.output;
     EXPECT_EQ(lineCount(r.output), 1u) << args << ": " << r.output;
   }
+}
+
+TEST(Cli, InspectPixelInAHybridModeWritesItsRays) {
+  const auto dir = tempDir();
+  const auto json = dir / "hybrid_inspect.json";
+  CommandResult r =
+      run("render --mode reflections --ao-rays 3 --size 16x16 --spp 2 --inspect-pixel 8,9 "
+          "--inspect-out " +
+          json.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream f(json);
+  const auto j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["schema"], "workbench-hybrid-inspector/1");
+  EXPECT_EQ(j["mode"], "reflections");
+  EXPECT_EQ(j["frame"], 1) << "the last of two frames";
+  ASSERT_EQ(j["covered"], true);
+  EXPECT_EQ(j["ao"]["rays"].size(), 3u);
+  for (const char* key : {"position", "normal", "shadow", "ao", "reflection"})
+    EXPECT_TRUE(j.contains(key)) << key;
 }

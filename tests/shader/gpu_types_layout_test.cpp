@@ -79,6 +79,12 @@ TEST(GpuTypesLayout, HybridAndDisplayBlocksMatchTheHostStructs) {
   const auto frag = moduleBlocks("hybrid/gbuffer.frag");
   ASSERT_TRUE(frag.count("MaterialBlock"));
   EXPECT_EQ(frag.at("MaterialBlock"), sizeof(Material));
+  for (const char* stage : {"hybrid/shadow_ao.rgen", "hybrid/reflect.rgen"}) {
+    const auto rt = moduleBlocks(stage);
+    ASSERT_TRUE(rt.count("HybridInspectBlock")) << stage;
+    EXPECT_EQ(rt.at("HybridInspectBlock"), sizeof(HybridInspectRecord)) << stage;
+    EXPECT_EQ(rt.at("HybridFrameBlock"), sizeof(HybridUniforms)) << stage;
+  }
   const auto display = moduleBlocks("display/display.frag");
   ASSERT_TRUE(display.count("Push"));
   EXPECT_EQ(display.at("Push"), sizeof(DisplayPush));

@@ -611,3 +611,22 @@ TEST(Window, HeatMapViewsShowTheirData) {
   EXPECT_GT(imageAreaDifference(dir / "rr_end.png", dir / "variance.png", 144), 5.0);
   EXPECT_LT(imageAreaMean(dir / "nan_source.png", 144), 0.6 * imageAreaMean(beauty, 144));
 }
+
+// In the hybrid modes the inspector records the pixel's shadow, AO and reflection rays.
+TEST(Window, HybridModesRecordThePixelsRays) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("inspecthybrid");
+  const fs::path records = dir / "records.json";
+  writeFile(dir / "s.txt",
+            "set inspect_pixel 40,60\nwait_samples 2 300\nframes 2\ninspect " + records.string() + "\n");
+  auto r = runWindow("--mode reflections --ao-rays 4 --script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = readJson(records);
+  EXPECT_EQ(j["schema"], "workbench-hybrid-inspector/1");
+  EXPECT_EQ(j["mode"], "reflections");
+  EXPECT_EQ(j["pixel"], nlohmann::json::array({40, 60}));
+  EXPECT_EQ(j["recorded"], true);
+  ASSERT_EQ(j["covered"], true) << "pixel 40,60 sees the room";
+  EXPECT_EQ(j["ao"]["rays"].size(), 4u);
+  EXPECT_TRUE(j["shadow"]["ray"].contains("visible"));
+}

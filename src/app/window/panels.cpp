@@ -331,7 +331,7 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
 }
 
 void drawOverlays(PanelContext& c, const Rect& view) {
-  if (c.inspector && !c.hybrid) {
+  if (c.inspector) {
     const float radius = 0.5f * glm::length(c.scene.bounds.max - c.scene.bounds.min);
     drawInspectorOverlay(c.state, *c.inspector, c.camera.state(), c.traceWidth, c.traceHeight, view,
                          std::max(radius, 1e-3f));

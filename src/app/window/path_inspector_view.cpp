@@ -133,6 +133,64 @@ void vertexTooltip(const render::InspectedVertex& iv) {
   ImGui::EndTooltip();
 }
 
+void hybridSection(const InspectorView& view) {
+  if (!view.hybrid() || view.hybrid()->frameIndex == WB_HYBRID_NO_INSPECT) {
+    ImGui::TextDisabled("waiting for a frame");
+    return;
+  }
+  const auto& r = *view.hybrid();
+  if (!r.covered) {
+    ImGui::Text("frame %u: background (no G-buffer surface)", r.frameIndex);
+    return;
+  }
+  ImGui::Text("frame %u at %s", r.frameIndex, vec3Text(r.position).c_str());
+  ImGui::Text("normal %s", vec3Text(r.normal).c_str());
+  ImGui::Text("sun: %s (average %.3f)",
+              !r.shadowRay.traced   ? "below the surface"
+              : r.shadowRay.visible ? "visible"
+                                    : "blocked",
+              r.shadowAverage);
+  uint32_t open = 0;
+  for (uint32_t i = 0; i < std::min(r.aoRays, WB_HYBRID_INSPECT_MAX_AO); ++i) open += r.aoRay[i].visible;
+  ImGui::Text("AO: %u of %u rays open (average %.3f)", open, r.aoRays, r.aoAverage);
+  if (!r.reflected) return;
+  ImGui::Text("reflection %s", vec3Text(r.reflection).c_str());
+  for (uint32_t b = 0; b < std::min(r.reflectionBounces, WB_HYBRID_INSPECT_MAX_REFLECTIONS); ++b) {
+    const auto& x = r.bounces[b];
+    if (!x.hit) {
+      ImGui::Text("  %u: environment, added %s", b, vec3Text(x.added).c_str());
+    } else {
+      ImGui::Text("  %u: hit (rough %.2f metal %.2f, sun %s), added %s", b, x.roughness, x.metallic,
+                  x.sunVisible > 0.0f ? "visible" : "blocked", vec3Text(x.added).c_str());
+    }
+  }
+}
+
+// The hybrid modes' rays of the pixel: the shadow ray dashed, AO rays short and thin (green open, red
+// blocked), the reflection's bounces solid.
+void drawHybridRays(ImDrawList* dl, const Projector& pr, const gpu::HybridInspectRecord& r, float radius) {
+  if (r.frameIndex == WB_HYBRID_NO_INSPECT || !r.covered) return;
+  ImVec2 a, b;
+  auto visibility = [](uint32_t visible) {
+    return visible ? IM_COL32(80, 230, 90, 255) : IM_COL32(230, 60, 60, 255);
+  };
+  if (r.shadowRay.traced && pr.segment(r.position, r.position + r.shadowRay.direction * radius * 0.35f, a, b))
+    dashed(dl, a, b, visibility(r.shadowRay.visible));
+  for (uint32_t i = 0; i < std::min(r.aoRays, WB_HYBRID_INSPECT_MAX_AO); ++i) {
+    if (pr.segment(r.position, r.position + r.aoRay[i].direction * radius * 0.1f, a, b))
+      dl->AddLine(a, b, (visibility(r.aoRay[i].visible) & 0x00ffffffu) | 0xa0000000u, 1.0f);
+  }
+  glm::vec3 from = r.position;
+  const uint32_t bounces =
+      r.reflected ? std::min(r.reflectionBounces, WB_HYBRID_INSPECT_MAX_REFLECTIONS) : 0u;
+  for (uint32_t k = 0; k < bounces; ++k) {
+    const auto& x = r.bounces[k];
+    const glm::vec3 to = x.hit ? x.position : from + x.direction * radius * 0.5f;
+    if (pr.segment(from, to, a, b)) dl->AddLine(a, b, throughputColor(luminance(x.throughput)), 2.0f);
+    from = to;
+  }
+}
+
 }  // namespace
 
 void InspectorView::clear() {
@@ -188,19 +246,20 @@ std::optional<glm::vec2> projectToImage(const render::CameraState& camera, uint3
 
 void drawInspectorSection(WorkbenchState& st, const InspectorView& view, bool pathTracing) {
   ImGui::Separator();
-  ImGui::TextUnformatted("path inspector");
-  if (!pathTracing) {
-    ImGui::TextDisabled("records the path tracer's paths");
-    return;
-  }
+  ImGui::TextUnformatted(pathTracing ? "path inspector" : "ray inspector");
   ImGui::Checkbox("click picks the pixel", &st.inspectOnClick);
   if (!st.inspectPixel) {
-    ImGui::TextDisabled("click the image (or set inspect_pixel X,Y) to record a pixel's paths");
+    ImGui::TextDisabled("click the image (or set inspect_pixel X,Y) to record a pixel's %s",
+                        pathTracing ? "paths" : "rays");
     return;
   }
   ImGui::Text("pixel %u,%u", st.inspectPixel->x, st.inspectPixel->y);
   ImGui::SameLine();
   if (ImGui::SmallButton("stop")) st.inspectPixel.reset();
+  if (!pathTracing) {
+    hybridSection(view);
+    return;
+  }
   const auto& e = view.estimate();
   const glm::dvec3 m = e.mean(), var = e.variance();
   ImGui::Text("samples %u (dropped %u), %zu kept", e.count(), e.dropped(), view.samples().size());
@@ -282,13 +341,15 @@ void drawInspectorSection(WorkbenchState& st, const InspectorView& view, bool pa
 void drawInspectorOverlay(const WorkbenchState& st, const InspectorView& view,
                           const render::CameraState& camera, uint32_t traceWidth, uint32_t traceHeight,
                           const Rect& image, float sceneRadius) {
-  if (!st.inspectPixel || view.samples().empty() || traceWidth == 0 || traceHeight == 0) return;
+  if (!st.inspectPixel || (view.samples().empty() && !view.hybrid()) || traceWidth == 0 || traceHeight == 0)
+    return;
   glm::mat4 proj =
       glm::perspective(camera.yfov, float(traceWidth) / float(traceHeight), camera.znear, 1000.0f);
   proj[1][1] *= -1.0f;
   const Projector pr{camera.view, proj, camera.znear, glm::vec2(traceWidth, traceHeight), image};
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   dl->PushClipRect(ImVec2(image.x, image.y), ImVec2(image.x + image.w, image.y + image.h), true);
+  if (view.hybrid()) drawHybridRays(dl, pr, *view.hybrid(), sceneRadius);
   const render::InspectedSample* shown = view.shown(st.inspectShown);
   if (st.inspectAllSamples) {
     for (const auto& s : view.samples())

@@ -21,7 +21,10 @@ class InspectorView {
   // Reads the records of the samples below `finished` (call when the frame that traced them has finished).
   // A new `generation` (an accumulation restart) or pixel starts the running estimate over.
   void update(const render::PathTracer& tracer, uint32_t finished, uint64_t generation);
+  // The hybrid modes: the record of the last finished frame (nullopt: no pixel inspected there).
+  void updateHybrid(std::optional<gpu::HybridInspectRecord> record) { hybrid_ = record; }
   void clear();
+  const std::optional<gpu::HybridInspectRecord>& hybrid() const { return hybrid_; }
 
   std::optional<glm::uvec2> pixel() const { return pixel_; }
   const std::vector<render::InspectedSample>& samples() const { return samples_; }  // the kept ones, by index
@@ -36,6 +39,7 @@ class InspectorView {
   uint32_t nextSample_ = 0;  // samples below it are in estimate_
   std::vector<render::InspectedSample> samples_;
   render::RunningEstimate estimate_;
+  std::optional<gpu::HybridInspectRecord> hybrid_;
 };
 
 // Where world point p lands in a width x height trace image seen by `camera` (pixels, y down; the inverse of
@@ -43,9 +47,10 @@ class InspectorView {
 std::optional<glm::vec2> projectToImage(const render::CameraState& camera, uint32_t width, uint32_t height,
                                         const glm::vec3& p);
 
-// The Inspect tab's path inspector section.
+// The Inspect tab's path inspector section (the hybrid modes: their shadow, AO and reflection rays).
 void drawInspectorSection(WorkbenchState& state, const InspectorView& view, bool pathTracing);
-// The shown sample's path (or every kept one) over the image rectangle `image` of the trace image.
+// The shown sample's path (or every kept one; the hybrid modes: the pixel's rays) over the image rectangle
+// `image` of the trace image.
 void drawInspectorOverlay(const WorkbenchState& state, const InspectorView& view,
                           const render::CameraState& camera, uint32_t traceWidth, uint32_t traceHeight,
                           const Rect& image, float sceneRadius);

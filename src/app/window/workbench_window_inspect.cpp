@@ -1,5 +1,6 @@
-// The workbench window's path inspector: the Inspect tab's pixel to the path tracer, the records read after
-// each frame, the pixel picked by a click, and the `inspect FILE.json` script command.
+// The workbench window's path inspector: the Inspect tab's pixel to the path tracer (the hybrid modes: to the
+// hybrid renderer, which records the pixel's shadow, AO and reflection rays), the records read after each
+// frame, the pixel picked by a click, and the `inspect FILE.json` script command.
 #include <fstream>
 #include <stdexcept>
 
@@ -22,6 +23,14 @@ bool WorkbenchWindow::applyInspection() {
     r.ring = true;  // the latest samples stay; the running estimate sees every one
     want = r;
   }
+  // The hybrid renderer of the mode shown records its rays; setting the pixel restarts nothing.
+  if (auto* hybrid = activeHybrid()) {
+    std::optional<glm::uvec2> pixel;
+    if (state_.inspectPixel && state_.inspectPixel->x < hybrid->settings().width &&
+        state_.inspectPixel->y < hybrid->settings().height)
+      pixel = state_.inspectPixel;
+    if (pixel != hybrid->inspectPixel()) hybrid->setInspectPixel(pixel);
+  }
   if (want == tracer.inspection()) return false;
   if (tracer.setInspection(want)) hot_->addRenderer(tracer);  // the other variant's program
   state_.inspectShown = -1;
@@ -33,10 +42,13 @@ void WorkbenchWindow::updateInspection() {
   // another resolution: none count.
   const uint32_t finished = progressive_->inPreview() ? 0 : progressive_->samples();
   inspector_.update(session_->pathTracer(), finished, progressive_->generation());
+  const auto* hybrid = activeHybrid();
+  inspector_.updateHybrid(hybrid && hybrid->inspectPixel() ? std::optional(hybrid->readInspection())
+                                                           : std::nullopt);
 }
 
 void WorkbenchWindow::inspectClick(const Rect& image, glm::vec2 at) {
-  if (!state_.inspectOnClick || state_.params.mode != render::RenderMode::PathTrace) return;
+  if (!state_.inspectOnClick) return;
   if (!image.contains(at.x, at.y)) return;
   const glm::vec2 rel = (at - glm::vec2(image.x, image.y)) / glm::vec2(image.w, image.h);
   const glm::uvec2 size(progressive_->targetWidth(), progressive_->targetHeight());
@@ -45,6 +57,25 @@ void WorkbenchWindow::inspectClick(const Rect& image, glm::vec2 at) {
 }
 
 void WorkbenchWindow::scriptInspect(const std::string& path) {
+  if (auto* hybrid = activeHybrid()) {
+    if (!hybrid->inspectPixel())
+      throw std::runtime_error("inspect: no pixel is inspected (set inspect_pixel X,Y)");
+    InspectContext ctx;
+    ctx.x = hybrid->inspectPixel()->x;
+    ctx.y = hybrid->inspectPixel()->y;
+    ctx.width = hybrid->settings().width;
+    ctx.height = hybrid->settings().height;
+    ctx.scene = session_->scene().sourcePath.string();
+    ctx.spp = hybrid->samplesAccumulated();
+    const auto out = hybrid->readOutput();  // the device is idle at a script step
+    const size_t i = (size_t(ctx.y) * ctx.width + ctx.x) * 4;
+    if (i + 3 < out.size()) ctx.pixelValue = glm::vec4(out[i], out[i + 1], out[i + 2], 1.0f);
+    std::ofstream f(path);
+    f << jsonText(hybridInspectJson(ctx, hybrid->readInspection(), render::renderModeName(hybrid->mode())), 2)
+      << "\n";
+    if (!f.flush()) throw std::runtime_error("inspect: cannot write '" + path + "'");
+    return;
+  }
   const auto& tracer = session_->pathTracer();
   if (!tracer.inspection())
     throw std::runtime_error("inspect: no pixel is inspected (set inspect_pixel X,Y)");

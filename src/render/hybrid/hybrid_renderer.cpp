@@ -105,6 +105,8 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   WB_VK(vkCreateSampler(ctx_.device(), &sci, nullptr, &nearest_));
   uniforms_ = vk::Buffer(ctx_, sizeof(gpu::HybridUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  inspect_ = vk::Buffer(ctx_, sizeof(gpu::HybridInspectRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  setInspectPixel(std::nullopt);
   createImages();
   {
     vk::DescriptorSets recorder(ctx_);
@@ -182,6 +184,21 @@ void HybridRenderer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeStorageImage(0, WB_BIND_HYBRID_HISTORY, history_.view());
   s.writeStorageImage(0, WB_BIND_REFLECTION, reflection_.view());
   s.writeStorageImage(0, WB_BIND_HYBRID_OUTPUT, output_.view());
+  s.writeBuffer(0, WB_BIND_HYBRID_INSPECT, inspect_.handle());
+}
+
+void HybridRenderer::setInspectPixel(std::optional<glm::uvec2> pixel) {
+  vkDeviceWaitIdle(ctx_.device());  // a frame in flight may be writing the record
+  inspectPixel_ = pixel;
+  gpu::HybridInspectRecord empty{};
+  empty.frameIndex = WB_HYBRID_NO_INSPECT;
+  std::memcpy(inspect_.mapped(), &empty, sizeof(empty));
+}
+
+gpu::HybridInspectRecord HybridRenderer::readInspection() const {
+  gpu::HybridInspectRecord r;
+  std::memcpy(&r, inspect_.mapped(), sizeof(r));
+  return r;
 }
 
 std::optional<HybridRenderer::Pass> HybridRenderer::passOf(shader::ShaderLibrary::ProgramId program) const {
@@ -381,6 +398,8 @@ void HybridRenderer::updateUniforms() {
   u.envRotation = glm::radians(settings_.envRotationDeg);
   u.envMapPresent = env_->isMap() ? 1u : 0u;
   u.seed = settings_.seed * 0x9E3779B9u;
+  u.inspectX = inspectPixel_ ? inspectPixel_->x : WB_HYBRID_NO_INSPECT;
+  u.inspectY = inspectPixel_ ? inspectPixel_->y : WB_HYBRID_NO_INSPECT;
   std::memcpy(uniforms_.mapped(), &u, sizeof(u));
 }
 

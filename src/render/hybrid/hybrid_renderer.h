@@ -81,6 +81,13 @@ class HybridRenderer final : public Renderer {
   float aoRadius() const;
   float sunCosAngle() const;
 
+  // The inspector: records the shadow, AO and reflection rays of one pixel each frame (nullopt: none). Clears
+  // the record.
+  void setInspectPixel(std::optional<glm::uvec2> pixel);
+  std::optional<glm::uvec2> inspectPixel() const { return inspectPixel_; }
+  // The record of the last frame (host-visible memory: call when that frame finished).
+  gpu::HybridInspectRecord readInspection() const;
+
  private:
   struct Draw {
     glm::mat4 model;
@@ -116,6 +123,8 @@ class HybridRenderer final : public Renderer {
   vk::Image albedo_, normal_, emissive_, depth_, shadowMask_, aoMask_, history_, reflection_, output_;
   VkSampler nearest_ = VK_NULL_HANDLE;
   vk::Buffer uniforms_;
+  vk::Buffer inspect_;
+  std::optional<glm::uvec2> inspectPixel_;
   uint32_t frameIndex_ = 0;
 };
 
