@@ -342,7 +342,7 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   const bool done =
       c.hybrid ? c.state.params.render.spp > 0 && c.samples >= c.state.params.render.spp : pt.done();
   std::snprintf(
-      status, sizeof status, "%s%u %s%s  %ux%u  %.1f s  frame %.1f ms%s",
+      status, sizeof status, "%s%u %s%s  %ux%u  %.1f s  shown every %.0f ms%s",
       c.hybrid ? (c.state.params.mode == render::RenderMode::Reflections ? "reflections  " : "hybrid  ") : "",
       c.samples, c.hybrid ? "frames" : "spp", !c.hybrid && pt.inPreview() ? " (preview)" : "", c.traceWidth,
       c.traceHeight, c.secondsSinceReset, c.frames.last(),
