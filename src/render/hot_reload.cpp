@@ -310,6 +310,12 @@ bool HotReload::busy() const {
   return !pending_.empty();
 }
 
+std::optional<ReloadEvent> HotReload::lastEvent() const {
+  std::lock_guard lock(mutex_);
+  if (history_.empty()) return std::nullopt;
+  return history_.back();
+}
+
 std::vector<ReloadEvent> HotReload::history() const {
   std::lock_guard lock(mutex_);
   return history_;

@@ -105,7 +105,8 @@ class HotReload {
   static const char* stageName(Status::Stage s);
 
   std::vector<ReloadEvent> history() const;
-  std::string currentError() const;  // empty when the last reload of every program succeeded
+  std::optional<ReloadEvent> lastEvent() const;  // the newest of history() without copying the rest
+  std::string currentError() const;              // empty when the last reload of every program succeeded
 
  private:
   struct Pending {

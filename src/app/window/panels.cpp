@@ -362,9 +362,9 @@ void drawOverlays(PanelContext& c, const Rect& view) {
                   hs.elapsedMs * 1e-3);
   } else if (!c.modeSwitch.empty()) {
     std::snprintf(busy, sizeof busy, "preparing %s  %.1f s", c.modeSwitch.c_str(), c.modeSwitchSeconds);
-  } else if (const auto history = c.hot.history(); !history.empty() && history.back().ok) {
+  } else if (const auto last = c.hot.lastEvent(); last && last->ok) {
     active = false;
-    const auto& e = history.back();
+    const auto& e = *last;
     if (e.pipelinesRebuilt.empty()) {
       std::snprintf(busy, sizeof busy, "last edit: unchanged SPIR-V, nothing rebuilt");
     } else if (e.editToFirstFrameMs >= 0) {
