@@ -14,11 +14,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_window.h"
 #include "app/process.h"
 #include "common/env.h"
 #include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"
+#include "common/statistics.h"
 #include "eval/metrics.h"
 #include "scene/procedural.h"
 #include "shader/hash.h"
@@ -30,19 +32,6 @@ using nlohmann::json;
 
 namespace wb::app {
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t i = std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5));
-  return v[i];
-}
 
 std::string readText(const fs::path& p) {
   std::ifstream f(p);
@@ -369,7 +358,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
 }  // namespace
 
 const std::vector<std::string>& BenchCommand::sectionNames() {
-  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes"};
+  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes", "window"};
   return names;
 }
 
@@ -379,9 +368,12 @@ void BenchCommand::addFlags(CLI::App& cli) {
   cli.add_option("--device", device, "Vulkan device name (substring)");
   cli.add_option("--size", size, "trace size WxH (default 512x512, 128x128 with --quick)");
   cli.add_option("--repeats", repeats, "repeats per measurement (median reported)");
-  cli.add_option("--edits", edits, "reload: number of closest-hit edits (default 20, 4 with --quick)");
+  cli.add_option("--edits", edits,
+                 "reload: number of closest-hit edits (default 20, 4 with --quick); window: edits timed idle and "
+                 "under load (default 5, 2 with --quick)");
+  cli.add_flag("--no-load", noLoad, "window: skip the edits with two busy loops in another session");
   cli.add_option("--only", sections,
-                 "sections to run, comma or space separated: pathtracer,startup,reload,modes")
+                 "sections to run, comma or space separated: pathtracer,startup,reload,modes,window")
       ->delimiter(',')
       ->check(CLI::IsMember(sectionNames()));
 }
@@ -486,6 +478,15 @@ int BenchCommand::run() {
       result["device"] = deviceName;
       result["driver"] = driver;
     }
+    if (has("window")) {
+      WindowBenchOptions wo;
+      wo.rounds = quick ? 1 : repeats;
+      wo.samples = quick ? 3 : 8;
+      wo.edits = edits > 0 ? edits : quick ? 2 : 5;
+      wo.underLoad = !noLoad;
+      wo.device = device;
+      result["window"] = benchWindow(wo, work, ownMesaCache);
+    }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
@@ -526,6 +527,7 @@ int BenchCommand::run() {
   }
   if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
   if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
+  if (result.contains("window")) std::printf("window: %s\n", jsonText(result["window"]).c_str());
   std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
   if (!out.empty()) {
     std::ofstream f(out);

@@ -1,6 +1,6 @@
 // `workbench bench [--quick] [--only SECTIONS] [--out FILE.json]`: the performance suite (path tracer rates
 // per scene, specialised vs generic; acceleration-structure builds; memory; cold/warm start-up; hot-reload
-// latency; the modes' speed against error). Not a test.
+// latency; the modes' speed against error; the live window's rate, edit latency and input). Not a test.
 #pragma once
 #include <string>
 #include <vector>
@@ -13,7 +13,7 @@ class BenchCommand : public Command {
  public:
   const char* name() const override { return "bench"; }
   const char* description() const override {
-    return "Performance suite: path tracer rates, start-up, hot reload, modes (not a test)";
+    return "Performance suite: path tracer rates, start-up, hot reload, modes, window (not a test)";
   }
   void addFlags(CLI::App& app) override;
   void finish() override;
@@ -24,6 +24,7 @@ class BenchCommand : public Command {
   std::string out, device, size;
   int repeats = 0;
   int edits = 0;
+  bool noLoad = false;
   std::vector<std::string> sections = sectionNames();
 };
 

@@ -10,7 +10,8 @@ namespace {
 
 const std::set<std::string> kCommands = {
     "frames",       "set",          "screenshot", "save",   "stats", "copy",   "orbit",     "wait_reload",
-    "wait_samples", "reset_camera", "reset",      "reload", "quit",  "resize", "wait_file", "inspect"};
+    "wait_samples", "reset_camera", "reset",      "reload", "quit",  "resize", "wait_file", "inspect",
+    "sleep",        "switch_mode",  "wait_mode"};
 
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;
@@ -44,7 +45,8 @@ void Script::addLine(const std::string& line, const std::string& where) {
   const std::string& cmd = c.words[0];
   const size_t need = cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
                       : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" ||
-                              cmd == "wait_samples" || cmd == "wait_file" || cmd == "inspect"
+                              cmd == "wait_samples" || cmd == "wait_file" || cmd == "inspect" ||
+                              cmd == "sleep" || cmd == "switch_mode"
                           ? 2
                           : 1;
   if (c.words.size() < need) throw std::runtime_error(where + ": '" + cmd + "' needs more arguments");
@@ -58,7 +60,8 @@ void Script::addLine(const std::string& line, const std::string& where) {
 bool Script::waitingForEvent() const {
   if (!waiting_ || next_ >= commands_.size()) return false;
   const std::string& cmd = commands_[next_].words[0];
-  return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file";
+  return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file" || cmd == "sleep" ||
+         cmd == "wait_mode";
 }
 
 bool Script::step(ScriptHost& host) {
@@ -110,6 +113,22 @@ bool Script::step(ScriptHost& host) {
         throw std::runtime_error(c.where + ": wait_file: no '" + w[1] + "' after " +
                                  std::to_string(numberArg(w, 2, 60, c.where)) + " s");
       }
+    } else if (cmd == "sleep") {
+      if (!waiting_) {
+        waiting_ = true;
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 1, 0, c.where)));
+      }
+      if (clock::now() < deadline_) return true;
+    } else if (cmd == "wait_mode") {
+      if (!waiting_) {
+        waiting_ = true;
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 1, 120, c.where)));
+      }
+      if (host.modeSwitchPending()) {
+        if (clock::now() < deadline_) return true;
+        throw std::runtime_error(c.where + ": wait_mode: the mode switch is not done after " +
+                                 std::to_string(numberArg(w, 1, 120, c.where)) + " s");
+      }
     } else {
       try {
         if (cmd == "set") {
@@ -120,6 +139,8 @@ bool Script::step(ScriptHost& host) {
           waiting_ = false;
           ++next_;
           return true;
+        } else if (cmd == "switch_mode") {
+          host.scriptSwitchMode(w[1]);
         } else if (cmd == "save") {
           host.scriptSave(w[1]);
         } else if (cmd == "stats") {

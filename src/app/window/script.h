@@ -9,6 +9,11 @@
 //                            script fails: exit status 1 with the reason)
 //   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails)
 //   wait_file PATH [SECONDS] render until PATH exists (another program's signal; default 60 s, then fails)
+//   sleep SECONDS            render for SECONDS of wall time (benchmarks pace edits with it; tests wait for
+//                            events instead)
+//   switch_mode NAME         switch the render mode as the panel does: the other mode's renderer is made off
+//                            the frame loop while the current one keeps drawing; the script goes on at once
+//   wait_mode [SECONDS]      render until a switch_mode is done (default 120 s; past it the script fails)
 //   inspect FILE.json        the path inspector's records of the inspected pixel now (set inspect_pixel X,Y
 //                            first), as `render --inspect-out` writes them plus the running estimate
 //   orbit DX DY              drag the orbit camera by DX, DY pixels
@@ -39,6 +44,12 @@ class ScriptHost {
     (void)path;
     throw std::runtime_error("inspect: no path inspector here");
   }
+  // Starts a mode switch that completes off the frame loop (switch_mode); modeSwitchPending() until it is done.
+  virtual void scriptSwitchMode(const std::string& mode) {
+    (void)mode;
+    throw std::runtime_error("switch_mode: no render modes here");
+  }
+  virtual bool modeSwitchPending() const { return false; }
   virtual size_t reloadCount() const = 0;
   virtual uint32_t samples() const = 0;
 };

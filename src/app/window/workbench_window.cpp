@@ -137,6 +137,7 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
 
 void WorkbenchWindow::applyMode(bool wait) {
   if (session_->mode() == state_.params.mode) {
+    if (!modeSwitch_.empty()) timingModeSwitch_ = false;  // switched back before the other mode was ready
     modeSwitch_.clear();
     return;
   }
@@ -144,17 +145,40 @@ void WorkbenchWindow::applyMode(bool wait) {
   s.width = progressive_->targetWidth();
   s.height = progressive_->targetHeight();
   // The other mode's renderer is made off the frame loop; the current mode keeps drawing until it is ready.
+  const std::string name = render::renderModeName(state_.params.mode);
+  if (!wait && modeSwitch_ != name) {  // a switch the user waits for: timed for the stats
+    modeSwitch_ = name;
+    modeSwitchStart_ = Clock::now();
+    modeSwitches_.push_back({name});
+    timingModeSwitch_ = true;
+    modeSwitchFramesLeft_ = -1;
+  }
   if (!wait && !session_->modeReady(state_.params.mode)) {
     session_->prepareMode(state_.params.mode, s);
-    const std::string name = render::renderModeName(state_.params.mode);
-    if (modeSwitch_ != name) {
-      modeSwitch_ = name;
-      modeSwitchStart_ = Clock::now();
-    }
     return;
   }
   session_->setMode(state_.params.mode, s);
+  if (!modeSwitch_.empty() && timingModeSwitch_) {
+    modeSwitches_.back().prepareMs =
+        std::chrono::duration<double, std::milli>(Clock::now() - modeSwitchStart_).count();
+    modeSwitches_.back().done = true;
+    modeSwitchFramesLeft_ = 2;
+  }
   modeSwitch_.clear();
+}
+
+void WorkbenchWindow::scriptSwitchMode(const std::string& mode) {
+  applySetting(state_, "mode", mode);
+  applyState();  // starts the switch; the frames that follow complete it
+}
+
+void WorkbenchWindow::addFrameTime(float ms) {
+  frames_.add(ms);
+  if (!timingModeSwitch_) return;
+  auto& r = modeSwitches_.back();
+  r.longestFrameMs = std::max(r.longestFrameMs, double(ms));
+  ++r.frames;
+  if (modeSwitchFramesLeft_ > 0 && --modeSwitchFramesLeft_ == 0) timingModeSwitch_ = false;
 }
 
 uint32_t WorkbenchWindow::currentSamples() const {

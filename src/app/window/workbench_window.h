@@ -77,6 +77,8 @@ class WorkbenchWindow : public ScriptHost {
   void scriptCommand(const std::string& name) override;
   void scriptResize(int width, int height) override { glfwSetWindowSize(window_, width, height); }
   void scriptInspect(const std::string& path) override;  // workbench_window_inspect.cpp
+  void scriptSwitchMode(const std::string& mode) override;
+  bool modeSwitchPending() const override { return !modeSwitch_.empty(); }
   size_t reloadCount() const override { return hot_->history().size(); }
   uint32_t samples() const override {
     if (activeHybrid()) return activeHybrid()->samplesAccumulated();
@@ -93,6 +95,15 @@ class WorkbenchWindow : public ScriptHost {
   nlohmann::json parametersJson();
   Rect imageRect(const Rect& view) const;
   void recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, const Rect& image);
+  // The frame loop's parts (workbench_window_frame.cpp): waiting for the frame in flight and what needs the
+  // device idle; tracing without presenting while converging untouched (false: quit); one script step (false:
+  // the session ends); laying out, recording, submitting and presenting one frame (false: nothing presented).
+  void finishFrame(Clock::time_point frameBegin);
+  bool traceWhileConverging(int& exitCode);
+  bool stepScript(int& exitCode);
+  bool drawFrame(float dt);
+  // A frame interval of the loop, for the frame statistics and the mode switch being timed.
+  void addFrameTime(float ms);
   // Reads the last submission's GPU times: trace only, or trace and display.
   void readTimestamps(bool withDisplay);
   // Whether the loop may trace without drawing or presenting: converging at full resolution, no input for a
@@ -170,6 +181,18 @@ class WorkbenchWindow : public ScriptHost {
   uint64_t traceOnlySubmits_ = 0;
   std::string modeSwitch_;  // the mode being made off the frame loop (empty: none)
   Clock::time_point modeSwitchStart_;
+  // Mode switches made off the frame loop, as the stats report them: the longest frame interval from the
+  // request to the new mode's second frame (its first traces included).
+  struct ModeSwitchRecord {
+    std::string to;
+    double prepareMs = 0;
+    double longestFrameMs = 0;
+    uint64_t frames = 0;
+    bool done = false;  // the new mode took effect
+  };
+  std::vector<ModeSwitchRecord> modeSwitches_;
+  bool timingModeSwitch_ = false;
+  int modeSwitchFramesLeft_ = 0;  // frames still timed after the switch took effect
   Clock::time_point lastPresent_ = Clock::now();
   Clock::time_point lastInput_ = Clock::now();
   float panelWidth_ = 0;

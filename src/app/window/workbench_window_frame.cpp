@@ -155,61 +155,206 @@ bool WorkbenchWindow::nothingToDo() const {
          !state_.saveRequest && (!hasScript_ || script_.waitingForEvent()) && !options_.frames;
 }
 
+void WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
+  auto& ctx = session_->context();
+  WB_VK(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  frameInFlight_ = false;
+  readTimestamps(true);
+  hot_->frameFinished(frameBegin);
+  // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
+  // cores (render/hot_reload.h): the panel and the present cost CPU time besides the trace budget.
+  const double restRatio = ctx.policy().windowRestRatio;
+  if (restRatio > 0 && hot_->compiling()) {
+    const auto end = Clock::now();
+    const auto until = end + std::chrono::duration_cast<Clock::duration>((end - frameBegin) * restRatio);
+    // Input still wakes the loop's event queue; it is handled with the next frame.
+    for (auto t = end; hot_->compiling() && t < until; t = Clock::now())
+      glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
+  }
+  counters_ = session_->renderer().readCounters();
+  updateLiveError();
+  updateInspection();
+  if (!captureTarget_.empty()) {
+    capture_->write(captureTarget_);
+    std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
+    std::fflush(stdout);
+    captureTarget_.clear();
+  }
+}
+
+bool WorkbenchWindow::traceWhileConverging(int& exitCode) {
+  // Input, a rebuild or a script step ends it at once; the script's waits are checked after each submission.
+  while (!frameInFlight_ && traceOnlyAllowed(Clock::now()) && traceOnly()) {
+    glfwPollEvents();
+    if (input_->takeActivity()) {
+      lastInput_ = Clock::now();
+      break;
+    }
+    if (hasScript_) {
+      try {
+        if (!script_.step(*this) || !script_.waitingForEvent()) break;
+      } catch (const std::exception& e) {
+        fatalScriptError_ = e.what();
+        exitCode = 1;
+        return false;
+      }
+    }
+  }
+  return !state_.quit;
+}
+
+bool WorkbenchWindow::stepScript(int& exitCode) {
+  if (!hasScript_ || !screenshotPath_.empty()) return true;  // a requested screenshot is drawn first
+  try {
+    // A finished script still lets a requested screenshot reach the screen.
+    return script_.step(*this) || options_.frames || !screenshotPath_.empty();
+  } catch (const std::exception& e) {
+    fatalScriptError_ = e.what();
+    exitCode = 1;
+    return false;
+  }
+}
+
+bool WorkbenchWindow::drawFrame(float dt) {
+  auto& ctx = session_->context();
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  if (fbw == 0 || fbh == 0) {  // minimised: nothing to draw into
+    glfwWaitEventsTimeout(0.1);
+    return false;
+  }
+  if (uint32_t(fbw) != swapchain_->extent().width || uint32_t(fbh) != swapchain_->extent().height) {
+    if (!swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync)) return false;
+    gui_->swapchainRecreated(*swapchain_);
+  }
+
+  gui_->beginFrame();
+  PanelContext pc{
+      state_,
+      session_->scene(),
+      *progressive_,
+      *hot_,
+      session_->library(),
+      camera_,
+      pick_,
+      frames_,
+      counters_,
+      traceSeconds_,
+      ctx.deviceName(),
+      vk::presentModeName(swapchain_->presentMode()),
+      activeHybrid() ? activeHybrid()->settings().width : session_->pathTracer().settings().width,
+      activeHybrid() ? activeHybrid()->settings().height : session_->pathTracer().settings().height,
+      lastSaved_,
+      activeHybrid(),
+      currentSamples(),
+      activeHybrid() ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
+                     : progressive_->secondsSinceReset(),
+      &liveError_,
+      modeSwitch_,
+      std::chrono::duration<double>(Clock::now() - modeSwitchStart_).count(),
+
+      &inspector_};
+  const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
+  panelWidth_ = drawSidePanel(pc, W, H);
+  const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
+  drawOverlays(pc, imageRect(view));
+  handleInput(view, dt);
+
+  // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
+  // fixed it; hiding the panel (Tab) shows the same image larger instead of restarting it.
+  if (state_.fixedSize) {
+    progressive_->setTargetSize(uint32_t(std::lround(state_.fixedWidth * state_.resolutionScale)),
+                                uint32_t(std::lround(state_.fixedHeight * state_.resolutionScale)));
+  } else {
+    const float traceViewWidth = std::max(W - sidePanelWidth(W), 1.0f);
+    progressive_->setTargetSize(uint32_t(std::lround(traceViewWidth * state_.resolutionScale)),
+                                uint32_t(std::lround(view.h * state_.resolutionScale)));
+  }
+  applyState();
+  if (state_.saveRequest) {
+    try {
+      saveRender(*state_.saveRequest);
+    } catch (const std::exception& e) {
+      lastSaved_ = std::string("save failed: ") + e.what();
+    }
+    state_.saveRequest.reset();
+  }
+  render::HybridRenderer* hybrid = activeHybrid();
+  if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||
+                 hybrid->settings().height != progressive_->targetHeight())) {
+    render::RenderSettings hs = state_.params.render;
+    hs.width = progressive_->targetWidth();
+    hs.height = progressive_->targetHeight();
+    hybrid->setSettings(hs);
+    ++hybridGeneration_;
+    hybridReset_ = Clock::now();
+  }
+  if (!hybrid) {
+    progressive_->options().stopAtSamples =
+        liveError_.nextCheckpoint(progressive_->samples(), progressive_->secondsSinceReset());
+    progressive_->beginFrame();
+  }
+  const auto& tracer = session_->pathTracer();
+  display_->setSources({hybrid ? hybrid->outputImage().view() : tracer.accumulationImage().view(),
+                        tracer.aovImage(render::Aov::Albedo).view(), tracer.aovImage(render::Aov::Normal).view(),
+                        tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view(),
+                        tracer.aovImage(render::Aov::Stats).view()});
+
+  auto index = swapchain_->acquire(imageAvailable_);
+  if (!index) {
+    ImGui::EndFrame();
+    swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
+    gui_->swapchainRecreated(*swapchain_);
+    return false;
+  }
+  const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
+  if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty())) {
+    captureThisFrame_ = true;
+    captureTarget_ = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
+    screenshotPath_.clear();
+  }
+  const Rect image = imageRect(view);
+  WB_VK(vkResetCommandBuffer(cmd_, 0));
+  recordFrame(cmd_, *index, image);
+  captureThisFrame_ = false;
+  VkPipelineStageFlags wait = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSemaphore done = swapchain_->renderFinished(*index);
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.waitSemaphoreCount = 1;
+  si.pWaitSemaphores = &imageAvailable_;
+  si.pWaitDstStageMask = &wait;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  si.signalSemaphoreCount = 1;
+  si.pSignalSemaphores = &done;
+  WB_VK(vkResetFences(ctx.device(), 1, &fence_));
+  {
+    std::lock_guard lock(ctx.queueMutex());
+    WB_VK(vkQueueSubmit(ctx.queue(), 1, &si, fence_));
+  }
+  frameInFlight_ = true;
+  lastPresent_ = Clock::now();
+  if (!swapchain_->present(*index, done)) {
+    glfwGetFramebufferSize(window_, &fbw, &fbh);
+    vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
+    swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
+    gui_->swapchainRecreated(*swapchain_);
+  }
+  ++frameCount_;
+  return true;
+}
+
 int WorkbenchWindow::run() {
   auto& ctx = session_->context();
   auto last = Clock::now();
   auto frameBegin = last;  // when the work of the frame in flight began (after any rest)
-  // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
-  // cores (render/hot_reload.h): the panel and the present cost CPU time besides the trace budget
-  // (docs/bench/README.md has the measurements).
-  const double restRatio = ctx.policy().windowRestRatio;
   int exitCode = 0;
   while (!glfwWindowShouldClose(window_) && !state_.quit) {
     glfwPollEvents();
-    // The previous frame: wait for it, then everything that needs the device idle happens here.
-    if (frameInFlight_) {
-      WB_VK(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
-      frameInFlight_ = false;
-      readTimestamps(true);
-      hot_->frameFinished(frameBegin);
-      if (restRatio > 0 && hot_->compiling()) {
-        const auto end = Clock::now();
-        const auto until = end + std::chrono::duration_cast<Clock::duration>((end - frameBegin) * restRatio);
-        // Input still wakes the loop's event queue; it is handled with the next frame.
-        for (auto t = end; hot_->compiling() && t < until; t = Clock::now())
-          glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
-      }
-      counters_ = session_->renderer().readCounters();
-      updateLiveError();
-      updateInspection();
-      if (!captureTarget_.empty()) {
-        capture_->write(captureTarget_);
-        std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
-        std::fflush(stdout);
-        captureTarget_.clear();
-      }
-    }
+    if (frameInFlight_) finishFrame(frameBegin);
     if (input_->takeActivity()) lastInput_ = Clock::now();
-    // Converging untouched: trace without drawing or presenting until the next present is due. Input, a
-    // rebuild or a script step ends it at once; the script's waits are checked after each submission.
-    while (!frameInFlight_ && traceOnlyAllowed(Clock::now()) && traceOnly()) {
-      glfwPollEvents();
-      if (input_->takeActivity()) {
-        lastInput_ = Clock::now();
-        break;
-      }
-      if (hasScript_) {
-        try {
-          if (!script_.step(*this) || !script_.waitingForEvent()) break;
-        } catch (const std::exception& e) {
-          fatalScriptError_ = e.what();
-          exitCode = 1;
-          state_.quit = true;
-          break;
-        }
-      }
-    }
-    if (state_.quit) break;
+    // Converging untouched: trace without drawing or presenting until the next present is due.
+    if (!traceWhileConverging(exitCode)) break;
     // Nothing to trace and nothing happening: sleep until input (or a short timeout for the panel's clocks
     // and the script's waits) instead of redrawing the same frame.
     if (!frameInFlight_ && nothingToDo() &&
@@ -219,148 +364,14 @@ int WorkbenchWindow::run() {
     }
     const auto now = Clock::now();
     const float dt = std::chrono::duration<float>(now - last).count();
-    if (frameCount_ > 0) frames_.add(dt * 1000.0f);
+    if (frameCount_ > 0) addFrameTime(dt * 1000.0f);
     last = now;
     frameBegin = now;
 
     if (options_.frames && frameCount_ >= options_.frames) break;
-    if (hasScript_ && screenshotPath_.empty()) {  // a requested screenshot is drawn before the script goes on
-      try {
-        // A finished script still lets a requested screenshot reach the screen.
-        if (!script_.step(*this) && !options_.frames && screenshotPath_.empty()) break;
-      } catch (const std::exception& e) {
-        fatalScriptError_ = e.what();
-        exitCode = 1;
-        break;
-      }
-    }
+    if (!stepScript(exitCode)) break;
     hot_->poll();
-
-    int fbw = 0, fbh = 0;
-    glfwGetFramebufferSize(window_, &fbw, &fbh);
-    if (fbw == 0 || fbh == 0) {  // minimised: nothing to draw into
-      glfwWaitEventsTimeout(0.1);
-      continue;
-    }
-    if (uint32_t(fbw) != swapchain_->extent().width || uint32_t(fbh) != swapchain_->extent().height) {
-      if (!swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync)) continue;
-      gui_->swapchainRecreated(*swapchain_);
-    }
-
-    gui_->beginFrame();
-    PanelContext pc{
-        state_,
-        session_->scene(),
-        *progressive_,
-        *hot_,
-        session_->library(),
-        camera_,
-        pick_,
-        frames_,
-        counters_,
-        traceSeconds_,
-        ctx.deviceName(),
-        vk::presentModeName(swapchain_->presentMode()),
-        activeHybrid() ? activeHybrid()->settings().width : session_->pathTracer().settings().width,
-        activeHybrid() ? activeHybrid()->settings().height : session_->pathTracer().settings().height,
-        lastSaved_,
-        activeHybrid(),
-        currentSamples(),
-        activeHybrid() ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
-                       : progressive_->secondsSinceReset(),
-        &liveError_,
-        modeSwitch_,
-        std::chrono::duration<double>(Clock::now() - modeSwitchStart_).count(),
-
-        &inspector_};
-    const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
-    panelWidth_ = drawSidePanel(pc, W, H);
-    const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
-    drawOverlays(pc, imageRect(view));
-    handleInput(view, dt);
-
-    // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
-    // fixed it; hiding the panel (Tab) shows the same image larger instead of restarting it.
-    if (state_.fixedSize) {
-      progressive_->setTargetSize(uint32_t(std::lround(state_.fixedWidth * state_.resolutionScale)),
-                                  uint32_t(std::lround(state_.fixedHeight * state_.resolutionScale)));
-    } else {
-      const float traceViewWidth = std::max(W - sidePanelWidth(W), 1.0f);
-      progressive_->setTargetSize(uint32_t(std::lround(traceViewWidth * state_.resolutionScale)),
-                                  uint32_t(std::lround(view.h * state_.resolutionScale)));
-    }
-    applyState();
-    if (state_.saveRequest) {
-      try {
-        saveRender(*state_.saveRequest);
-      } catch (const std::exception& e) {
-        lastSaved_ = std::string("save failed: ") + e.what();
-      }
-      state_.saveRequest.reset();
-    }
-    render::HybridRenderer* hybrid = activeHybrid();
-    if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||
-                   hybrid->settings().height != progressive_->targetHeight())) {
-      render::RenderSettings hs = state_.params.render;
-      hs.width = progressive_->targetWidth();
-      hs.height = progressive_->targetHeight();
-      hybrid->setSettings(hs);
-      ++hybridGeneration_;
-      hybridReset_ = Clock::now();
-    }
-    if (!hybrid) {
-      progressive_->options().stopAtSamples =
-          liveError_.nextCheckpoint(progressive_->samples(), progressive_->secondsSinceReset());
-      progressive_->beginFrame();
-    }
-    const auto& tracer = session_->pathTracer();
-    display_->setSources({hybrid ? hybrid->outputImage().view() : tracer.accumulationImage().view(),
-                          tracer.aovImage(render::Aov::Albedo).view(),
-                          tracer.aovImage(render::Aov::Normal).view(),
-                          tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view(),
-                          tracer.aovImage(render::Aov::Stats).view()});
-
-    auto index = swapchain_->acquire(imageAvailable_);
-    if (!index) {
-      ImGui::EndFrame();
-      swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
-      gui_->swapchainRecreated(*swapchain_);
-      continue;
-    }
-    const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
-    if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty())) {
-      captureThisFrame_ = true;
-      captureTarget_ = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
-      screenshotPath_.clear();
-    }
-    const Rect image = imageRect(view);
-    WB_VK(vkResetCommandBuffer(cmd_, 0));
-    recordFrame(cmd_, *index, image);
-    captureThisFrame_ = false;
-    VkPipelineStageFlags wait = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    VkSemaphore done = swapchain_->renderFinished(*index);
-    VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    si.waitSemaphoreCount = 1;
-    si.pWaitSemaphores = &imageAvailable_;
-    si.pWaitDstStageMask = &wait;
-    si.commandBufferCount = 1;
-    si.pCommandBuffers = &cmd_;
-    si.signalSemaphoreCount = 1;
-    si.pSignalSemaphores = &done;
-    WB_VK(vkResetFences(ctx.device(), 1, &fence_));
-    {
-      std::lock_guard lock(ctx.queueMutex());
-      WB_VK(vkQueueSubmit(ctx.queue(), 1, &si, fence_));
-    }
-    frameInFlight_ = true;
-    lastPresent_ = Clock::now();
-    if (!swapchain_->present(*index, done)) {
-      glfwGetFramebufferSize(window_, &fbw, &fbh);
-      vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
-      swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
-      gui_->swapchainRecreated(*swapchain_);
-    }
-    ++frameCount_;
+    drawFrame(dt);
   }
   if (frameInFlight_) {
     vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX);

@@ -107,6 +107,14 @@ nlohmann::json WorkbenchWindow::statsJson() {
   const std::string err = hot_->currentError();
   j["shader_error"] = err;
   j["banner"] = err.empty() ? "" : "shader error (still rendering with the last good pipeline):\n" + err;
+  j["mode_switches"] = nlohmann::json::array();
+  for (const auto& m : modeSwitches_) {
+    j["mode_switches"].push_back({{"to", m.to},
+                                  {"prepare_ms", m.prepareMs},
+                                  {"longest_frame_ms", m.longestFrameMs},
+                                  {"frames", m.frames},
+                                  {"done", m.done}});
+  }
   j["reloads"] = nlohmann::json::array();
   for (const auto& e : hot_->history()) j["reloads"].push_back(reloadEventJson(e));
   j["shader_files"] = nlohmann::json::array();

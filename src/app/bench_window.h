@@ -1,0 +1,25 @@
+// `bench --only window`: the live window measured as a user meets it (issue 19's figures): its trace rate
+// against headless rendering at the same size, edit to first new frame against the driver's pipeline build
+// (idle, and with two busy loops in another session), five quick saves, a mode switch and quick key taps.
+// The window runs as a child process on the display, or on an Xvfb server of its own when there is none.
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace wb::app {
+
+struct WindowBenchOptions {
+  int rounds = 3;      // throughput: window and headless runs, alternating
+  int samples = 8;     // throughput: samples timed per run (after two to warm up)
+  int edits = 5;       // edits timed, idle and under load
+  int keyTaps = 10;    // Tab taps sent within slow frames (even: the panel ends as it began)
+  bool underLoad = true;
+  std::string device;  // Vulkan device name (substring) for the headless runs and the window
+};
+
+// Throws std::runtime_error when a run fails (its log is in the message).
+nlohmann::json benchWindow(const WindowBenchOptions& o, const std::filesystem::path& work, bool ownMesaCache);
+
+}  // namespace wb::app
