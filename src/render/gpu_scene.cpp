@@ -141,7 +141,7 @@ void GpuScene::updateMaterials(const std::vector<gpu::Material>& materials) {
     throw std::invalid_argument("updateMaterials: " + std::to_string(materials.size()) +
                                 " materials, the scene has " + std::to_string(source_.materials.size()));
   }
-  vkDeviceWaitIdle(ctx_.device());  // the emitter buffers may be in use
+  ctx_.waitIdle();  // the emitter buffers may be in use
   materials_.upload(materials.data(), materials.size() * sizeof(gpu::Material));
   buildEmitters(materials);
 }

@@ -227,6 +227,7 @@ void HotReload::run() {
       pending_.push_back(std::move(p));
       preparing_ = false;
     }
+    if (onReady_) onReady_();
   }
 }
 

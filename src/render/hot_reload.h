@@ -85,6 +85,10 @@ class HotReload {
   // previous call, for loops that draw back to back; pass it when the loop also waits between frames).
   void frameFinished(std::optional<std::chrono::steady_clock::time_point> frameBegin = std::nullopt);
 
+  // Called on the worker thread when pipelines are ready for poll() (or a reload event without pipelines):
+  // a render loop that sleeps between frames wakes up to commit them (the window posts an empty event).
+  void setOnReady(std::function<void()> onReady) { onReady_ = std::move(onReady); }
+
   void setAutoReload(bool on) { autoReload_ = on; }
   bool autoReload() const { return autoReload_; }
   void reloadAll();  // rebuild every program now (the UI's reload button)
@@ -126,6 +130,7 @@ class HotReload {
 
   shader::ShaderLibrary& library_;
   shader::Reloader reloader_;
+  std::function<void()> onReady_;  // set before start()
   std::map<shader::ShaderLibrary::ProgramId, Target> targets_;
   std::map<const Renderer*, std::unique_ptr<Warmup>> warmups_;  // declared after targets_: destroyed first
   std::thread thread_;

@@ -89,7 +89,7 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
 }
 
 bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
-  vkDeviceWaitIdle(ctx_.device());  // the buffers and descriptor sets may be in flight
+  ctx_.waitIdle();  // the buffers and descriptor sets may be in flight
   inspection_ = request;
   createInspectBuffers();
   writeDescriptors(*sets_);
@@ -142,7 +142,7 @@ InspectBuffers PathTracer::readInspection() const {
 }
 
 PathTracer::~PathTracer() {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
 }
 
 void PathTracer::createImages() {
@@ -217,7 +217,7 @@ std::unique_ptr<vk::BuiltPipeline> PathTracer::buildPipeline(
 void PathTracer::installPipeline(shader::ShaderLibrary::ProgramId program,
                                  std::unique_ptr<vk::BuiltPipeline> pipeline) {
   if (program != program_) return;  // a variant this tracer has switched away from
-  vkDeviceWaitIdle(ctx_.device());  // the old pipeline and descriptor sets may still be in flight
+  ctx_.waitIdle();  // the old pipeline and descriptor sets may still be in flight
   sets_.reset();
   pipeline_ = std::move(pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *pipeline_->layout);
@@ -246,7 +246,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
       inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
   settings_ = settings;
   if (resized || inspectResized) {
-    vkDeviceWaitIdle(ctx_.device());
+    ctx_.waitIdle();
     if (resized) createImages();
     if (inspectResized) createInspectBuffers();
     writeDescriptors(*sets_);
@@ -255,7 +255,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
 }
 
 void PathTracer::setEnvironment(const GpuEnvironment& env) {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   env_ = &env;
   writeDescriptors(*sets_);
   sampleIndex_ = 0;

@@ -101,7 +101,7 @@ RenderSession::RenderSession(const SessionOptions& options)
 RenderSession::~RenderSession() {
   for (auto& f : preparing_)
     if (f.valid()) f.wait();
-  if (ctx_) vkDeviceWaitIdle(ctx_->device());
+  if (ctx_) ctx_->waitIdle();
   for (auto& r : renderers_) r.reset();
   env_.reset();
   gpuScene_.reset();

@@ -136,7 +136,7 @@ Context::~Context() {
 
 void Context::destroy() {
   if (device_) {
-    vkDeviceWaitIdle(device_);
+    waitIdle();
     pipelineCache_.reset();  // saves it
     if (fence_) vkDestroyFence(device_, fence_, nullptr);
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
@@ -419,6 +419,11 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
   WB_VK(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX));
   WB_VK(vkResetFences(device_, 1, &fence_));
   vkFreeCommandBuffers(device_, pool_, 1, &cmd);
+}
+
+void Context::waitIdle() {
+  std::lock_guard lock(queueMutex_);
+  vkDeviceWaitIdle(device_);
 }
 
 }  // namespace wb::vk

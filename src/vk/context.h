@@ -68,6 +68,9 @@ class Context {
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
   // The queue is shared by the render loop and background work: hold this while submitting.
   std::mutex& queueMutex() { return queueMutex_; }
+  // vkDeviceWaitIdle under the queue's lock (it accesses every queue of the device, which a submission on
+  // another thread must not meet); never call it while holding queueMutex().
+  void waitIdle();
 
   // Extension entry points.
   PFN_vkCreateAccelerationStructureKHR vkCreateAccelerationStructureKHR = nullptr;

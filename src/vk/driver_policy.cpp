@@ -8,9 +8,10 @@
 namespace wb::vk {
 namespace {
 
-// The CPU share `watch` and the window keep for their frames while a rebuild compiles on a CPU device.
-constexpr double kWatchShareWhileCompiling = 0.1;
-constexpr double kWindowShareWhileCompiling = 0.25;
+// The CPU share `watch` and the window keep for their frames while a rebuild compiles on a CPU device: enough
+// for the window to show the rebuild's progress and take input; what they trace meanwhile is replaced by the
+// new pipeline's image anyway.
+constexpr double kLoopShareWhileCompiling = 0.1;
 
 double restRatio(double share) {
   return (1.0 - share) / share;
@@ -39,10 +40,9 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   if (overrides.rebuildRestRatio) {
     p.watchRestRatio = p.windowRestRatio = std::max(0.0, *overrides.rebuildRestRatio);
   } else if (cpu) {
-    p.watchRestRatio = restRatio(kWatchShareWhileCompiling);
-    p.windowRestRatio = restRatio(kWindowShareWhileCompiling);
+    p.watchRestRatio = p.windowRestRatio = restRatio(kLoopShareWhileCompiling);
   }
-  p.windowTraceShareWhileCompiling = cpu ? kWatchShareWhileCompiling : 1.0;
+  p.windowTraceShareWhileCompiling = cpu ? kLoopShareWhileCompiling : 1.0;
   return p;
 }
 

@@ -78,7 +78,7 @@ Swapchain::Swapchain(Context& ctx, VkSurfaceKHR surface) : ctx_(ctx), surface_(s
 }
 
 Swapchain::~Swapchain() {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   destroyImages();
   if (swapchain_) vkDestroySwapchainKHR(ctx_.device(), swapchain_, nullptr);
   if (renderPass_) vkDestroyRenderPass(ctx_.device(), renderPass_, nullptr);
@@ -116,7 +116,7 @@ bool Swapchain::recreate(uint32_t width, uint32_t height, bool vsync) {
   vkGetPhysicalDeviceSurfacePresentModesKHR(ctx_.physicalDevice(), surface_, &count, modes.data());
   presentMode_ = choosePresentMode(modes, vsync);
 
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   destroyImages();
   minImageCount_ = std::max(caps.minImageCount, 2u);
   uint32_t imageCount = caps.minImageCount + 1;

@@ -37,7 +37,7 @@ TEST(DriverPolicy, ACpuImplementationCompilesAheadAndYieldsToRebuilds) {
   EXPECT_FALSE(p.deferredHostOps) << "lavapipe crashes linking inside a deferred operation";
   EXPECT_TRUE(p.cpuShapedShaderCode);
   EXPECT_DOUBLE_EQ(p.watchRestRatio, 9.0);   // frames keep a tenth of the CPU
-  EXPECT_DOUBLE_EQ(p.windowRestRatio, 3.0);  // the window a quarter
+  EXPECT_DOUBLE_EQ(p.windowRestRatio, 9.0);  // the window too
   EXPECT_DOUBLE_EQ(p.windowTraceShareWhileCompiling, 0.1);
 }
 

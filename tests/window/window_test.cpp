@@ -473,6 +473,43 @@ TEST(Window, QuickKeyTapsAtALowFrameRateAllLand) {
   EXPECT_EQ(s["resets"], readJson(before)["resets"]) << "hiding the panel restarted the accumulation";
 }
 
+// A mode switch as the panel makes it does not stop the window: the script goes on while the other mode's
+// renderer is made off the frame loop (the stats written right after the request still show the old mode),
+// then the new mode takes over and the stats time the switch.
+TEST(Window, AModeSwitchIsPreparedWhileTheWindowDraws) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("switch");
+  const fs::path a = dir / "a.json", b = dir / "b.json";
+  writeFile(dir / "s.txt", "wait_samples 1 300\nswitch_mode hybrid\nstats " + a.string() +
+                               "\nwait_mode 600\nframes 3\nstats " + b.string() + "\nquit\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto ja = readJson(a), jb = readJson(b);
+  EXPECT_EQ(ja["mode"], "pathtrace") << "the switch blocked the script until the hybrid renderer was made";
+  ASSERT_EQ(ja["mode_switches"].size(), 1u);
+  EXPECT_EQ(ja["mode_switches"][0]["done"], false);
+  EXPECT_EQ(jb["mode"], "hybrid");
+  ASSERT_EQ(jb["mode_switches"].size(), 1u);
+  EXPECT_EQ(jb["mode_switches"][0]["to"], "hybrid");
+  EXPECT_EQ(jb["mode_switches"][0]["done"], true);
+  EXPECT_GT(jb["mode_switches"][0]["longest_frame_ms"].get<double>(), 0.0);
+}
+
+// A script that sleeps goes on afterwards; a switch to a mode that does not exist fails the script with the
+// reason.
+TEST(Window, ScriptSleepAndWaitModeCommands) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("sleep");
+  writeFile(dir / "s.txt", "sleep 0.2\nframes 1\nstats " + (dir / "s.json").string() + "\nquit\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "s.json"));
+  writeFile(dir / "t.txt", "switch_mode nonsense\n");
+  r = runWindow("--script " + (dir / "t.txt").string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("mode"), std::string::npos) << r.output;
+}
+
 // A wait that times out fails the script: exit status 1 with the line, not a script that goes on.
 TEST(Window, AFailedWaitFailsTheSession) {
   REQUIRE_XVFB();

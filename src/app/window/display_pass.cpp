@@ -22,7 +22,7 @@ DisplayPass::DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRen
 }
 
 DisplayPass::~DisplayPass() {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   sets_.reset();
   current_.reset();
 }
@@ -82,7 +82,7 @@ std::unique_ptr<vk::BuiltPipeline> DisplayPass::build(
 }
 
 void DisplayPass::install(std::unique_ptr<vk::BuiltPipeline> pipeline) {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   sets_.reset();
   current_ = std::move(pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *current_->layout);

@@ -62,7 +62,7 @@ GuiLayer::GuiLayer(vk::Context& ctx, GLFWwindow* window, const vk::Swapchain& sw
 }
 
 GuiLayer::~GuiLayer() {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();

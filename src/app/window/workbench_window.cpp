@@ -59,6 +59,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   hot_ = std::make_unique<render::HotReload>(session_->library(),
                                              std::vector<std::filesystem::path>{shaderDir()});
   registerHotReload();
+  hot_->setOnReady([] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
   session_->attachHotReload(hot_.get());  // every renderer, the modes made later too
   hot_->start();
   applyMode(true);  // the mode the window opens in (--mode) is there from the first frame
@@ -96,7 +97,7 @@ WorkbenchWindow::~WorkbenchWindow() {
   if (hot_) hot_->stop();
   if (!session_) return;
   VkDevice d = session_->context().device();
-  vkDeviceWaitIdle(d);
+  session_->context().waitIdle();
   if (queries_) vkDestroyQueryPool(d, queries_, nullptr);
   if (imageAvailable_) vkDestroySemaphore(d, imageAvailable_, nullptr);
   if (fence_) vkDestroyFence(d, fence_, nullptr);

@@ -12,11 +12,11 @@ namespace wb::app {
 namespace {
 
 // While converging untouched, the image is presented this often; between presents the loop only traces.
-constexpr double kIdlePresentSeconds = 0.5;
+constexpr double kIdlePresentSeconds = 1.0;
 // Input within this long keeps every frame presented (the user is interacting).
 constexpr double kInteractionSeconds = 0.5;
 // The trace time of one trace-only submission: input that arrives meanwhile waits at most this long.
-constexpr double kTraceOnlyBudgetMs = 60.0;
+constexpr double kTraceOnlyBudgetMs = 100.0;
 
 }  // namespace
 

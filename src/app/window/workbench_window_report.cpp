@@ -67,7 +67,8 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["samples"] = currentSamples();
   j["preview"] = !activeHybrid() && progressive_->inPreview();
   j["resets"] = progressive_->resets() + hybridResets_;
-  j["mode"] = render::renderModeName(state_.params.mode);
+  j["mode"] = render::renderModeName(session_->mode());  // the mode shown (a switch may be in preparation)
+  j["mode_switching_to"] = modeSwitch_;                   // empty: none
   nlohmann::json le;
   le["reference"] = liveError_.referenceName();
   le["error"] = liveError_.error();

@@ -125,7 +125,7 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
 }
 
 HybridRenderer::~HybridRenderer() {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   for (auto& s : sets_) s.reset();
   for (auto& p : pipelines_) p.reset();
   if (nearest_) vkDestroySampler(ctx_.device(), nearest_, nullptr);
@@ -188,7 +188,7 @@ void HybridRenderer::writeDescriptors(vk::DescriptorSets& s) {
 }
 
 void HybridRenderer::setInspectPixel(std::optional<glm::uvec2> pixel) {
-  vkDeviceWaitIdle(ctx_.device());  // a frame in flight may be writing the record
+  ctx_.waitIdle();  // a frame in flight may be writing the record
   inspectPixel_ = pixel;
   gpu::HybridInspectRecord empty{};
   empty.frameIndex = WB_HYBRID_NO_INSPECT;
@@ -274,7 +274,7 @@ void HybridRenderer::installPipeline(shader::ShaderLibrary::ProgramId program,
                                      std::unique_ptr<vk::BuiltPipeline> pipeline) {
   const auto pass = passOf(program);
   if (!pass) return;
-  vkDeviceWaitIdle(ctx_.device());  // the old pipeline and descriptor sets may still be in flight
+  ctx_.waitIdle();  // the old pipeline and descriptor sets may still be in flight
   const size_t i = size_t(*pass);
   sets_[i].reset();
   pipelines_[i] = std::move(pipeline);
@@ -330,7 +330,7 @@ void HybridRenderer::setSettings(const RenderSettings& settings) {
   const bool resized = settings.width != settings_.width || settings.height != settings_.height;
   settings_ = settings;
   if (resized) {
-    vkDeviceWaitIdle(ctx_.device());
+    ctx_.waitIdle();
     createImages();
     for (size_t i = 0; i < kPassCount; ++i) {
       if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
@@ -350,7 +350,7 @@ void HybridRenderer::setHybridSettings(const HybridSettings& hybrid) {
 }
 
 void HybridRenderer::setEnvironment(const GpuEnvironment& env) {
-  vkDeviceWaitIdle(ctx_.device());
+  ctx_.waitIdle();
   env_ = &env;
   for (size_t i = 0; i < kPassCount; ++i) {
     if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
