@@ -10,7 +10,9 @@
 #     too small to time, so pass e.g. -t 1024x1024 there; the relMSE is taken at 64 spp, 256x256).
 #  3. The default scene at 128x128: `converge` of the configuration before issue 20 against the default one for S
 #     seconds each (3 runs), against a cached 2048-spp reference; and the hard cases (NaN/Inf, furnaces).
-#   bash bench/error_per_sample.sh [-b BIN] [-o OUT] [-r ROUNDS] [-t TIME_SIZE] [-s SECONDS] [--old-bin BIN]
+#   bash bench/error_per_sample.sh [-b BIN] [-o OUT] [-r ROUNDS] [-t TIME_SIZE] [-s SECONDS] [-c 'NAME|FLAGS']...
+#     [--old-bin BIN]
+# -c adds a configuration to sections 1 and 2 (e.g. -c 'ratio2|--define WB_EMITTER_SOLID_ANGLE_RATIO=2.0').
 # --old-bin adds a configuration "main" rendered by another binary (e.g. a build of the commit before the
 # changes), which is the real "before": the "before" configuration here keeps two small changes that cannot be
 # turned off (the light point's dimensions and the BRDF lobe choice, see docs/reports/error_per_sample.md).
@@ -22,6 +24,7 @@ out=out/error_per_sample
 rounds=5
 time_size=256x256
 seconds=30
+extra=()
 while [ $# -gt 0 ]; do
   case $1 in
     -b) wb=$2; shift 2 ;;
@@ -29,8 +32,9 @@ while [ $# -gt 0 ]; do
     -r) rounds=$2; shift 2 ;;
     -t) time_size=$2; shift 2 ;;
     -s) seconds=$2; shift 2 ;;
+    -c) extra+=("$2"); shift 2 ;;
     --old-bin) old=$2; shift 2 ;;
-    *) echo "usage: bash bench/error_per_sample.sh [-b BIN] [-o OUT] [-r ROUNDS] [-t TIME_SIZE] [-s SECONDS] [--old-bin BIN]" >&2; exit 2 ;;
+    *) echo "usage: bash bench/error_per_sample.sh [-b BIN] [-o OUT] [-r ROUNDS] [-t TIME_SIZE] [-s SECONDS] [-c 'NAME|FLAGS']... [--old-bin BIN]" >&2; exit 2 ;;
   esac
 done
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -40,12 +44,16 @@ mkdir -p "$out"
 out=$(realpath "$out")
 cornell=(--size 256x256 --env-color 0,0,0 --max-bounces 64)
 
-# name|flags, in the order the changes landed (docs/reports/error_per_sample.md).
+# name|flags, in the order the changes landed (docs/reports/error_per_sample.md): the sampler, Russian roulette on
+# sqrt(throughput) from bounce 3, the first solid-angle light sampling (the previous default), the streamlined one
+# with the centroid rule (the default).
 configs=(
   "before|--sampler sobol --rr-exponent 1 --rr-start 2 --define WB_EMITTER_SOLID_ANGLE=0"
   "owen|--sampler owen --rr-exponent 1 --rr-start 2 --define WB_EMITTER_SOLID_ANGLE=0"
-  "owen+solid-angle|--sampler owen --rr-exponent 1 --rr-start 2"
+  "owen+rr|--define WB_EMITTER_SOLID_ANGLE=0"
+  "previous|--define WB_EMITTER_SOLID_ANGLE=1"
   "default|"
+  ${extra[@]+"${extra[@]}"}
 )
 
 echo "== 1. Cornell box: error per sample ($(date -u +%FT%TZ), $(uname -n))"

@@ -5,10 +5,22 @@
 #define WB_PT_EMITTERS_GLSL
 #include "../shared/spherical_triangle.h"
 
-// Solid-angle sampling of large emitters (1; the default) or uniform area sampling everywhere (0, for comparison:
-// --define WB_EMITTER_SOLID_ANGLE=0).
+// How a picked triangle is sampled (--define WB_EMITTER_SOLID_ANGLE=N):
+//  2 (the default): by solid angle where the triangle is large from the shading point (its longest edge times
+//    WB_EMITTER_SOLID_ANGLE_RATIO is longer than the distance to its centroid), else a uniform point of its area,
+//    with the streamlined sampler of shared/spherical_triangle.h (triangleLightSample); a single-sided emitter seen
+//    from behind gets no sample at all.
+//  1: the first implementation: solid angle where the longest edge is longer than half the distance to the
+//    triangle's plane (sphericalTriangleUseSolidAngle), with the first sampler.
+//  0: a uniform point of the area everywhere.
+// Ratio 1.5 keeps the Cornell box's error per sample of the first implementation (it picks solid angle for ~99% of
+// the box's wall area, the floor's far corners excepted); ratio 1 (~54%) gave up some of it for no time saved on a
+// GPU, where a warp pays for the technique if one of its paths takes it (docs/reports/error_per_sample.md).
 #ifndef WB_EMITTER_SOLID_ANGLE
-#define WB_EMITTER_SOLID_ANGLE 1
+#define WB_EMITTER_SOLID_ANGLE 2
+#endif
+#ifndef WB_EMITTER_SOLID_ANGLE_RATIO
+#define WB_EMITTER_SOLID_ANGLE_RATIO 1.5
 #endif
 
 layout(set = 0, binding = WB_BIND_EMITTERS, scalar) readonly buffer EmitterBlock { EmissiveTriangle emitters[]; };
@@ -25,12 +37,17 @@ float emitterAreaPdf(vec3 emissiveFactor) {
 
 // Solid-angle pdf with which sampleEmitter picks the direction from `origin` to a point of emitter triangle
 // (p0, p1, p2) at distance dist, seeing the emitter at cosLight: the triangle's selection probability times the
-// pdf of the technique sampleEmitter uses for this origin and triangle (sphericalTriangleUseSolidAngle):
-// 1 / solid angle, or the area pdf converted to solid angle (d^2 / (area cos)). Next-event estimation and the MIS
-// weight of a BRDF sample that hits the emitter both evaluate this, so they agree.
+// pdf of the technique sampleEmitter uses for this origin and triangle: 1 / solid angle, or the area pdf converted
+// to solid angle (d^2 / (area cos)). Next-event estimation and the MIS weight of a BRDF sample that hits the
+// emitter both evaluate this (or, in sampleEmitter, the same terms), so they agree.
 float emitterPdf(vec3 origin, vec3 p0, vec3 p1, vec3 p2, vec3 emissiveFactor, float dist, float cosLight) {
   const float areaPdf = emitterAreaPdf(emissiveFactor);  // selection probability / area
-#if WB_EMITTER_SOLID_ANGLE
+#if WB_EMITTER_SOLID_ANGLE == 2
+  const vec3 n = cross(p1 - p0, p2 - p0);
+  const float area = 0.5 / inversesqrt(dot(n, n));
+  return areaPdf * area * triangleLightPdf(origin, p0, p1, p2, dist, cosLight, float(WB_EMITTER_SOLID_ANGLE_RATIO));
+#else
+#if WB_EMITTER_SOLID_ANGLE == 1
   if (sphericalTriangleUseSolidAngle(origin, p0, p1, p2)) {
     const float omega = sphericalTriangleSolidAngle(origin, p0, p1, p2);
     const float area = 0.5 * length(cross(p1 - p0, p2 - p0));
@@ -38,6 +55,17 @@ float emitterPdf(vec3 origin, vec3 p0, vec3 p1, vec3 p2, vec3 emissiveFactor, fl
   }
 #endif
   return areaPdf * dist * dist / max(cosLight, 1e-8);
+#endif
+}
+
+// Barycentric coordinates of point x of triangle (p0, p1, p2) (for the emissive texture's uv).
+vec3 emitterBarycentrics(vec3 x, vec3 p0, vec3 p1, vec3 p2) {
+  const vec3 e1 = p1 - p0, e2 = p2 - p0, d = x - p0;
+  const vec3 n = cross(e1, e2);
+  const float inv = 1.0 / dot(n, n);
+  const float b1 = dot(cross(d, e2), n) * inv;
+  const float b2 = dot(cross(e1, d), n) * inv;
+  return vec3(1.0 - b1 - b2, b1, b2);
 }
 
 struct EmitterSample {
@@ -80,9 +108,32 @@ EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
 #if WB_INSPECT
   s.index = i;
 #endif
+#if WB_EMITTER_SOLID_ANGLE == 2
+  // A single-sided emitter seen from behind (or edge-on) is black from p: no sample.
+  if (t.doubleSided == 0u && dot(cross(t.p1 - t.p0, t.p2 - t.p0), t.p0 - p) >= 0.0) return s;
+  const TriangleLightSample ls = triangleLightSample(p, t.p0, t.p1, t.p2, u, float(WB_EMITTER_SOLID_ANGLE_RATIO));
+  if (!(ls.pdf > 0.0)) return s;
+  s.normal = ls.normal;
+  s.position = ls.position;
+  s.dist = ls.dist;
+  s.wi = ls.wi;
+  float cosLight = -dot(s.normal, s.wi);
+  if (t.doubleSided != 0u) cosLight = abs(cosLight);
+  if (!(cosLight > 0.0)) return s;
+  const Material m = materials[t.materialIndex];
+  vec3 le = m.emissive;
+  if (m.emissiveTexture >= 0) {
+    const vec3 b = emitterBarycentrics(s.position, t.p0, t.p1, t.p2);
+    const vec2 uv = b.x * t.uv0 + b.y * t.uv1 + b.z * t.uv2;
+    le *= sampleTexture(m.emissiveTexture, uv).rgb;
+  }
+  s.radiance = le;
+  s.pdf = emitterAreaPdf(m.emissive) * ls.area * ls.pdf;
+  return s;
+#else
   s.normal = normalize(cross(t.p1 - t.p0, t.p2 - t.p0));
   vec3 b;
-#if WB_EMITTER_SOLID_ANGLE
+#if WB_EMITTER_SOLID_ANGLE == 1
   if (sphericalTriangleUseSolidAngle(p, t.p0, t.p1, t.p2)) {
     const float omega = sphericalTriangleSolidAngle(p, t.p0, t.p1, t.p2);
     if (!(omega > 0.0)) return s;
@@ -116,6 +167,7 @@ EmitterSample sampleEmitter(vec3 p, float uSelect, float uCoin, vec2 u) {
   s.radiance = le;
   s.pdf = emitterPdf(p, t.p0, t.p1, t.p2, m.emissive, s.dist, cosLight);
   return s;
+#endif
 }
 
 #endif

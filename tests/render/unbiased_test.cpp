@@ -11,6 +11,7 @@
 #include "stb_image.h"
 #include "gpu_fixture.h"
 #include "pt_helpers.h"
+#include "shared/spherical_triangle.h"
 #include "test_scenes.h"
 
 using namespace wb;
@@ -199,6 +200,78 @@ TEST(Emitters, SolidAngleSamplingKeepsMisConsistent) {
     EXPECT_LT(z(eLight, eBrdf), 4.0) << render::samplerName(sampler);
   }
   expectNoValidationErrors(*session);
+}
+
+// The technique rule of the default emitter sampling (WB_EMITTER_SOLID_ANGLE=2, shared/spherical_triangle.h)
+// picks solid angle near a triangle and area sampling further away. Here the switch runs across the visible
+// floor (a 2x2 emitter 0.6 above it, ratio 0.4: solid angle within ~1.1 of a triangle's centroid), so MIS
+// weighs BRDF samples that hit the light with either technique's pdf: MIS, light sampling alone and BRDF
+// sampling alone must agree, and so must area sampling everywhere (0) and the first implementation (1). A pdf
+// for MIS that is not the technique's that next-event estimation used, or a technique that does not match its
+// pdf, shows here.
+TEST(Emitters, TechniqueSwitchKeepsMisConsistent) {
+  scene::Scene sc = makeShadowScene().scene;
+  sc.lights.clear();
+  sc.meshes.resize(1);
+  sc.instances.resize(1);
+  gpu::Material emitter = lambert(glm::vec3(0.0f));
+  emitter.emissive = glm::vec3(2.0f);
+  sc.materials.push_back(emitter);
+  sc.meshes.push_back(quadMesh(1.0f, int(sc.materials.size() - 1)));
+  glm::mat4 t(1.0f);
+  t[1][1] = -1.0f, t[2][2] = -1.0f;  // facing the floor
+  t[3] = glm::vec4(0.3f, 0.6f, 0.0f, 1.0f);
+  sc.instances.push_back({1, t, "emitter"});
+  sc.camera.eye = glm::vec3(0.0f, 2.0f, 3.0f);
+  constexpr float kRatio = 0.4f;
+  // The rule switches on the floor in view: below the light solid angle, 1.5 away area sampling.
+  const glm::vec3 q0(-0.7f, 0.6f, 1.0f), q1(1.3f, 0.6f, -1.0f),
+      q2(1.3f, 0.6f, 1.0f);  // one triangle of the quad
+  const glm::vec3 n = glm::cross(q1 - q0, q2 - q0);
+  EXPECT_TRUE(gpu::triangleLightUseSolidAngle(glm::vec3(0.6f, 0.0f, 0.3f), q0, q1, q2, n, kRatio));
+  EXPECT_FALSE(gpu::triangleLightUseSolidAngle(glm::vec3(-1.0f, 0.0f, -1.0f), q0, q1, q2, n, kRatio));
+  render::SessionOptions o;
+  o.sceneData = sc;
+  o.settings.width = 24;
+  o.settings.height = 24;
+  o.settings.envColor = glm::vec3(0.0f);
+  o.settings.maxBounces = 1;
+  o.settings.defines = {{"WB_EMITTER_SOLID_ANGLE_RATIO", "0.4"}};
+  auto session = makeSession(o);
+  render::RenderSettings mis = o.settings, lightOnly = o.settings, brdfOnly = o.settings;
+  lightOnly.mis = false;
+  brdfOnly.nee = false;
+  const Estimate eMis = estimateMean(*session, mis, 12, 16, 100);
+  const Estimate eLight = estimateMean(*session, lightOnly, 12, 16, 200);
+  const Estimate eBrdf = estimateMean(*session, brdfOnly, 12, 64, 300);
+  // The other techniques are shader variants: sessions of their own.
+  render::SessionOptions areaOptions = o, firstOptions = o;
+  areaOptions.settings.defines = {{"WB_EMITTER_SOLID_ANGLE", "0"}};
+  firstOptions.settings.defines = {{"WB_EMITTER_SOLID_ANGLE", "1"}};
+  auto areaSession = makeSession(areaOptions);
+  auto firstSession = makeSession(firstOptions);
+  const Estimate eArea = estimateMean(*areaSession, areaOptions.settings, 12, 16, 400);
+  const Estimate eFirst = estimateMean(*firstSession, firstOptions.settings, 12, 16, 500);
+  for (const auto& [name, e] : {std::pair{"mis", &eMis},
+                                {"light only", &eLight},
+                                {"brdf only", &eBrdf},
+                                {"area sampling", &eArea},
+                                {"first implementation", &eFirst}}) {
+    EXPECT_EQ(e->nonFinite, 0u) << name;
+    EXPECT_EQ(e->dropped, 0u) << name;
+    EXPECT_LT(e->sigma, 0.01 * e->mean) << name << ": too noisy to compare";
+  }
+  expectAgree("mis", eMis, "light only", eLight);
+  expectAgree("mis", eMis, "brdf only", eBrdf);
+  expectAgree("light only", eLight, "brdf only", eBrdf);
+  expectAgree("mis", eMis, "area sampling mis", eArea);
+  expectAgree("mis", eMis, "first impl. mis", eFirst);
+  expectAgree("area sampling mis", eArea, "brdf only", eBrdf);
+  // Near the light the solid angle technique has less variance than area sampling.
+  EXPECT_LT(eMis.sigma, eArea.sigma);
+  expectNoValidationErrors(*session);
+  expectNoValidationErrors(*areaSession);
+  expectNoValidationErrors(*firstSession);
 }
 
 // Rotating the map by a full turn changes nothing (up to float rounding of the rotation); intensity 2 doubles

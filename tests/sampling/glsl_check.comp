@@ -53,6 +53,9 @@ void main() {
   float omega = sphericalTriangleSolidAngle(p, p0, p1, p2);
   vec3 d = sampleSphericalTriangle(p, p0, p1, p2, vec2(0.3, 0.6), omega);
   outBuf.v[0] = vec4(d + sphericalTriangleHit(p, d, p0, p1, p2), sphericalTriangleUseSolidAngle(p, p0, p1, p2) ? 1.0 : 0.0);
+  TriangleLightSample s = triangleLightSample(p, p0, p1, p2, vec2(0.3, 0.6), 1.0);
+  outBuf.v[1] = vec4(s.wi + sphericalTriangleSample(sphericalTriangleSetup(p, p0, p1, p2), vec2(0.2, 0.7)),
+                     s.pdf + triangleLightPdf(p, p0, p1, p2, s.dist, s.cosLight, 1.0));
 }
 #else
 #include "shared/brdf.h"
