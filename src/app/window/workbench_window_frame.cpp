@@ -172,6 +172,7 @@ int WorkbenchWindow::run() {
       frameInFlight_ = false;
       readTimestamps(true);
       hot_->frameFinished(frameBegin);
+      runPendingAB();
       if (restRatio > 0 && hot_->compiling()) {
         const auto end = Clock::now();
         const auto until = end + std::chrono::duration_cast<Clock::duration>((end - frameBegin) * restRatio);
@@ -234,7 +235,7 @@ int WorkbenchWindow::run() {
         break;
       }
     }
-    hot_->poll();
+    noteReload(hot_->poll());
 
     int fbw = 0, fbh = 0;
     glfwGetFramebufferSize(window_, &fbw, &fbh);
@@ -277,6 +278,8 @@ int WorkbenchWindow::run() {
     panelWidth_ = drawSidePanel(pc, W, H);
     const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
     drawOverlays(pc, imageRect(view));
+    drawABPanel(ab_, W, H);
+    applyABDecision();
     handleInput(view, dt);
 
     // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
