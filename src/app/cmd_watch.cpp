@@ -6,10 +6,14 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "app/reload_log.h"
+#include "eval/image.h"
+#include "render/ab_comparison.h"
 #include "app/render_options.h"
 #include "common/json_text.h"
 #include "common/paths.h"
@@ -29,6 +33,19 @@ void WatchCommand::addFlags(CLI::App& cli) {
   auto* framesOpt = cli.add_option("--frames", frames, "stop after N frames");
   cli.add_option("--seconds", seconds, "stop after S seconds")->excludes(framesOpt);
   cli.add_option("--log", logPath, "append one JSON line per reload to this file");
+  cli.add_flag(
+      "--ab", ab,
+      "after each reload, compare the old and the new pipeline (same seeds): image and speed verdicts in "
+      "the log's \"ab\"");
+  cli.add_option("--ab-size", abSize, "A/B trace size WxH")->capture_default_str();
+  cli.add_option("--ab-spp", abSpp, "A/B samples per side (one seed each)")
+      ->check(CLI::Range(1u, 1024u))
+      ->capture_default_str();
+  cli.add_option("--ab-rounds", abRounds, "A/B timing rounds (alternating old and new)")
+      ->check(CLI::Range(1u, 1000u))
+      ->capture_default_str();
+  cli.add_option("--ab-diff-dir", abDiffDir,
+                 "write each A/B comparison's old, new and difference images (EXR)");
 }
 
 int runWatchCommand(const std::vector<std::string>& args) {
@@ -41,6 +58,31 @@ int WatchCommand::run() {
   if (!headless)
     std::printf("workbench watch: rendering headless (the live window is the plain `workbench`)\n");
 
+  render::ABBudget budget;
+  budget.spp = abSpp;
+  budget.rounds = abRounds;
+  {
+    uint32_t w = 0, h = 0;
+    char x = 0;
+    std::string extra;
+    std::istringstream in(abSize);
+    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w == 0 || h == 0 || w > 4096 ||
+        h > 4096) {
+      std::fprintf(stderr, "workbench watch: error: --ab-size: expected WxH with 1..4096, got '%s'\n",
+                   abSize.c_str());
+      return 1;
+    }
+    budget.width = w;
+    budget.height = h;
+  }
+  if (!abDiffDir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(abDiffDir, ec);
+    if (!std::filesystem::is_directory(abDiffDir)) {
+      std::fprintf(stderr, "workbench watch: error: cannot create --ab-diff-dir '%s'\n", abDiffDir.c_str());
+      return 1;
+    }
+  }
   std::ofstream log;
   if (!logPath.empty()) {
     log.open(logPath, std::ios::app);
@@ -59,6 +101,11 @@ int WatchCommand::run() {
     render::RenderSession session(so);
     render::HotReload hot(session.library(), {shaderDir()});
     session.attachHotReload(&hot);  // every renderer's pipelines, the hybrid modes' raster ones too
+    std::optional<render::ABComparison> comparison;
+    if (ab) {
+      comparison.emplace(session, budget);
+      comparison->prepare();
+    }
     hot.start();
     std::signal(SIGINT, [](int) { gInterrupted = true; });
     std::signal(SIGTERM, [](int) { gInterrupted = true; });
@@ -110,6 +157,27 @@ int WatchCommand::run() {
       }
       ++frame;
       if (unlogged) {
+        // The new image is on screen (its first frame finished): now the A/B comparison, which the log line
+        // carries.
+        if (comparison) {
+          const auto t0 = std::chrono::steady_clock::now();
+          std::vector<render::ReloadAB> results;
+          const auto outcomes = comparison->compare(hot.lastInstalled());
+          const size_t reload = hot.history().size();
+          for (size_t i = 0; i < outcomes.size(); ++i) {
+            results.push_back(outcomes[i].result);
+            if (abDiffDir.empty()) continue;
+            const std::string stem = "reload" + std::to_string(reload) + "_" + std::to_string(i);
+            const std::filesystem::path dir(abDiffDir);
+            eval::writeExr(dir / (stem + "_old.exr"), outcomes[i].oldImage);
+            eval::writeExr(dir / (stem + "_new.exr"), outcomes[i].newImage);
+            eval::writeExr(dir / (stem + "_diff.exr"),
+                           eval::differenceImage(outcomes[i].oldImage, outcomes[i].newImage));
+          }
+          hot.attachAB(
+              std::move(results),
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        }
         writeEvent(hot.history().back());
         unlogged.reset();
       }

@@ -1,5 +1,6 @@
-// `workbench watch [SCENE] --headless [--frames N | --seconds S] [--log FILE.jsonl]`: renders continuously
-// offscreen while watching the shaders; one JSON line per reload.
+// `workbench watch [SCENE] --headless [--frames N | --seconds S] [--log FILE.jsonl] [--ab [--ab-size WxH]
+// [--ab-spp N] [--ab-rounds N] [--ab-diff-dir DIR]]`: renders continuously offscreen while watching the
+// shaders; one JSON line per reload, with the A/B comparison of old and new pipelines under --ab.
 #pragma once
 #include <string>
 #include <vector>
@@ -25,6 +26,12 @@ class WatchCommand : public Command {
   uint64_t frames = 0;
   double seconds = 0;
   std::string logPath;
+  // The A/B comparison after each reload (render/ab_comparison.h).
+  bool ab = false;
+  std::string abSize = "64x64";
+  uint32_t abSpp = 4;
+  uint32_t abRounds = 5;
+  std::string abDiffDir;  // non-empty: each comparison's old, new and difference images (EXR) go there
 };
 
 int runWatchCommand(const std::vector<std::string>& args);

@@ -1,6 +1,24 @@
 #include "app/reload_log.h"
 
+#include <cmath>
+
 namespace wb::app {
+
+nlohmann::json abJson(const render::ReloadAB& ab) {
+  // Non-finite numbers (a NaN that appeared) are null in JSON.
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  nlohmann::json j;
+  j["image_verdict"] = eval::imageVerdictName(ab.image.verdict);
+  j["rmse"] = num(ab.image.rmse);
+  j["rel_mse"] = num(ab.image.relMse);
+  j["max_abs_diff"] = num(ab.image.maxAbsDiff);
+  j["changed_pixel_fraction"] = ab.image.changedPixelFraction;
+  j["mean_shift_significant"] = ab.image.meanShiftSignificant;
+  j["speed_ratio"] = num(ab.speed.ratio);
+  j["speed_ratio_spread"] = {num(ab.speed.spread[0]), num(ab.speed.spread[1])};
+  j["speed_verdict"] = eval::speedVerdictName(ab.speed.verdict);
+  return j;
+}
 
 nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
   nlohmann::json j;
@@ -30,6 +48,26 @@ nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
   j["frames_during_rebuild"] = e.frames.framesDuringRebuild;
   j["ok"] = e.ok;
   j["error"] = e.error;
+  // The A/B comparison (watch --ab, the window's A/B panel): "ab" is the active renderer's (the first),
+  // "ab_pipelines" every rebuilt pipeline's with its timings, "ab_ms" what the comparisons took.
+  if (!e.ab.empty()) {
+    j["ab"] = abJson(e.ab.front());
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& ab : e.ab) {
+      list.push_back(
+          {{"pipeline", ab.pipeline},
+           {"mode", ab.mode},
+           {"active", ab.active},
+           {"ab", abJson(ab)},
+           {"max_rel_diff", std::isfinite(ab.image.maxRelDiff) ? nlohmann::json(ab.image.maxRelDiff)
+                                                               : nlohmann::json(nullptr)},
+           {"old_ms_per_sample", ab.speed.oldMsPerSample},
+           {"new_ms_per_sample", ab.speed.newMsPerSample}});
+    }
+    j["ab_pipelines"] = list;
+    j["ab_ms"] = e.abMs;
+  }
+  if (e.reverted) j["reverted"] = true;
   return j;
 }
 

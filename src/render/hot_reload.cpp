@@ -44,12 +44,25 @@ void HotReload::addRenderer(Renderer& renderer) {
       std::lock_guard lock(mutex_);
       if (targets_.count(id)) continue;
     }
+    // The build the renderer's pipeline was made from (the library's cache holds it): the A/B comparison's
+    // and a revert's old side of the first edit.
+    try {
+      auto build = library_.buildProgram(id);
+      std::lock_guard lock(mutex_);
+      installedBuilds_.emplace(id, std::move(build));
+    } catch (const std::exception&) {
+      // Not buildable now (a broken file saved since): the first edit has no old side to compare.
+    }
     addTarget(id, {programs[i].name,
                    [this, &renderer, warmup, i, id](const shader::ShaderLibrary::ProgramBuild& b) {
                      return buildWithWarmup(renderer, *warmup, i, id, b);
                    },
                    [&renderer, id](std::unique_ptr<vk::BuiltPipeline> p) {
                      renderer.installPipeline(id, std::move(p));
+                   },
+                   &renderer, i,
+                   [&renderer, id](std::unique_ptr<vk::BuiltPipeline> p) {
+                     return renderer.exchangePipeline(id, std::move(p));
                    }});
   }
   if (warmup->enabled) {
@@ -181,6 +194,7 @@ void HotReload::run() {
       }
       try {
         p.built.emplace_back(result->programs[i], target.build(result->builds[i]));
+        p.builds.push_back(result->builds[i]);
         p.event.pipelinesRebuilt.push_back(target.name);
         const vk::RtLibraryStats s = p.built.back().second->libraryStats();
         p.event.libraries.librariesCompiled += s.librariesCompiled;
@@ -276,13 +290,27 @@ std::optional<ReloadEvent> HotReload::poll() {
     p = std::move(pending_.front());
     pending_.pop_front();
   }
-  for (auto& [id, built] : p->built) {
+  lastInstalled_.clear();
+  for (size_t i = 0; i < p->built.size(); ++i) {
+    auto& [id, built] = p->built[i];
     Target target;
+    std::optional<shader::ShaderLibrary::ProgramBuild> before;
     {
       std::lock_guard lock(mutex_);
       target = targets_.at(id);
+      auto it = installedBuilds_.find(id);
+      if (it != installedBuilds_.end()) before = it->second;
+      installedBuilds_[id] = p->builds[i];
     }
-    target.install(std::move(built));
+    std::shared_ptr<vk::BuiltPipeline> old;
+    if (target.exchange) {
+      old = target.exchange(std::move(built));
+    } else {
+      target.install(std::move(built));
+    }
+    if (before && old && target.renderer)
+      lastInstalled_.push_back(
+          {id, target.name, target.renderer, target.programIndex, std::move(old), *before, p->builds[i]});
   }
   const auto now = std::chrono::steady_clock::now();
   p->event.editToNewPipelineMs = msBetween(p->editTime, now);
@@ -303,6 +331,24 @@ void HotReload::frameFinished(std::optional<std::chrono::steady_clock::time_poin
   history_.back().editToFirstFrameMs = msBetween(*awaitingFrame_, now);
   history_.back().frames = frameTimeline_.stats(*awaitingFrame_, true);
   awaitingFrame_.reset();
+}
+
+void HotReload::attachAB(std::vector<ReloadAB> ab, double ms) {
+  std::lock_guard lock(mutex_);
+  if (history_.empty()) return;
+  history_.back().ab = std::move(ab);
+  history_.back().abMs = ms;
+}
+
+void HotReload::revert(const std::vector<InstalledProgram>& installed) {
+  for (const auto& ip : installed) {
+    if (!ip.renderer || !ip.oldPipeline) continue;
+    ip.renderer->exchangePipeline(ip.program, ip.oldPipeline);
+    std::lock_guard lock(mutex_);
+    installedBuilds_[ip.program] = ip.before;
+  }
+  std::lock_guard lock(mutex_);
+  if (!history_.empty()) history_.back().reverted = true;
 }
 
 bool HotReload::busy() const {

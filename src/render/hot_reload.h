@@ -17,6 +17,7 @@
 #include <thread>
 #include <vector>
 
+#include "eval/ab.h"
 #include "render/jit_warmup.h"
 #include "render/reload_frames.h"
 #include "render/renderer.h"
@@ -25,6 +26,15 @@
 #include "vk/built_pipeline.h"
 
 namespace wb::render {
+
+// The A/B comparison of one rebuilt pipeline (render/ab_comparison.h): old against new at the A/B budget.
+struct ReloadAB {
+  std::string pipeline;  // the target's name ("pathtracer", "hybrid: shadow/AO", ...)
+  std::string mode;      // the renderer's mode ("pathtrace", "hybrid", "reflections")
+  bool active = false;   // the renderer on screen
+  eval::ImageComparison image;
+  eval::SpeedComparison speed;
+};
 
 // One reload as the UI history and the `watch` log show it.
 struct ReloadEvent {
@@ -45,6 +55,11 @@ struct ReloadEvent {
   // The render loop's frames around it (filled with the first new frame, or at once when nothing was
   // rebuilt).
   ReloadFrameStats frames;
+  // The A/B comparisons of the rebuilt pipelines (empty when none ran), the active renderer's first, and
+  // their total wall time (-1: none ran).
+  std::vector<ReloadAB> ab;
+  double abMs = -1;
+  bool reverted = false;  // the old pipelines were reinstalled (the A/B panel's Revert)
 };
 
 class HotReload {
@@ -55,6 +70,20 @@ class HotReload {
     std::string name;
     std::function<std::unique_ptr<vk::BuiltPipeline>(const shader::ShaderLibrary::ProgramBuild&)> build;
     std::function<void(std::unique_ptr<vk::BuiltPipeline>)> install;
+    Renderer* renderer = nullptr;  // the renderer whose program this is (addRenderer), for the A/B comparison
+    size_t programIndex = 0;       // its index in renderer->programs()
+    // Instead of `install` where set: installs and hands back the pipeline replaced.
+    std::function<std::shared_ptr<vk::BuiltPipeline>(std::unique_ptr<vk::BuiltPipeline>)> exchange;
+  };
+  // A program whose new pipeline poll() installed: the pipeline it replaced (kept alive until the next
+  // reload: the A/B comparison renders with it, a revert reinstalls it) and the builds before and after.
+  struct InstalledProgram {
+    shader::ShaderLibrary::ProgramId program = 0;
+    std::string name;
+    Renderer* renderer = nullptr;
+    size_t programIndex = 0;
+    std::shared_ptr<vk::BuiltPipeline> oldPipeline;
+    shader::ShaderLibrary::ProgramBuild before, after;
   };
   // The JIT warm-up of one renderer's reloads.
   struct WarmupStats {
@@ -80,6 +109,14 @@ class HotReload {
 
   // Render thread, at a frame boundary: commits prepared pipelines. Returns the event it applied, if any.
   std::optional<ReloadEvent> poll();
+  // Render thread: the programs the latest poll() that applied an event installed with a build from before
+  // (those of a renderer added with addRenderer); cleared by the next such poll().
+  const std::vector<InstalledProgram>& lastInstalled() const { return lastInstalled_; }
+  // Render thread: attaches A/B results to the newest event of the history.
+  void attachAB(std::vector<ReloadAB> ab, double ms);
+  // Render thread: reinstalls the pipelines `installed` replaced (kept, so nothing is built); the newest
+  // event is marked reverted. The files on disk are not touched: a later save rebuilds from them.
+  void revert(const std::vector<InstalledProgram>& installed);
   // Render thread, once per frame: a frame finished; the first after a commit used the new pipelines (fills
   // editToFirstFrameMs and the event's frame times). frameBegin: when the frame's work began (default: the
   // previous call, for loops that draw back to back; pass it when the loop also waits between frames).
@@ -116,6 +153,7 @@ class HotReload {
   struct Pending {
     ReloadEvent event;
     std::vector<std::pair<shader::ShaderLibrary::ProgramId, std::unique_ptr<vk::BuiltPipeline>>> built;
+    std::vector<shader::ShaderLibrary::ProgramBuild> builds;  // built[i]'s program build
     std::chrono::steady_clock::time_point editTime;
   };
   struct Warmup {
@@ -148,6 +186,10 @@ class HotReload {
   std::map<shader::ShaderLibrary::ProgramId, std::string> errors_;
   std::optional<std::chrono::steady_clock::time_point> awaitingFrame_;
   ReloadFrameTimeline frameTimeline_;  // render thread only
+  // The build of each program's installed pipeline (guarded by mutex_), and what the last poll installed
+  // (render thread only).
+  std::map<shader::ShaderLibrary::ProgramId, shader::ShaderLibrary::ProgramBuild> installedBuilds_;
+  std::vector<InstalledProgram> lastInstalled_;
   std::optional<std::chrono::steady_clock::time_point> lastFrameEnd_;
 };
 

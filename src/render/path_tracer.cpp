@@ -214,12 +214,16 @@ std::unique_ptr<vk::BuiltPipeline> PathTracer::buildPipeline(
   return built;
 }
 
-void PathTracer::installPipeline(shader::ShaderLibrary::ProgramId program,
-                                 std::unique_ptr<vk::BuiltPipeline> pipeline) {
-  if (program != program_) return;  // a variant this tracer has switched away from
-  ctx_.waitIdle();  // the old pipeline and descriptor sets may still be in flight
+std::shared_ptr<vk::BuiltPipeline> PathTracer::pipeline(shader::ShaderLibrary::ProgramId program) const {
+  return program == program_ ? pipeline_ : nullptr;
+}
+
+std::shared_ptr<vk::BuiltPipeline> PathTracer::exchangePipeline(shader::ShaderLibrary::ProgramId program,
+                                                                std::shared_ptr<vk::BuiltPipeline> pipeline) {
+  if (program != program_) return nullptr;  // a variant this tracer has switched away from
+  ctx_.waitIdle();          // the old pipeline and descriptor sets may still be in flight
   sets_.reset();
-  pipeline_ = std::move(pipeline);
+  std::swap(pipeline_, pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *pipeline_->layout);
   writeDescriptors(*sets_);
   pipelineMs_ = pipeline_->rayTracing->createMs();
@@ -227,6 +231,7 @@ void PathTracer::installPipeline(shader::ShaderLibrary::ProgramId program,
   ++installs_;
   // Libraries of the last few builds stay (variants and an edit in flight); older ones go.
   if (libraries_) libraries_->trim(24, pipeline_->rayTracing->libraryKeys());
+  return pipeline;
 }
 
 std::unique_ptr<Renderer> PathTracer::makeLike(const RendererResources& resources,

@@ -86,8 +86,9 @@ class PathTracer final : public Renderer {
   std::unique_ptr<vk::BuiltPipeline> buildPipeline(
       shader::ShaderLibrary::ProgramId program,
       const shader::ShaderLibrary::ProgramBuild& build) const override;
-  void installPipeline(shader::ShaderLibrary::ProgramId program,
-                       std::unique_ptr<vk::BuiltPipeline> pipeline) override;
+  std::shared_ptr<vk::BuiltPipeline> exchangePipeline(shader::ShaderLibrary::ProgramId program,
+                                                      std::shared_ptr<vk::BuiltPipeline> pipeline) override;
+  std::shared_ptr<vk::BuiltPipeline> pipeline(shader::ShaderLibrary::ProgramId program) const override;
   uint32_t pipelineInstalls() const override { return installs_; }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
@@ -150,7 +151,7 @@ class PathTracer final : public Renderer {
   uint64_t emitterVersion_ = 0;                // the scene's emitter buffers the descriptors point at
   // Before pipeline_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
-  std::unique_ptr<vk::BuiltPipeline> pipeline_;
+  std::shared_ptr<vk::BuiltPipeline> pipeline_;
   vk::Image accum_, albedo_, normal_, info_, stats_;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_;

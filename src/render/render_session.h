@@ -86,6 +86,7 @@ class RenderSession {
   // std::runtime_error with the reason, keeping the current one.
   void setEnvironment(const RenderSettings& settings);
   void setLights(const std::vector<gpu::DirectionalLight>& lights);
+  const std::vector<gpu::DirectionalLight>& lights() const { return lights_; }
   void setHybridSettings(const HybridSettings& hybrid);
   const HybridSettings& hybridSettings() const { return hybrid_; }
 

@@ -87,8 +87,17 @@ class Renderer {
   virtual std::vector<RendererProgram> programs() const = 0;
   virtual std::unique_ptr<vk::BuiltPipeline> buildPipeline(
       shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const = 0;
-  virtual void installPipeline(shader::ShaderLibrary::ProgramId program,
-                               std::unique_ptr<vk::BuiltPipeline> pipeline) = 0;
+  void installPipeline(shader::ShaderLibrary::ProgramId program,
+                       std::unique_ptr<vk::BuiltPipeline> pipeline) {
+    exchangePipeline(program, std::move(pipeline));
+  }
+  // installPipeline that hands back the pipeline it replaced (nullptr when the program is no longer used and
+  // `pipeline` is dropped). Pipelines are shared: a renderer of the same kind on the same device (the A/B
+  // comparison's stand-in) can render with another's pipeline, which the driver has compiled already.
+  virtual std::shared_ptr<vk::BuiltPipeline> exchangePipeline(
+      shader::ShaderLibrary::ProgramId program, std::shared_ptr<vk::BuiltPipeline> pipeline) = 0;
+  // The pipeline installed for `program` (nullptr when the program is not used).
+  virtual std::shared_ptr<vk::BuiltPipeline> pipeline(shader::ShaderLibrary::ProgramId program) const = 0;
   // Both at once, on the calling (render) thread.
   void swapPipeline(shader::ShaderLibrary::ProgramId program,
                     const shader::ShaderLibrary::ProgramBuild& build) {

@@ -254,6 +254,42 @@ TEST(Window, AnUnchangedSaveKeepsTheAccumulation) {
   EXPECT_GE(after["samples"].get<int>(), before["samples"].get<int>());
 }
 
+// An edit that changes the image: the A/B panel's comparison (old against new, same seeds) says so, in the
+// stats JSON as in watch's log; Revert reinstalls the old pipeline.
+TEST(Window, AnEditShowsItsABVerdictAndReverts) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("ab");
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  std::string brighter = readFile(watched);
+  const std::string needle = "  sm.baseColor = baseColor.rgb;";
+  ASSERT_NE(brighter.find(needle), std::string::npos);
+  brighter.replace(brighter.find(needle), needle.size(), "  sm.baseColor = baseColor.rgb * 1.02;");
+  writeFile(dir / "brighter.rchit", brighter);
+  const auto script = dir / "script.txt";
+  // The comparison runs after the new image's first frame, before the loop goes on: two samples after the
+  // reload, it is done.
+  writeFile(script, "wait_samples 2 300\ncopy " + (dir / "brighter.rchit").string() + " " + watched.string() +
+                        "\nwait_reload 300\nwait_samples 2 300\nstats " + (dir / "ab.json").string() +
+                        "\nab_revert\nframes 2\nstats " + (dir / "reverted.json").string() + "\n");
+  auto r = runWindow("--script " + script.string(), "WB_ROOT=" + root.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto ab = readJson(dir / "ab.json"), reverted = readJson(dir / "reverted.json");
+  ASSERT_TRUE(ab["ab"].is_object()) << ab.dump();
+  EXPECT_EQ(ab["ab"]["image_verdict"], "changed") << ab["ab"].dump();
+  EXPECT_TRUE(ab["ab"]["mean_shift_significant"].get<bool>()) << ab["ab"].dump();
+  EXPECT_TRUE(ab["ab"]["speed_verdict"].is_string());
+  EXPECT_GT(ab["ab_ms"].get<double>(), 0.0);
+  EXPECT_GT(ab["ab_edit_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(ab["ab_enabled"].is_boolean());
+  EXPECT_EQ(ab["reloads"].back()["ab"], ab["ab"]) << "the reload history carries the same comparison";
+  EXPECT_TRUE(reverted["reloads"].back()["reverted"].get<bool>()) << reverted["reloads"].back().dump();
+  EXPECT_NE(r.output.find("A/B revert"), std::string::npos) << r.output;
+}
+
 TEST(Window, NoDisplayFallsBackToHeadlessRender) {
   const auto dir = tempDir("headless");
   const auto out = dir / "fallback.png";

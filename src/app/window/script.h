@@ -19,6 +19,7 @@
 //   orbit DX DY              drag the orbit camera by DX, DY pixels
 //   resize W H               resize the window (the swapchain and the trace size follow)
 //   reset_camera | reset | reload | quit
+//   ab_revert | ab_accept          the A/B panel's Revert / Accept buttons
 // Blank lines and lines starting with # are ignored.
 #pragma once
 #include <chrono>
@@ -39,7 +40,7 @@ class ScriptHost {
   virtual void scriptStats(const std::string& path) = 0;
   virtual void scriptOrbit(float dx, float dy) = 0;
   virtual void scriptResize(int width, int height) = 0;
-  virtual void scriptCommand(const std::string& name) = 0;  // reset_camera, reset, reload, quit
+  virtual void scriptCommand(const std::string& name) = 0;  // reset_camera, reset, reload, quit, ab_*
   virtual void scriptInspect(const std::string& path) {
     (void)path;
     throw std::runtime_error("inspect: no path inspector here");

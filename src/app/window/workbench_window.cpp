@@ -107,6 +107,8 @@ WorkbenchWindow::~WorkbenchWindow() {
   display_.reset();
   swapchain_.reset();
   progressive_.reset();
+  abCompare_.reset();     // its stand-ins render on the session's device
+  ab_.installed.clear();  // the old pipelines kept for Revert
   session_->attachHotReload(nullptr);
   hot_.reset();  // its targets point at the session's renderers
   session_.reset();
@@ -125,6 +127,8 @@ void WorkbenchWindow::scriptCommand(const std::string& name) {
   if (name == "reset") state_.resetAccumulation = true;
   if (name == "reload") state_.reloadShaders = true;
   if (name == "quit") state_.quit = true;
+  if (name == "ab_revert") ab_.revertRequested = true;
+  if (name == "ab_accept") ab_.acceptRequested = true;
 }
 
 Rect WorkbenchWindow::imageRect(const Rect& view) const {

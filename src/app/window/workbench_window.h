@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/render_options.h"
+#include "app/window/ab_panel.h"
 #include "app/window/camera_controller.h"
 #include "app/window/capture.h"
 #include "app/window/display_pass.h"
@@ -28,6 +29,7 @@
 #include "app/window/script.h"
 #include "app/window/workbench_state.h"
 #include "eval/live_error.h"
+#include "render/ab_comparison.h"
 #include "render/hot_reload.h"
 #include "render/render_session.h"
 #include "vk/swapchain.h"
@@ -87,6 +89,11 @@ class WorkbenchWindow : public ScriptHost {
 
  private:
   void registerHotReload();
+  // The A/B comparison (workbench_window_ab.cpp): a reload that installed pipelines is compared after its
+  // first frame (when the comparison is on), and the panel's Revert/Accept are applied at a frame boundary.
+  void noteReload(const std::optional<render::ReloadEvent>& event);
+  void runPendingAB();
+  void applyABDecision();
   void applyState();
   void handleInput(const Rect& view, float dt);
   void saveRender(std::string base);
@@ -139,6 +146,9 @@ class WorkbenchWindow : public ScriptHost {
   std::unique_ptr<GuiLayer> gui_;
   std::unique_ptr<render::HotReload> hot_;
   std::unique_ptr<ProgressiveTracer> progressive_;
+  std::unique_ptr<render::ABComparison> abCompare_;  // made on the first comparison
+  ABView ab_;
+  bool abPending_ = false;
   std::unique_ptr<SwapchainCapture> capture_;
   uint64_t hybridGeneration_ = 0;
   uint64_t hybridResets_ = 0;  // accumulation restarts while a hybrid mode was shown

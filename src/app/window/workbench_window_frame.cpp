@@ -161,6 +161,7 @@ void WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
   frameInFlight_ = false;
   readTimestamps(true);
   hot_->frameFinished(frameBegin);
+  runPendingAB();
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
   // cores (render/hot_reload.h): the panel and the present cost CPU time besides the trace budget.
   const double restRatio = ctx.policy().windowRestRatio;
@@ -258,6 +259,8 @@ bool WorkbenchWindow::drawFrame(float dt) {
   panelWidth_ = drawSidePanel(pc, W, H);
   const Rect view{panelWidth_, 0.0f, std::max(W - panelWidth_, 1.0f), H};
   drawOverlays(pc, imageRect(view));
+  drawABPanel(ab_, W, H);
+  applyABDecision();
   handleInput(view, dt);
 
   // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
@@ -370,7 +373,7 @@ int WorkbenchWindow::run() {
 
     if (options_.frames && frameCount_ >= options_.frames) break;
     if (!stepScript(exitCode)) break;
-    hot_->poll();
+    noteReload(hot_->poll());
     drawFrame(dt);
   }
   if (frameInFlight_) {

@@ -116,6 +116,13 @@ nlohmann::json WorkbenchWindow::statsJson() {
                                   {"frames", m.frames},
                                   {"done", m.done}});
   }
+  // The last A/B comparison shown in the panel (its "ab" as in the watch log), and whether edits are
+  // compared.
+  j["ab"] = ab_.results.empty() ? nlohmann::json(nullptr) : abJson(ab_.results.front());
+  j["ab_enabled"] = ab_.enabled;
+  j["ab_ms"] = ab_.abMs;
+  j["ab_edit_ms"] = ab_.editMs;
+  j["ab_note"] = ab_.note;
   j["reloads"] = nlohmann::json::array();
   for (const auto& e : hot_->history()) j["reloads"].push_back(reloadEventJson(e));
   j["shader_files"] = nlohmann::json::array();

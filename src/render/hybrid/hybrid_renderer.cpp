@@ -270,18 +270,24 @@ std::unique_ptr<vk::BuiltPipeline> HybridRenderer::buildPipeline(
   return p;
 }
 
-void HybridRenderer::installPipeline(shader::ShaderLibrary::ProgramId program,
-                                     std::unique_ptr<vk::BuiltPipeline> pipeline) {
+std::shared_ptr<vk::BuiltPipeline> HybridRenderer::pipeline(shader::ShaderLibrary::ProgramId program) const {
   const auto pass = passOf(program);
-  if (!pass) return;
+  return pass ? pipelines_[size_t(*pass)] : nullptr;
+}
+
+std::shared_ptr<vk::BuiltPipeline> HybridRenderer::exchangePipeline(
+    shader::ShaderLibrary::ProgramId program, std::shared_ptr<vk::BuiltPipeline> pipeline) {
+  const auto pass = passOf(program);
+  if (!pass) return nullptr;
   ctx_.waitIdle();  // the old pipeline and descriptor sets may still be in flight
   const size_t i = size_t(*pass);
   sets_[i].reset();
-  pipelines_[i] = std::move(pipeline);
+  std::swap(pipelines_[i], pipeline);
   sets_[i] = std::make_unique<vk::DescriptorSets>(ctx_, *pipelines_[i]->layout);
   if (!sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
   builds_[i]++;
   frameIndex_ = 0;
+  return pipeline;
 }
 
 uint32_t HybridRenderer::pipelineInstalls() const {

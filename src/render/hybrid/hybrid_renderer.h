@@ -61,8 +61,9 @@ class HybridRenderer final : public Renderer {
   std::unique_ptr<vk::BuiltPipeline> buildPipeline(
       shader::ShaderLibrary::ProgramId program,
       const shader::ShaderLibrary::ProgramBuild& build) const override;
-  void installPipeline(shader::ShaderLibrary::ProgramId program,
-                       std::unique_ptr<vk::BuiltPipeline> pipeline) override;
+  std::shared_ptr<vk::BuiltPipeline> exchangePipeline(shader::ShaderLibrary::ProgramId program,
+                                                      std::shared_ptr<vk::BuiltPipeline> pipeline) override;
+  std::shared_ptr<vk::BuiltPipeline> pipeline(shader::ShaderLibrary::ProgramId program) const override;
   uint32_t pipelineInstalls() const override;
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
@@ -116,7 +117,7 @@ class HybridRenderer final : public Renderer {
   bool hasSun_ = false;
   std::vector<Draw> draws_;
   std::array<shader::ShaderLibrary::ProgramId, kPassCount> programs_{};
-  std::array<std::unique_ptr<vk::BuiltPipeline>, kPassCount> pipelines_;
+  std::array<std::shared_ptr<vk::BuiltPipeline>, kPassCount> pipelines_;
   std::array<std::unique_ptr<vk::DescriptorSets>, kPassCount> sets_;
   std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
   std::array<uint32_t, kPassCount> builds_{};
