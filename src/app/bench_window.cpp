@@ -55,7 +55,8 @@ class BenchDisplay {
     }
     const std::string xvfb = findProgram("Xvfb");
     if (xvfb.empty())
-      throw std::runtime_error("bench window: no DISPLAY and no Xvfb to start one (scripts/setup.sh installs xvfb)");
+      throw std::runtime_error(
+          "bench window: no DISPLAY and no Xvfb to start one (scripts/setup.sh installs xvfb)");
     for (int n = 90; n < 190; ++n) {
       const fs::path socket = "/tmp/.X11-unix/X" + std::to_string(n);
       if (fs::exists(socket) || fs::exists("/tmp/.X" + std::to_string(n) + "-lock")) continue;
@@ -154,8 +155,8 @@ void runWindow(const PrivateRoot& pr, const std::string& script, const std::vect
     throw std::runtime_error("bench window: the window did not finish its script within an hour");
   }
   if (child.exitStatus != 0)
-    throw std::runtime_error("bench window: the window exited with status " + std::to_string(child.exitStatus) +
-                             ":\n" + readText(log));
+    throw std::runtime_error("bench window: the window exited with status " +
+                             std::to_string(child.exitStatus) + ":\n" + readText(log));
 }
 
 // Paths per second of the headless path tracer at the window's trace size, after a warm-up.
@@ -201,7 +202,8 @@ std::string editScript(const PrivateRoot& pr, int first, int count) {
 json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesaCache) {
   BenchDisplay display(work);
   json result;
-  result["display"] = display.started() ? "Xvfb " + display.name() + " (started by the bench)" : display.name();
+  result["display"] =
+      display.started() ? "Xvfb " + display.name() + " (started by the bench)" : display.name();
   const std::vector<std::string> deviceArgs =
       o.device.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--device", o.device};
 
@@ -267,8 +269,8 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
                                readText(work / "window_live.log"));
     std::vector<std::string> args = {"mousemove", "900", "300", "key", "--delay", "30"};
     for (int i = 0; i < o.keyTaps; ++i) args.push_back("Tab");
-    auto xdotool = ChildProcess::spawn("xdotool", args, {{"DISPLAY", display.name()}},
-                                       (work / "xdotool.log").string());
+    auto xdotool =
+        ChildProcess::spawn("xdotool", args, {{"DISPLAY", display.name()}}, (work / "xdotool.log").string());
     if (xdotool.wait() != 0)
       throw std::runtime_error("bench window: xdotool failed: " + readText(work / "xdotool.log"));
     std::ofstream(go) << "go\n";
@@ -297,11 +299,13 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
   if (!switches.empty()) {
     result["mode_switch_longest_frame_ms"] = switches[0]["longest_frame_ms"];
     result["mode_switch_prepare_ms"] = switches[0]["prepare_ms"];
-    result["mode_switch_back_longest_frame_ms"] = switches.size() > 1 ? switches[1]["longest_frame_ms"] : json();
+    result["mode_switch_back_longest_frame_ms"] =
+        switches.size() > 1 ? switches[1]["longest_frame_ms"] : json();
   }
   result["frame_ms_p50"] = live["frame_ms"]["p50"];
   if (taps) {
-    const int handled = readJson(after)["key_presses"].get<int>() - readJson(before)["key_presses"].get<int>();
+    const int handled =
+        readJson(after)["key_presses"].get<int>() - readJson(before)["key_presses"].get<int>();
     result["key_taps_sent"] = o.keyTaps;
     result["key_taps_lost"] = o.keyTaps - handled;
   } else {
@@ -315,8 +319,9 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
     PrivateRoot lr(work, "load", display.name(), ownMesaCache);
     const fs::path loadStats = lr.root / "stats.json";
     BusyLoops busy(work);
-    runWindow(lr, "wait_samples 2 1800\nsleep 2\n" + editScript(lr, 0, o.edits) + "stats " + loadStats.string() +
-                      "\nquit\n",
+    runWindow(lr,
+              "wait_samples 2 1800\nsleep 2\n" + editScript(lr, 0, o.edits) + "stats " + loadStats.string() +
+                  "\nquit\n",
               deviceArgs, work / "window_load.log");
     const EditTimes load = editTimes(readJson(loadStats), 0, size_t(o.edits));
     std::vector<double> loadPerEdit;

@@ -11,10 +11,10 @@
 namespace wb::app {
 
 struct WindowBenchOptions {
-  int rounds = 3;      // throughput: window and headless runs, alternating
-  int samples = 8;     // throughput: samples timed per run (after two to warm up)
-  int edits = 5;       // edits timed, idle and under load
-  int keyTaps = 10;    // Tab taps sent within slow frames (even: the panel ends as it began)
+  int rounds = 3;    // throughput: window and headless runs, alternating
+  int samples = 8;   // throughput: samples timed per run (after two to warm up)
+  int edits = 5;     // edits timed, idle and under load
+  int keyTaps = 10;  // Tab taps sent within slow frames (even: the panel ends as it began)
   bool underLoad = true;
   std::string device;  // Vulkan device name (substring) for the headless runs and the window
 };

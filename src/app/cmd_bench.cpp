@@ -368,9 +368,10 @@ void BenchCommand::addFlags(CLI::App& cli) {
   cli.add_option("--device", device, "Vulkan device name (substring)");
   cli.add_option("--size", size, "trace size WxH (default 512x512, 128x128 with --quick)");
   cli.add_option("--repeats", repeats, "repeats per measurement (median reported)");
-  cli.add_option("--edits", edits,
-                 "reload: number of closest-hit edits (default 20, 4 with --quick); window: edits timed idle and "
-                 "under load (default 5, 2 with --quick)");
+  cli.add_option(
+      "--edits", edits,
+      "reload: number of closest-hit edits (default 20, 4 with --quick); window: edits timed idle and "
+      "under load (default 5, 2 with --quick)");
   cli.add_flag("--no-load", noLoad, "window: skip the edits with two busy loops in another session");
   cli.add_option("--only", sections,
                  "sections to run, comma or space separated: pathtracer,startup,reload,modes,window")

@@ -221,7 +221,7 @@ std::shared_ptr<vk::BuiltPipeline> PathTracer::pipeline(shader::ShaderLibrary::P
 std::shared_ptr<vk::BuiltPipeline> PathTracer::exchangePipeline(shader::ShaderLibrary::ProgramId program,
                                                                 std::shared_ptr<vk::BuiltPipeline> pipeline) {
   if (program != program_) return nullptr;  // a variant this tracer has switched away from
-  ctx_.waitIdle();          // the old pipeline and descriptor sets may still be in flight
+  ctx_.waitIdle();                          // the old pipeline and descriptor sets may still be in flight
   sets_.reset();
   std::swap(pipeline_, pipeline);
   sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *pipeline_->layout);

@@ -9,9 +9,9 @@ namespace wb::app {
 namespace {
 
 const std::set<std::string> kCommands = {
-    "frames",       "set",          "screenshot", "save",   "stats", "copy",   "orbit",     "wait_reload",
-    "wait_samples", "reset_camera", "reset",      "reload", "quit",  "resize", "wait_file", "inspect",
-    "sleep",        "switch_mode",  "wait_mode",  "ab_revert", "ab_accept"};
+    "frames",      "set",          "screenshot",   "save",        "stats",     "copy",      "orbit",
+    "wait_reload", "wait_samples", "reset_camera", "reset",       "reload",    "quit",      "resize",
+    "wait_file",   "inspect",      "sleep",        "switch_mode", "wait_mode", "ab_revert", "ab_accept"};
 
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;

@@ -45,7 +45,8 @@ class ScriptHost {
     (void)path;
     throw std::runtime_error("inspect: no path inspector here");
   }
-  // Starts a mode switch that completes off the frame loop (switch_mode); modeSwitchPending() until it is done.
+  // Starts a mode switch that completes off the frame loop (switch_mode); modeSwitchPending() until it is
+  // done.
   virtual void scriptSwitchMode(const std::string& mode) {
     (void)mode;
     throw std::runtime_error("switch_mode: no render modes here");

@@ -59,7 +59,8 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   hot_ = std::make_unique<render::HotReload>(session_->library(),
                                              std::vector<std::filesystem::path>{shaderDir()});
   registerHotReload();
-  hot_->setOnReady([] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
+  hot_->setOnReady(
+      [] { glfwPostEmptyEvent(); });      // ends a rest or an idle wait: the build is committed at once
   session_->attachHotReload(hot_.get());  // every renderer, the modes made later too
   hot_->start();
   applyMode(true);  // the mode the window opens in (--mode) is there from the first frame

@@ -299,7 +299,8 @@ bool WorkbenchWindow::drawFrame(float dt) {
   }
   const auto& tracer = session_->pathTracer();
   display_->setSources({hybrid ? hybrid->outputImage().view() : tracer.accumulationImage().view(),
-                        tracer.aovImage(render::Aov::Albedo).view(), tracer.aovImage(render::Aov::Normal).view(),
+                        tracer.aovImage(render::Aov::Albedo).view(),
+                        tracer.aovImage(render::Aov::Normal).view(),
                         tracer.aovImage(render::Aov::Info).view(), progressive_->previewImage().view(),
                         tracer.aovImage(render::Aov::Stats).view()});
 

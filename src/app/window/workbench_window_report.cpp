@@ -68,7 +68,7 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["preview"] = !activeHybrid() && progressive_->inPreview();
   j["resets"] = progressive_->resets() + hybridResets_;
   j["mode"] = render::renderModeName(session_->mode());  // the mode shown (a switch may be in preparation)
-  j["mode_switching_to"] = modeSwitch_;                   // empty: none
+  j["mode_switching_to"] = modeSwitch_;                  // empty: none
   nlohmann::json le;
   le["reference"] = liveError_.referenceName();
   le["error"] = liveError_.error();
