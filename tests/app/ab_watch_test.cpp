@@ -258,3 +258,36 @@ TEST(ABWatch, EmissionScaleChangesExactlyTheEmitterPixels) {
   EXPECT_EQ(WEXITSTATUS(w.stop()), 0) << readFile(w.out);
   fs::remove_all(diffDir);
 }
+
+// The hybrid mode, through the same renderer interface: an include shared by several of its pipelines (the
+// alpha test, in the G-buffer and the shadow/AO pass) rewritten to an equivalent comparison rebuilds each of
+// them and compares each one (same image); an edit of the composite pass changes the image.
+TEST(ABWatch, HybridPipelinesAndASharedIncludeAreCompared) {
+  WatchChild w("--size 32x32 --ab --mode hybrid");
+  ASSERT_TRUE(w.running()) << readFile(w.out);
+  const fs::path common = w.root / "shaders/hybrid/common.glsl";
+  writeFile(common, replaced(readFile(common),
+                             "  return alpha < (m.alphaMode == WB_ALPHA_MASK ? m.alphaCutoff : 0.5);",
+                             "  return (m.alphaMode == WB_ALPHA_MASK ? m.alphaCutoff : 0.5) > alpha;"));
+  auto lines = waitForLog(w.log, 1);
+  ASSERT_EQ(lines.size(), 1u) << readFile(w.out);
+  ASSERT_TRUE(lines[0]["ok"].get<bool>()) << lines[0].dump();
+  const auto& rebuilt = lines[0]["pipelines_rebuilt"];
+  ASSERT_GE(rebuilt.size(), 2u) << lines[0].dump();
+  expectAbShape(lines[0]);
+  EXPECT_EQ(lines[0]["ab_pipelines"].size(), rebuilt.size()) << "one comparison per rebuilt pipeline";
+  for (const auto& p : lines[0]["ab_pipelines"]) {
+    const std::string v = p["ab"]["image_verdict"].get<std::string>();
+    EXPECT_TRUE(v == "identical" || v == "rounding") << p.dump();
+  }
+
+  const fs::path composite = w.root / "shaders/hybrid/composite.comp";
+  writeFile(composite, replaced(readFile(composite), "vec4(envLookup(gbufViewDirection(p)), 1.0)",
+                                "vec4(envLookup(gbufViewDirection(p)) * 1.02, 1.0)"));
+  lines = waitForLog(w.log, 2);
+  ASSERT_EQ(lines.size(), 2u) << readFile(w.out);
+  expectAbShape(lines[1]);
+  EXPECT_EQ(lines[1]["ab"]["image_verdict"], "changed") << lines[1].dump();
+  EXPECT_GT(lines[1]["ab"]["changed_pixel_fraction"].get<double>(), 0.0) << lines[1].dump();
+  EXPECT_EQ(WEXITSTATUS(w.stop()), 0) << readFile(w.out);
+}
