@@ -160,7 +160,7 @@ void runWindow(const PrivateRoot& pr, const std::string& script, const std::vect
 }
 
 // Paths per second of the headless path tracer at the window's trace size, after a warm-up.
-double headlessPathsPerSecond(uint32_t w, uint32_t h, int samples, const std::string& device) {
+double headlessPathsPerSecond(uint32_t w, uint32_t h, int samples, const std::string& device, json& info) {
   render::SessionOptions o;
   o.scenePath = defaultScenePath().string();
   o.settings.width = w;
@@ -168,6 +168,8 @@ double headlessPathsPerSecond(uint32_t w, uint32_t h, int samples, const std::st
   o.context.deviceName = device;
   o.quiet = true;
   render::RenderSession s(o);
+  info["device"] = s.context().deviceName();
+  info["driver"] = s.context().driverInfo();
   s.render(2);  // the driver compiles the pipeline at its first trace
   const double seconds = s.render(uint32_t(samples));
   return double(w) * h * samples / seconds;  // one camera path per pixel and sample
@@ -231,7 +233,7 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
                   {"trace_size", std::to_string(traceW) + "x" + std::to_string(traceH)},
                   {"present_mode", jb["present_mode"]},
                   {"trace_budget_ms", jb["trace_budget_ms"]}};
-    headlessRates.push_back(headlessPathsPerSecond(traceW, traceH, o.samples, o.device));
+    headlessRates.push_back(headlessPathsPerSecond(traceW, traceH, o.samples, o.device, result));
     ratios.push_back(windowRates.back() / headlessRates.back());
   }
   result["window"] = windowInfo;

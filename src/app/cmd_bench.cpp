@@ -355,6 +355,93 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
   return {{"error", rows}, {"speed", speed}};
 }
 
+// The path tracer section's scenes: the default scene, the DamagedHelmet (when ../shared has it) and a
+// generated heavy scene.
+std::vector<BenchScene> pathTracerScenes(bool quick) {
+  std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};
+  const fs::path helmet = sharedDir() / "assets/gltf/DamagedHelmet/DamagedHelmet.gltf";
+  if (fs::exists(helmet)) {
+    scenes.push_back({"DamagedHelmet", helmet.string(), std::nullopt});
+  } else {
+    std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n", helmet.string().c_str());
+  }
+  scenes.push_back({"heavy-1M", "", scene::makeHeavyScene(quick ? 100000 : 1000000)});
+  return scenes;
+}
+
+// The modes section's scenes: the default scene and two of ../shared's models, where present.
+std::vector<BenchScene> modesScenes() {
+  std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};
+  for (const char* rel :
+       {"assets/gltf/DamagedHelmet/DamagedHelmet.gltf", "assets/gltf/vulkan-samples/teapot.gltf"}) {
+    const fs::path p = sharedDir() / rel;
+    if (fs::exists(p)) {
+      scenes.push_back({p.stem().string(), p.string(), std::nullopt});
+    } else {
+      std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n", p.string().c_str());
+    }
+  }
+  return scenes;
+}
+
+// Rates of every scene, specialised and generic.
+json benchPathTracerSection(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, uint32_t spp,
+                            const std::string& size, int repeats, const std::string& device,
+                            std::string& deviceName, std::string& driver) {
+  json rows = json::array();
+  for (const auto& bs : scenes) {
+    for (bool generic : {false, true}) {
+      std::fprintf(stderr, "bench: path tracer on %s (%s) at %ux%u ...\n", bs.name.c_str(),
+                   generic ? "generic" : "specialised", w, h);
+      json r = benchPathTracer(bs, generic, w, h, spp, repeats, device, deviceName, driver);
+      r["scene"] = bs.name;
+      r["variant"] = generic ? "generic" : "specialised";
+      r["size"] = size;
+      r["spp_per_run"] = spp;
+      r["repeats"] = repeats;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+// The summary table of the sections that ran.
+void printSummary(const json& result, const std::string& cmdline) {
+  std::printf("%s on %s (%s), %s\n", cmdline.c_str(), result.value("device", std::string("?")).c_str(),
+              result.value("driver", std::string("?")).c_str(), result["date"].get<std::string>().c_str());
+  if (result.contains("pathtracer")) {
+    std::printf("%-14s %-12s %10s %12s %12s %12s %12s %12s %9s\n", "scene", "variant", "triangles", "paths/s",
+                "rays/s", "primary/s", "bounce/s", "shadow/s", "BLAS ms");
+    for (const auto& r : result["pathtracer"]) {
+      std::printf("%-14s %-12s %10zu %12.3g %12.3g %12.3g %12.3g %12.3g %9.1f\n",
+                  r["scene"].get<std::string>().c_str(), r["variant"].get<std::string>().c_str(),
+                  r["triangles"].get<size_t>(), r["paths_per_second"].get<double>(),
+                  r["rays_per_second"].get<double>(), r["primary_rays_per_second"].get<double>(),
+                  r["bounce_rays_per_second"].get<double>(), r["shadow_rays_per_second"].get<double>(),
+                  r["blas_build_ms"].get<double>());
+    }
+  }
+  if (result.contains("modes")) {
+    std::printf("%-14s %-12s %9s %12s %12s %12s %12s %12s\n", "scene", "mode", "size", "s/frame", "RMSE 1f",
+                "relMSE 1f", "RMSE Nf", "relMSE Nf");
+    for (const auto& r : result["modes"]["error"]) {
+      std::printf("%-14s %-12s %9s %12.4g %12.4g %12.4g %12.4g %12.4g\n",
+                  r["scene"].get<std::string>().c_str(), r["mode"].get<std::string>().c_str(),
+                  r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>(),
+                  r["rmse_1_frame"].get<double>(), r["rel_mse_1_frame"].get<double>(),
+                  r["rmse"].get<double>(), r["rel_mse"].get<double>());
+    }
+    for (const auto& r : result["modes"]["speed"]) {
+      std::printf("default scene %-12s at %s: %.3f s per frame\n", r["mode"].get<std::string>().c_str(),
+                  r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>());
+    }
+  }
+  if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
+  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
+  if (result.contains("window")) std::printf("window: %s\n", jsonText(result["window"]).c_str());
+  std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
+}
+
 }  // namespace
 
 const std::vector<std::string>& BenchCommand::sectionNames() {
@@ -422,33 +509,11 @@ int BenchCommand::run() {
   fs::create_directories(work);
   try {
     if (has("pathtracer")) {
-      std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};
-      const fs::path helmet = sharedDir() / "assets/gltf/DamagedHelmet/DamagedHelmet.gltf";
-      if (fs::exists(helmet)) {
-        scenes.push_back({"DamagedHelmet", helmet.string(), std::nullopt});
-      } else {
-        std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n",
-                     helmet.string().c_str());
-      }
-      scenes.push_back({"heavy-1M", "", scene::makeHeavyScene(quick ? 100000 : 1000000)});
-      json rows = json::array();
-      for (const auto& bs : scenes) {
-        for (bool generic : {false, true}) {
-          std::string deviceName, driver;
-          std::fprintf(stderr, "bench: path tracer on %s (%s) at %ux%u ...\n", bs.name.c_str(),
-                       generic ? "generic" : "specialised", w, h);
-          json r = benchPathTracer(bs, generic, w, h, spp, repeats, device, deviceName, driver);
-          r["scene"] = bs.name;
-          r["variant"] = generic ? "generic" : "specialised";
-          r["size"] = size;
-          r["spp_per_run"] = spp;
-          r["repeats"] = repeats;
-          rows.push_back(r);
-          result["device"] = deviceName;
-          result["driver"] = driver;
-        }
-      }
-      result["pathtracer"] = rows;
+      std::string deviceName, driver;
+      result["pathtracer"] = benchPathTracerSection(pathTracerScenes(quick), w, h, spp, size, repeats, device,
+                                                    deviceName, driver);
+      result["device"] = deviceName;
+      result["driver"] = driver;
     }
     if (has("startup")) {
       std::fprintf(stderr, "bench: start-up (cold and warm) ...\n");
@@ -462,16 +527,7 @@ int BenchCommand::run() {
                                             quick ? "64x64" : "128x128", work, ownMesaCache);
     }
     if (has("modes")) {
-      std::vector<BenchScene> scenes = {{"default", defaultScenePath().string(), std::nullopt}};
-      for (const char* rel :
-           {"assets/gltf/DamagedHelmet/DamagedHelmet.gltf", "assets/gltf/vulkan-samples/teapot.gltf"}) {
-        const fs::path p = sharedDir() / rel;
-        if (fs::exists(p)) {
-          scenes.push_back({p.stem().string(), p.string(), std::nullopt});
-        } else {
-          std::fprintf(stderr, "bench: %s not found (set WB_SHARED_DIR); skipping it\n", p.string().c_str());
-        }
-      }
+      const auto scenes = modesScenes();
       std::string deviceName, driver;
       result["modes"] =
           benchModes(scenes, quick ? 64 : 128, quick ? 64 : 128, quick ? 64 : 1024, quick ? 4 : 16,
@@ -487,6 +543,8 @@ int BenchCommand::run() {
       wo.underLoad = !noLoad;
       wo.device = device;
       result["window"] = benchWindow(wo, work, ownMesaCache);
+      result["device"] = result["window"]["device"];
+      result["driver"] = result["window"]["driver"];
     }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {
@@ -496,40 +554,7 @@ int BenchCommand::run() {
   }
   fs::remove_all(work);
 
-  // Summary table.
-  std::printf("%s on %s (%s), %s\n", cmdline.c_str(), result.value("device", std::string("?")).c_str(),
-              result.value("driver", std::string("?")).c_str(), result["date"].get<std::string>().c_str());
-  if (result.contains("pathtracer")) {
-    std::printf("%-14s %-12s %10s %12s %12s %12s %12s %12s %9s\n", "scene", "variant", "triangles", "paths/s",
-                "rays/s", "primary/s", "bounce/s", "shadow/s", "BLAS ms");
-    for (const auto& r : result["pathtracer"]) {
-      std::printf("%-14s %-12s %10zu %12.3g %12.3g %12.3g %12.3g %12.3g %9.1f\n",
-                  r["scene"].get<std::string>().c_str(), r["variant"].get<std::string>().c_str(),
-                  r["triangles"].get<size_t>(), r["paths_per_second"].get<double>(),
-                  r["rays_per_second"].get<double>(), r["primary_rays_per_second"].get<double>(),
-                  r["bounce_rays_per_second"].get<double>(), r["shadow_rays_per_second"].get<double>(),
-                  r["blas_build_ms"].get<double>());
-    }
-  }
-  if (result.contains("modes")) {
-    std::printf("%-14s %-12s %9s %12s %12s %12s %12s %12s\n", "scene", "mode", "size", "s/frame", "RMSE 1f",
-                "relMSE 1f", "RMSE Nf", "relMSE Nf");
-    for (const auto& r : result["modes"]["error"]) {
-      std::printf("%-14s %-12s %9s %12.4g %12.4g %12.4g %12.4g %12.4g\n",
-                  r["scene"].get<std::string>().c_str(), r["mode"].get<std::string>().c_str(),
-                  r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>(),
-                  r["rmse_1_frame"].get<double>(), r["rel_mse_1_frame"].get<double>(),
-                  r["rmse"].get<double>(), r["rel_mse"].get<double>());
-    }
-    for (const auto& r : result["modes"]["speed"]) {
-      std::printf("default scene %-12s at %s: %.3f s per frame\n", r["mode"].get<std::string>().c_str(),
-                  r["size"].get<std::string>().c_str(), r["seconds_per_frame"].get<double>());
-    }
-  }
-  if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
-  if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
-  if (result.contains("window")) std::printf("window: %s\n", jsonText(result["window"]).c_str());
-  std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
+  printSummary(result, cmdline);
   if (!out.empty()) {
     std::ofstream f(out);
     f << jsonText(result, 2) << "\n";

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "common/statistics.h"
+
 namespace wb::render {
 namespace {
 
@@ -37,10 +39,7 @@ ReloadFrameStats ReloadFrameTimeline::stats(Clock::time_point editSeen, bool las
     }
   }
   if (before.size() > 20) before.erase(before.begin(), before.end() - 20);
-  if (!before.empty()) {
-    std::sort(before.begin(), before.end());
-    s.medianBefore = before[before.size() / 2];
-  }
+  if (!before.empty()) s.medianBefore = median(before);
   return s;
 }
 

@@ -2,7 +2,6 @@
 // cannot go stale, and sobolDirectionNumbers() serves it without running the search.
 #include <gtest/gtest.h>
 
-#include <chrono>
 
 #include "sampling/sobol.h"
 #include "shared/random.h"
@@ -20,15 +19,10 @@ TEST(Sobol, CommittedTableMatchesGenerator) {
 }
 
 TEST(Sobol, FastPathServesTheCommittedTable) {
-  // (Another test may already have filled sobolDirectionNumbers' cache, so time the load itself.)
-  const auto t0 = std::chrono::steady_clock::now();
   const std::vector<uint32_t> committed = loadCommittedSobolDirections();
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   const std::vector<uint32_t> dirs = sobolDirectionNumbers(static_cast<int>(WB_SOBOL_DIMS));
   ASSERT_EQ(dirs.size(), size_t(WB_SOBOL_DIMS) * 32u);
   EXPECT_TRUE(std::equal(dirs.begin(), dirs.end(), committed.begin()));
-  std::printf("committed Sobol table load: %.3f ms\n", ms);
-  EXPECT_LT(ms, 100.0) << "loading the table should cost far less than the search (~1 s)";
   // A prefix request is a prefix of the table; more dims than committed still works (the search).
   const std::vector<uint32_t> few = sobolDirectionNumbers(7);
   EXPECT_TRUE(std::equal(few.begin(), few.end(), committed.begin()));
