@@ -267,10 +267,14 @@ void statsPanel(PanelContext& c) {
   ImGui::Text("%s %u%s%s", c.hybrid ? "frames" : "samples", c.samples, target.c_str(),
               preview ? "  (preview)" : "");
   ImGui::Text("trace %ux%u  elapsed %.1f s", c.traceWidth, c.traceHeight, c.secondsSinceReset);
-  const double secs = std::max(c.traceSeconds, 1e-6);
-  ImGui::Text("paths/s %s  rays/s %s", humanCount(c.counters.pathCount / secs).c_str(),
-              humanCount(c.counters.rayCount / secs).c_str());
-  ImGui::Text("tracer rate %.0f px/ms  NaN/Inf dropped %u", pt.pixelsPerMs(), c.counters.droppedSamples);
+  if (c.hybrid) {  // the path tracer's counters and rates describe another renderer
+    ImGui::Text("frames/s %.1f", c.samples / std::max(c.secondsSinceReset, 1e-6));
+  } else {
+    const double secs = std::max(c.traceSeconds, 1e-6);
+    ImGui::Text("paths/s %s  rays/s %s", humanCount(c.counters.pathCount / secs).c_str(),
+                humanCount(c.counters.rayCount / secs).c_str());
+    ImGui::Text("tracer rate %.0f px/ms  NaN/Inf dropped %u", pt.pixelsPerMs(), c.counters.droppedSamples);
+  }
   const auto values = c.frames.values();
   char overlay[96];
   std::snprintf(overlay, sizeof overlay, "frame %.1f ms (mean %.1f, max %.1f)", c.frames.last(),
