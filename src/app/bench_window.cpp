@@ -19,9 +19,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace wb::app {
-namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::string readText(const fs::path& p) {
   std::ifstream f(p);
@@ -29,6 +26,21 @@ std::string readText(const fs::path& p) {
   ss << f.rdbuf();
   return ss.str();
 }
+
+std::string closestHitEdit(const std::string& original, int i) {
+  static const std::string needle = "const float minCos = 1e-3;";
+  std::string text = original;
+  const auto pos = text.find(needle);
+  if (pos == std::string::npos) throw std::runtime_error("bench: closesthit.rchit has no '" + needle + "'");
+  char value[64];
+  std::snprintf(value, sizeof(value), "const float minCos = %.9g;", 1e-3 * (1.0 + 1e-4 * (i + 1)));
+  text.replace(pos, needle.size(), value);
+  return text;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
 
 json readJson(const fs::path& p) {
   return json::parse(readText(p));
@@ -122,13 +134,7 @@ struct PrivateRoot {
   // A real code change of the closest-hit shader (a different constant), so that the driver really builds a
   // new pipeline: the file of edit `i`, for the script to copy over the watched one.
   fs::path edit(int i) const {
-    static const std::string needle = "const float minCos = 1e-3;";
-    std::string text = original;
-    const auto pos = text.find(needle);
-    if (pos == std::string::npos) throw std::runtime_error("bench: closesthit.rchit has no '" + needle + "'");
-    char value[64];
-    std::snprintf(value, sizeof(value), "const float minCos = %.9g;", 1e-3 * (1.0 + 1e-4 * (i + 1)));
-    text.replace(pos, needle.size(), value);
+    const std::string text = closestHitEdit(original, i);
     const fs::path p = root / ("edit" + std::to_string(i) + ".rchit");
     std::ofstream(p) << text;
     return p;

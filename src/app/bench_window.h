@@ -19,6 +19,12 @@ struct WindowBenchOptions {
   std::string device;  // Vulkan device name (substring) for the headless runs and the window
 };
 
+// What the bench sections share: a whole file's text ("" when unreadable), and the closest-hit source with
+// edit `i` made (a different constant, so that the driver really builds a new pipeline; throws when the
+// source has no such constant).
+std::string readText(const std::filesystem::path& p);
+std::string closestHitEdit(const std::string& original, int i);
+
 // Throws std::runtime_error when a run fails (its log is in the message).
 nlohmann::json benchWindow(const WindowBenchOptions& o, const std::filesystem::path& work, bool ownMesaCache);
 

@@ -33,13 +33,6 @@ using nlohmann::json;
 namespace wb::app {
 namespace {
 
-std::string readText(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
 json machineInfo() {
   json m;
   std::ifstream cpu("/proc/cpuinfo");
@@ -209,18 +202,10 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work, bo
   std::this_thread::sleep_for(std::chrono::milliseconds(3000));  // past the first frames (they compile)
   const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
   const std::string original = readText(chit);
-  const std::string needle = "const float minCos = 1e-3;";
   std::vector<double> toPipeline, toFrame, frameBefore, frameDuring, firstFrame, compileMs, pipelineMs,
       libraryMs, linkMs, librariesCompiled, slowest, control;
   for (int i = 0; i < edits; ++i) {
-    std::string text = original;
-    // A real code change (a different constant), so the driver really recompiles the pipeline.
-    const auto pos = text.find(needle);
-    if (pos == std::string::npos) throw std::runtime_error("bench: closesthit.rchit has no '" + needle + "'");
-    char value[64];
-    std::snprintf(value, sizeof(value), "const float minCos = %.9g;", 1e-3 * (1.0 + 1e-4 * (i + 1)));
-    text.replace(pos, needle.size(), value);
-    std::ofstream(chit, std::ios::trunc) << text;
+    std::ofstream(chit, std::ios::trunc) << closestHitEdit(original, i);
     if (!waitFor([&] { return logLines().size() >= size_t(i + 1); }, 60)) break;
     const auto e = logLines()[i];
     if (!e["ok"].get<bool>()) continue;

@@ -20,48 +20,23 @@
 #include <nlohmann/json.hpp>
 
 #include "../common/run_command.h"
+#include "../common/watch_log.h"
 #include "common/paths.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string readFile(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-void writeFile(const fs::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::trunc);
-  f << text;
-}
-
-std::vector<nlohmann::json> readLog(const fs::path& p) {
-  std::vector<nlohmann::json> lines;
-  std::ifstream f(p);
-  std::string line;
-  while (std::getline(f, line)) {
-    if (!line.empty()) lines.push_back(nlohmann::json::parse(line));
-  }
-  return lines;
-}
+using wb::testing::readFile;
+using wb::testing::readLog;
+using wb::testing::writeFile;
 
 // Events are waited for with a generous cap (a busy machine makes a 1 s reload take tens of seconds), never
 // for a fixed time.
 constexpr double kEventCapSeconds = 300;
 
-// Waits until the log has `n` lines (or the cap passes).
 std::vector<nlohmann::json> waitForLog(const fs::path& p, size_t n, double seconds = kEventCapSeconds) {
-  auto start = std::chrono::steady_clock::now();
-  for (;;) {
-    auto lines = readLog(p);
-    if (lines.size() >= n) return lines;
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
-      return lines;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  return wb::testing::waitForLog(p, n, seconds);
 }
 
 }  // namespace
