@@ -2,7 +2,6 @@
 // cannot go stale, and sobolDirectionNumbers() serves it without running the search.
 #include <gtest/gtest.h>
 
-
 #include "sampling/sobol.h"
 #include "shared/random.h"
 
