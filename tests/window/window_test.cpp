@@ -11,6 +11,7 @@
 #include <fstream>
 #include <regex>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
@@ -31,12 +32,29 @@ bool haveXvfb() {
   return std::string(WB_XVFB_RUN).size() > 0 && fs::exists(WB_XVFB_RUN);
 }
 
+// xvfb-run with its X authority file in a path of the test's own: xvfb-run then makes no temporary directory
+// of its own, whose removal at exit can fail (exit status 5) when many of them start and stop at once.
+// The files go when the test program ends.
+std::string xvfbRun() {
+  struct AuthFiles {
+    std::vector<fs::path> paths;
+    ~AuthFiles() {
+      std::error_code ec;
+      for (const auto& p : paths) fs::remove(p, ec);
+    }
+  };
+  static AuthFiles files;
+  const fs::path auth = fs::temp_directory_path() /
+                        ("wb_xauth_" + std::to_string(::getpid()) + "_" + std::to_string(files.paths.size()));
+  files.paths.push_back(auth);
+  return std::string(WB_XVFB_RUN) + " -a -f " + auth.string() + " -s '-screen 0 1024x768x24' ";
+}
+
 // The workbench in a 320x240 window on a virtual display, under the validation layer (ctest sets
 // WB_VALIDATION=1): a validation error makes the workbench exit with status 3.
 CommandResult runWindow(const std::string& args, const std::string& env = "") {
-  return runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + env + " " +
-                  std::string(WB_XVFB_RUN) + " -a -s '-screen 0 1024x768x24' " + WB_WORKBENCH_BIN +
-                  " --window 320x240 " + args);
+  return runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + env + " " + xvfbRun() +
+                  WB_WORKBENCH_BIN + " --window 320x240 " + args);
 }
 
 // Mean brightness of the image area (right of the panel, above the status line) of a window screenshot.
@@ -500,8 +518,8 @@ TEST(Window, QuickKeyTapsAtALowFrameRateAllLand) {
                             " ]; do sleep 0.05; done; "
                             "xdotool mousemove 500 200; for i in 1 2 3 4; do xdotool key Tab; done; touch " +
                             go.string() + "; wait $pid";
-  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + WB_XVFB_RUN +
-                    " -a -s '-screen 0 1024x768x24' sh -c \"" + inner + "\"");
+  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + xvfbRun() + "sh -c \"" +
+                    inner + "\"");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto s = readJson(stats);
   EXPECT_EQ(s["key_presses"], 4) << r.output;
@@ -574,8 +592,8 @@ TEST(Window, ADragStartsAtThePressPosition) {
       " & pid=$!; " + waitFor(a) +
       "xdotool mousemove 420 80; sleep 1; xdotool mousemove 600 400 mousedown 1; touch " + go.string() +
       "; " + waitFor(b) + "xdotool mouseup 1; touch " + go2.string() + "; wait $pid";
-  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + WB_XVFB_RUN +
-                    " -a -s '-screen 0 1024x768x24' sh -c \"" + inner + "\"");
+  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + xvfbRun() + "sh -c \"" +
+                    inner + "\"");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(readJson(a)["parameters"]["camera"], readJson(b)["parameters"]["camera"])
       << "the jump before the press moved the camera";
@@ -657,8 +675,8 @@ TEST(Window, AClickPicksThePixelToInspect) {
                             (dir / "s.txt").string() + " & pid=$!; while [ ! -e " + ready.string() +
                             " ]; do sleep 0.05; done; xdotool mousemove 464 240 click 1; touch " +
                             go.string() + "; wait $pid";
-  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + WB_XVFB_RUN +
-                    " -a -s '-screen 0 1024x768x24' sh -c \"" + inner + "\"");
+  auto r = runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + xvfbRun() + "sh -c \"" +
+                    inner + "\"");
   ASSERT_EQ(r.code, 0) << r.output;
   const auto j = readJson(records);
   EXPECT_NEAR(j["pixel"][0].get<int>(), 88, 2) << j["pixel"];
