@@ -36,7 +36,7 @@ struct ReloadResult {
 class Reloader {
  public:
   struct Timing {
-    std::chrono::milliseconds quiet{50};           // no events for this long = the burst is over
+    std::chrono::milliseconds quiet{15};           // no events for this long = the burst is over
     std::chrono::milliseconds writeGrace{1000};    // wait this long for a file still open for writing
     std::chrono::milliseconds recreateGrace{300};  // wait this long for a deleted dependency to reappear
   };
