@@ -130,9 +130,10 @@ class HotReload {
   bool autoReload() const { return autoReload_; }
   void reloadAll();  // rebuild every program now (the UI's reload button)
 
-  // While a change is being compiled or its pipelines built (not yet waiting for the commit): on a CPU device
-  // the render loop yields part of the cores to it (its frames are thrown away at the swap anyway).
-  bool compiling() const { return reloader_.rebuilding() || preparing_; }
+  // From the moment a change is seen until its pipelines are built (not yet waiting for the commit): on a CPU
+  // device the render loop yields part of the cores to it (its frames are thrown away at the swap anyway), so
+  // no frame starts between the save and the compile.
+  bool compiling() const { return reloader_.newerChange() || preparing_; }
   // A change is seen and not yet compiled, a rebuild is compiling, or its pipelines wait for poll().
   bool busy() const;
 
