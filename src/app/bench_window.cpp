@@ -1,4 +1,5 @@
 #include "app/bench_window.h"
+#include "app/progress.h"
 
 #include <chrono>
 #include <cstdio>
@@ -207,7 +208,12 @@ std::string editScript(const PrivateRoot& pr, int first, int count) {
 
 }  // namespace
 
-json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesaCache) {
+int windowBenchSteps(const WindowBenchOptions& o) {
+  return o.rounds + 1 + (o.underLoad ? 1 : 0);
+}
+
+json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesaCache,
+                 StepProgress& progress) {
   BenchDisplay display(work);
   json result;
   result["display"] =
@@ -216,11 +222,13 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
       o.device.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--device", o.device};
 
   // 1. Trace rate: the window converging untouched against headless rendering at the same size, alternating.
-  std::fprintf(stderr, "bench: window trace rate against headless (%d rounds) ...\n", o.rounds);
+
   std::vector<double> windowRates, headlessRates, ratios;
   uint32_t traceW = 0, traceH = 0;
   json windowInfo;
   for (int round = 0; round < o.rounds; ++round) {
+    progress.step("window trace rate against headless, round " + std::to_string(round + 1) + "/" +
+                  std::to_string(o.rounds));
     PrivateRoot pr(work, "rate", display.name(), ownMesaCache);
     const fs::path a = pr.root / "a.json", b = pr.root / "b.json";
     runWindow(pr,
@@ -249,7 +257,7 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
   result["window_vs_headless_paths_ratio_per_round"] = ratios;
 
   // 2. Edits, five quick saves, a mode switch and key taps, in one window session on an idle machine.
-  std::fprintf(stderr, "bench: window edits, quick saves, mode switch, key taps ...\n");
+  progress.step("window edits, quick saves, mode switch, key taps");
   PrivateRoot pr(work, "live", display.name(), ownMesaCache);
   const fs::path stats = pr.root / "stats.json", before = pr.root / "taps_before.json",
                  after = pr.root / "taps_after.json", go = pr.root / "go";
@@ -323,7 +331,7 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
 
   // 3. The same edits with two busy loops in another session.
   if (o.underLoad) {
-    std::fprintf(stderr, "bench: window edits with two busy loops in another session ...\n");
+    progress.step("window edits with two busy loops in another session");
     PrivateRoot lr(work, "load", display.name(), ownMesaCache);
     const fs::path loadStats = lr.root / "stats.json";
     BusyLoops busy(work);

@@ -1,4 +1,4 @@
-// `bench --only window`: the live window measured as a user meets it (issue 19's figures): its trace rate
+// `bench --only window`: the live window measured as a user meets it: its trace rate
 // against headless rendering at the same size, edit to first new frame against the driver's pipeline build
 // (idle, and with two busy loops in another session), five quick saves, a mode switch and quick key taps.
 // The window runs as a child process on the display, or on an Xvfb server of its own when there is none.
@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 namespace wb::app {
+
+class StepProgress;
 
 struct WindowBenchOptions {
   int rounds = 3;    // throughput: window and headless runs, alternating
@@ -25,7 +27,10 @@ struct WindowBenchOptions {
 std::string readText(const std::filesystem::path& p);
 std::string closestHitEdit(const std::string& original, int i);
 
+// The steps benchWindow announces on `progress`.
+int windowBenchSteps(const WindowBenchOptions& o);
 // Throws std::runtime_error when a run fails (its log is in the message).
-nlohmann::json benchWindow(const WindowBenchOptions& o, const std::filesystem::path& work, bool ownMesaCache);
+nlohmann::json benchWindow(const WindowBenchOptions& o, const std::filesystem::path& work, bool ownMesaCache,
+                           StepProgress& progress);
 
 }  // namespace wb::app

@@ -16,6 +16,7 @@
 
 #include "app/bench_window.h"
 #include "app/process.h"
+#include "app/progress.h"
 #include "common/env.h"
 #include "common/file_io.h"
 #include "common/json_text.h"
@@ -259,7 +260,7 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work, bo
 // shader_cache/references/ (keyed by scene, its mtime, size and spp).
 json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, uint32_t refSpp,
                 uint32_t frames, const std::string& speedSize, int repeats, const std::string& device,
-                std::string& deviceName, std::string& driver) {
+                std::string& deviceName, std::string& driver, StepProgress& progress) {
   const render::RenderMode modes[] = {render::RenderMode::PathTrace, render::RenderMode::Hybrid,
                                       render::RenderMode::Reflections};
   json rows = json::array();
@@ -276,10 +277,11 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
         shaderCacheDir() / "references" / (shader::Hasher().add(key).finish().hex() + ".exr");
     eval::ImageRGBA reference;
     double refSeconds = 0;
+    progress.step(bs.name + " reference, " + std::to_string(refSpp) + " spp at " + std::to_string(w) + "x" +
+                  std::to_string(h));
     if (fs::exists(refFile)) {
       reference = eval::readExr(refFile);
     } else {
-      std::fprintf(stderr, "bench: %s reference, %u spp at %ux%u ...\n", bs.name.c_str(), refSpp, w, h);
       auto o = benchSession(bs, w, h, device);
       o.settings.seed = 0x5eed0000u;
       render::RenderSession s(o);
@@ -290,7 +292,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
       std::ofstream(refFile.string() + ".txt") << key << "\n";
     }
     for (auto mode : modes) {
-      std::fprintf(stderr, "bench: %s in mode %s ...\n", bs.name.c_str(), render::renderModeName(mode));
+      progress.step(bs.name + " in mode " + render::renderModeName(mode));
       render::RenderSession s(benchSession(bs, w, h, device, mode));
       deviceName = s.context().deviceName();
       driver = s.context().driverInfo();
@@ -322,8 +324,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
   unsigned sw = 0, sh = 0;
   if (std::sscanf(speedSize.c_str(), "%ux%u", &sw, &sh) == 2 && sw && sh) {
     for (auto mode : modes) {
-      std::fprintf(stderr, "bench: default scene, mode %s at %s ...\n", render::renderModeName(mode),
-                   speedSize.c_str());
+      progress.step(std::string("default scene, mode ") + render::renderModeName(mode) + " at " + speedSize);
       render::RenderSession s(benchSession(scenes.front(), sw, sh, device, mode));
       s.render(1);  // warm-up
       std::vector<double> t;
@@ -372,12 +373,12 @@ std::vector<BenchScene> modesScenes() {
 // Rates of every scene, specialised and generic.
 json benchPathTracerSection(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, uint32_t spp,
                             const std::string& size, int repeats, const std::string& device,
-                            std::string& deviceName, std::string& driver) {
+                            std::string& deviceName, std::string& driver, StepProgress& progress) {
   json rows = json::array();
   for (const auto& bs : scenes) {
     for (bool generic : {false, true}) {
-      std::fprintf(stderr, "bench: path tracer on %s (%s) at %ux%u ...\n", bs.name.c_str(),
-                   generic ? "generic" : "specialised", w, h);
+      progress.step("path tracer on " + bs.name + (generic ? " (generic)" : " (specialised)") + " at " +
+                    std::to_string(w) + "x" + std::to_string(h));
       json r = benchPathTracer(bs, generic, w, h, spp, repeats, device, deviceName, driver);
       r["scene"] = bs.name;
       r["variant"] = generic ? "generic" : "specialised";
@@ -492,48 +493,54 @@ int BenchCommand::run() {
   result["machine"] = machineInfo();
   const fs::path work = fs::temp_directory_path() / ("wb_bench_" + std::to_string(::getpid()));
   fs::create_directories(work);
+  // The steps, counted before the first one runs (for the progress line's ETA).
+  const auto ptScenes = has("pathtracer") ? pathTracerScenes(quick) : std::vector<BenchScene>{};
+  const auto mScenes = has("modes") ? modesScenes() : std::vector<BenchScene>{};
+  WindowBenchOptions wo;
+  wo.rounds = quick ? 1 : repeats;
+  wo.samples = quick ? 3 : 8;
+  wo.edits = edits > 0 ? edits : quick ? 2 : 5;
+  wo.underLoad = !noLoad;
+  wo.device = device;
+  const int steps = int(ptScenes.size()) * 2 + (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) +
+                    (has("modes") ? int(mScenes.size()) * 4 + 3 : 0) +
+                    (has("window") ? windowBenchSteps(wo) : 0);
+  StepProgress progress("bench", steps);
   try {
     if (has("pathtracer")) {
       std::string deviceName, driver;
-      result["pathtracer"] = benchPathTracerSection(pathTracerScenes(quick), w, h, spp, size, repeats, device,
-                                                    deviceName, driver);
+      result["pathtracer"] =
+          benchPathTracerSection(ptScenes, w, h, spp, size, repeats, device, deviceName, driver, progress);
       result["device"] = deviceName;
       result["driver"] = driver;
     }
     if (has("startup")) {
-      std::fprintf(stderr, "bench: start-up (cold and warm) ...\n");
+      progress.step("start-up (cold and warm)");
       result["startup"] = benchStartup(repeats, work);
     }
     if (has("reload")) {
-      std::fprintf(stderr, "bench: hot reload ...\n");
+      progress.step("hot reload");
       result["hot_reload"] = benchHotReload(edits > 0 ? edits
                                             : quick   ? 4
                                                       : 20,
                                             quick ? "64x64" : "128x128", work, ownMesaCache);
     }
     if (has("modes")) {
-      const auto scenes = modesScenes();
       std::string deviceName, driver;
       result["modes"] =
-          benchModes(scenes, quick ? 64 : 128, quick ? 64 : 128, quick ? 64 : 1024, quick ? 4 : 16,
-                     quick ? "320x180" : "1280x720", repeats, device, deviceName, driver);
+          benchModes(mScenes, quick ? 64 : 128, quick ? 64 : 128, quick ? 64 : 1024, quick ? 4 : 16,
+                     quick ? "320x180" : "1280x720", repeats, device, deviceName, driver, progress);
       result["device"] = deviceName;
       result["driver"] = driver;
     }
     if (has("window")) {
-      WindowBenchOptions wo;
-      wo.rounds = quick ? 1 : repeats;
-      wo.samples = quick ? 3 : 8;
-      wo.edits = edits > 0 ? edits : quick ? 2 : 5;
-      wo.underLoad = !noLoad;
-      wo.device = device;
-      result["window"] = benchWindow(wo, work, ownMesaCache);
+      result["window"] = benchWindow(wo, work, ownMesaCache, progress);
       result["device"] = result["window"]["device"];
       result["driver"] = result["window"]["driver"];
     }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
+    progress.note("workbench bench: error: " + std::string(e.what()));
     fs::remove_all(work);
     return 1;
   }

@@ -1,4 +1,5 @@
 #include "app/cmd_converge.h"
+#include "app/progress.h"
 
 #include <unistd.h>
 
@@ -95,28 +96,6 @@ std::string mtimeOf(const fs::path& p) {
   return std::to_string(t.time_since_epoch().count());
 }
 
-class Progress {
- public:
-  void update(const std::string& label, double fraction, const std::string& detail, bool force = false) {
-    const auto now = std::chrono::steady_clock::now();
-    if (!force && std::chrono::duration<double>(now - last_).count() < (tty_ ? 0.1 : 5.0)) return;
-    last_ = now;
-    const int width = 30;
-    const int filled = std::clamp(int(fraction * width + 0.5), 0, width);
-    std::fprintf(stderr, "%s%-22s [%s%s] %3d%% %s%s", tty_ ? "\r" : "", label.c_str(),
-                 std::string(size_t(filled), '#').c_str(), std::string(size_t(width - filled), '.').c_str(),
-                 int(std::clamp(fraction, 0.0, 1.0) * 100), detail.c_str(), tty_ ? "\033[K" : "\n");
-    std::fflush(stderr);
-  }
-  void done() {
-    if (tty_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  bool tty_ = isatty(2) != 0;
-  std::chrono::steady_clock::time_point last_{};
-};
-
 // Adds `samples` samples (hybrid modes: frames, which keep accumulating shadows and AO) to the current image.
 double timedRender(render::RenderSession& session, uint32_t samples) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -136,8 +115,8 @@ render::SessionOptions sessionOptions(const RenderOptions& ro) {
 }
 
 // The reference: a file (downsampled to the render size when needed), or a cached long render.
-eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base, Progress& progress,
-                                      std::string& description) {
+eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base,
+                                      ProgressLine& progress, std::string& description) {
   const auto& s = base.params.render;
   if (!c.reference.empty()) {
     eval::ImageRGBA ref = eval::readExr(c.reference);
@@ -181,10 +160,10 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
     t += timedRender(session, n);
     done += n;
     char detail[96];
-    std::snprintf(detail, sizeof detail, "%u/%u spp %.1f s", done, spp, t);
+    std::snprintf(detail, sizeof detail, "%u/%u spp", done, spp);
     progress.update("reference", double(done) / spp, detail, done == spp);
   }
-  progress.done();
+  progress.finish();
   eval::ImageRGBA ref = session.image();
   fs::create_directories(dir);
   eval::writeExr(file, ref);
@@ -196,7 +175,7 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
 }
 
 ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
-                       Progress& progress, size_t index, size_t count) {
+                       ProgressLine& progress, size_t index, size_t count) {
   ConfigResult result;
   result.name = cfg.name;
   for (const auto& f : cfg.flags) result.flags += (result.flags.empty() ? "" : " ") + f;
@@ -252,15 +231,15 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
         checkpoint();
       }
       char detail[96];
-      std::snprintf(detail, sizeof detail, "%.1f/%.0f s %u spp", t, c.seconds, spp);
+      std::snprintf(detail, sizeof detail, "%.1f/%.1f s %u spp", t, c.seconds, spp);
       const double fraction =
           run == 0 ? t / c.seconds : double(next) / double(std::max<size_t>(1, schedule.size()));
       progress.update(label, fraction, detail);
     }
     char detail[96];
-    std::snprintf(detail, sizeof detail, "%.1f/%.0f s %u spp", t, c.seconds, spp);
+    std::snprintf(detail, sizeof detail, "%.1f/%.1f s %u spp", t, c.seconds, spp);
     progress.update(label, 1.0, detail, true);
-    progress.done();
+    progress.finish();
     result.dropped += session.renderer().readCounters().droppedSamples;
     if (run == 0 && !result.checkpoints.empty()) {
       result.fireflies = eval::fireflyStats(result.checkpoints.back().images.back());
@@ -329,7 +308,7 @@ int ConvergeCommand::run() {
     const fs::path dir(c.out);
     requireWritableDirectory(dir, "--out");  // before any render: never fail at the end for want of a folder
     if (c.hardCases) return runHardCases();
-    Progress progress;
+    ProgressLine progress("converge");
     std::string refDescription;
     const eval::ImageRGBA reference = loadOrRenderReference(c, base, progress, refDescription);
     const eval::Rgb refMean = eval::meanRgb(reference);
@@ -377,7 +356,7 @@ int ConvergeCommand::runHardCases() {
   md << "| case | risk | config | NaN/Inf dropped | non-finite pixels | mean RGB | energy error | max/mean | "
         ">10x "
         "mean | time (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
-  Progress progress;
+  ProgressLine progress("converge");
   const auto cases = eval::hardCases();
   int failures = 0;
   for (size_t i = 0; i < cases.size(); ++i) {
@@ -412,7 +391,7 @@ int ConvergeCommand::runHardCases() {
       md.flush();
       progress.update("[" + std::to_string(i + 1) + "/" + std::to_string(cases.size()) + "] " + hc.name, 1.0,
                       variant, true);
-      progress.done();
+      progress.finish();
     }
   }
   md << "\n";

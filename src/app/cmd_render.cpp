@@ -86,9 +86,11 @@ int RenderCommand::run() {
     if (!inspectOut.empty()) startInspection(*this, session);
     // Ctrl-C stops after the sample in progress; what was accumulated is written, marked partial.
     InterruptRequest interrupt;
-    ProgressLine progress("render", "spp", ro.params.render.spp);
-    const double seconds = session.render(ro.params.render.spp, [&](uint32_t done, double s) {
-      progress.update(done, s);
+    ProgressLine progress("render");
+    const uint32_t total = ro.params.render.spp;
+    const double seconds = session.render(total, [&](uint32_t done, double) {
+      progress.update("", double(done) / double(total),
+                      std::to_string(done) + "/" + std::to_string(total) + " spp");
       return !interrupt.requested();
     });
     progress.finish();

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 
@@ -32,29 +33,91 @@ std::string duration(double s) {
 
 }  // namespace
 
-ProgressLine::ProgressLine(std::string what, std::string unit, uint64_t total)
+ProgressLine::ProgressLine(std::string what)
     : what_(std::move(what)),
-      unit_(std::move(unit)),
-      total_(total),
-      terminal_(::isatty(STDERR_FILENO) == 1) {}
+      terminal_(::isatty(STDERR_FILENO) == 1),
+      phaseStart_(Clock::now()),
+      lastUpdate_(phaseStart_) {}
 
-void ProgressLine::update(uint64_t done, double seconds) {
-  const bool first = !printed_;
+void ProgressLine::update(const std::string& label, double fraction, const std::string& detail, bool force) {
+  const auto now = Clock::now();
+  // A phase begins where the previous one's work ended: at its last update, or at finish() (the first phase:
+  // when this object was made).
+  const bool newPhase = !started_ || label != label_;
+  if (started_ && newPhase) phaseStart_ = lastUpdate_;
+  started_ = true;
+  label_ = label;
+  lastUpdate_ = now;
   const double period = terminal_ ? kTerminalPeriod : kLogPeriod;
-  if (!first && seconds - lastPrint_ < period && done < total_) return;
-  if (!terminal_ && done >= total_ && !first) return;  // the command's own last line says it is done
-  lastPrint_ = seconds;
-  printed_ = true;
-  const double eta = done > 0 ? seconds / double(done) * double(total_ - std::min(done, total_)) : 0.0;
-  std::fprintf(stderr, "%s%s: %llu/%llu %s  %s elapsed  ETA %s%s", terminal_ ? "\r" : "", what_.c_str(),
-               static_cast<unsigned long long>(done), static_cast<unsigned long long>(total_), unit_.c_str(),
-               duration(seconds).c_str(), duration(eta).c_str(), terminal_ ? "   " : "\n");
+  if (!newPhase && !force && std::chrono::duration<double>(now - lastPrint_).count() < period) return;
+  lastPrint_ = now;
+  fraction = std::clamp(fraction, 0.0, 1.0);
+  const double elapsed = std::chrono::duration<double>(now - phaseStart_).count();
+  const std::string eta = fraction <= 0.0   ? "?"
+                          : fraction >= 1.0 ? "0 s"
+                                            : duration(elapsed / fraction * (1.0 - fraction));
+  constexpr int kWidth = 24;
+  const int filled = int(fraction * kWidth + 0.5);
+  std::fprintf(stderr, "%s%s: %s%s[%s%s] %3d%% %s  %s elapsed  ETA %s%s", terminal_ ? "\r" : "",
+               what_.c_str(), label.c_str(), label.empty() ? "" : " ",
+               std::string(size_t(filled), '#').c_str(), std::string(size_t(kWidth - filled), '.').c_str(),
+               int(fraction * 100.0), detail.c_str(), duration(elapsed).c_str(), eta.c_str(),
+               terminal_ ? "\033[K" : "\n");
   std::fflush(stderr);
+  shown_ = terminal_;
 }
 
 void ProgressLine::finish() {
-  if (terminal_ && printed_) std::fputc('\n', stderr);
-  printed_ = false;
+  if (shown_) std::fputc('\n', stderr);
+  shown_ = false;
+  started_ = false;
+  phaseStart_ = lastUpdate_ = Clock::now();
+}
+
+void ProgressLine::note(const std::string& line) {
+  std::fprintf(stderr, "%s%s\n", shown_ ? "\r\033[K" : "", line.c_str());
+  std::fflush(stderr);
+  shown_ = false;
+}
+
+StepProgress::StepProgress(std::string what, int totalSteps) : line_(std::move(what)), total_(totalSteps) {
+  ticker_ = std::thread([this] {
+    std::unique_lock lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::chrono::duration<double>(kTerminalPeriod));
+      if (!stop_ && done_ >= 0) show(false);
+    }
+  });
+}
+
+StepProgress::~StepProgress() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  ticker_.join();
+  line_.finish();
+}
+
+void StepProgress::step(const std::string& name) {
+  std::lock_guard lock(mutex_);
+  ++done_;
+  name_ = name;
+  show(true);
+}
+
+void StepProgress::note(const std::string& line) {
+  std::lock_guard lock(mutex_);
+  line_.note(line);
+}
+
+void StepProgress::show(bool force) {
+  const double fraction = total_ > 0 ? double(std::min(done_, total_)) / double(total_) : 0.0;
+  line_.update(
+      "", fraction,
+      "step " + std::to_string(std::min(done_ + 1, total_)) + "/" + std::to_string(total_) + ": " + name_,
+      force);
 }
 
 InterruptRequest::InterruptRequest() {

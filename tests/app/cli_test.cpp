@@ -74,6 +74,19 @@ TEST(Cli, RenderWritesExr) {
   EXPECT_EQ(static_cast<unsigned char>(magic[1]), 0x2f);
 }
 
+// The bench says which step of how many runs, with the elapsed time and an ETA (plain lines off a terminal).
+TEST(Cli, BenchShowsItsStepsWithAnEta) {
+  const fs::path out = tempDir() / "bench_progress.json";
+  const auto r = run("bench --quick --only startup --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("bench: ["), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("step 1/1: start-up"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ETA"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("\r"), std::string::npos) << "a terminal line rewritten in a log";
+  const auto j = nlohmann::json::parse(std::ifstream(out));
+  EXPECT_TRUE(j.contains("startup"));
+}
+
 TEST(Cli, UnknownFlagIsAOneLineError) {
   CommandResult r = run("render --size 8x8 --out /tmp/x.png --no-such-flag");
   EXPECT_NE(r.code, 0);

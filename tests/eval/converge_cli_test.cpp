@@ -40,6 +40,9 @@ TEST(ConvergeCli, WritesCsvPlotSummaryAndErrorImages) {
           "'b4:--max-bounces 4' --out " +
           dir.string());
   ASSERT_EQ(r.code, 0) << r.output;
+  // Progress lines (plain lines, not a terminal) name the phase and give an ETA.
+  EXPECT_NE(r.output.find("converge: [2/2] b4 run 2 ["), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("ETA"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(dir / "converge.csv"));
   ASSERT_TRUE(fs::exists(dir / "converge.md"));
   EXPECT_TRUE(fs::exists(dir / "error_a.png"));
