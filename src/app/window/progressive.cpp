@@ -78,16 +78,25 @@ double ProgressiveTracer::secondsSinceReset() const {
 }
 
 void ProgressiveTracer::beginFrame() {
-  if (tracer_.samplesAccumulated() != expectedSamples_) pendingInvalidate_ = true;  // reset from outside
-  const uint32_t pw = std::max(1u, targetWidth_ / std::max(options_.previewDivisor, 1u));
-  const uint32_t ph = std::max(1u, targetHeight_ / std::max(options_.previewDivisor, 1u));
-  const bool previewWorthIt =
-      options_.preview && options_.previewDivisor > 1 && targetWidth_ * targetHeight_ >= 4096;
+  // A reset from outside is a new pipeline (a hot reload, a revert): its first image comes at the coarse
+  // preview resolution, the fastest frame that shows it.
+  bool fromOutside = false;
+  if (tracer_.samplesAccumulated() != expectedSamples_) pendingInvalidate_ = fromOutside = true;
+  const uint32_t divisor = std::max(options_.previewDivisor, 1u);
+  const uint32_t coarse = divisor * 2;
+  const uint32_t pw = std::max(1u, targetWidth_ / divisor), ph = std::max(1u, targetHeight_ / divisor);
+  const bool previewWorthIt = options_.preview && divisor > 1 && targetWidth_ * targetHeight_ >= 4096;
+  const bool coarseWorthIt = previewWorthIt && (targetWidth_ / coarse) * (targetHeight_ / coarse) >= 1024;
   if (pendingInvalidate_) {
     pendingInvalidate_ = false;
     if (previewWorthIt) {
       inPreview_ = true;
-      resize(pw, ph);
+      coarsePreview_ = fromOutside && coarseWorthIt;
+      if (coarsePreview_) {
+        resize(targetWidth_ / coarse, targetHeight_ / coarse);
+      } else {
+        resize(pw, ph);
+      }
     } else {
       inPreview_ = false;
       resize(targetWidth_, targetHeight_);
@@ -110,11 +119,16 @@ void ProgressiveTracer::beginFrame() {
                      1, &region);
     });
     previewValid_ = true;
-    inPreview_ = false;
-    resize(targetWidth_, targetHeight_);
+    if (coarsePreview_) {
+      coarsePreview_ = false;  // then the finer preview, shown over this one row by row
+      resize(pw, ph);
+    } else {
+      inPreview_ = false;
+      resize(targetWidth_, targetHeight_);
+    }
     const double keep = resetTime_;
     restart();
-    --resets_;  // the same restart, continued at full resolution
+    --resets_;  // the same restart, continued at the next resolution
     resetTime_ = keep;
   }
 }

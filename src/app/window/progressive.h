@@ -1,7 +1,7 @@
 // Progressive tracing that keeps the window responsive when one sample of the full image takes a second (as
 // on lavapipe): each frame traces horizontal strips of the image within a time budget, and right after a
 // change the image is first traced at a lower preview resolution, which is then shown under the rows the
-// full-resolution sample has not reached yet.
+// full-resolution sample has not reached yet. A new pipeline (hot reload) starts one level coarser still.
 #pragma once
 #include <cstdint>
 
@@ -64,6 +64,7 @@ class ProgressiveTracer {
   ProgressiveOptions options_;
   uint32_t targetWidth_ = 0, targetHeight_ = 0;
   bool inPreview_ = false;
+  bool coarsePreview_ = false;  // the preview at half the preview resolution, before the preview
   bool pendingInvalidate_ = false;
   bool previewValid_ = false;
   uint32_t cursor_ = 0;
