@@ -18,7 +18,6 @@
 #include "shader/hash.h"
 #include "common/file_io.h"
 #include "common/paths.h"
-#include "eval/hard_cases.h"
 #include "eval/metrics.h"
 
 namespace fs = std::filesystem;
@@ -340,6 +339,12 @@ int ConvergeCommand::run() {
 
 // ---- Hard cases ----
 
+void applyHardCase(const scene::HardCase& hc, render::Parameters& params) {
+  render::setParameters(params, hc.settings);
+  if (params.render.maxBounces < hc.minBounces)
+    render::setParameter(params, "max_bounces", std::to_string(hc.minBounces));
+}
+
 int ConvergeCommand::runHardCases() {
   const auto& c = converge;
   const fs::path dir(c.out);
@@ -357,17 +362,16 @@ int ConvergeCommand::runHardCases() {
         ">10x "
         "mean | time (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   ProgressLine progress("converge");
-  const auto cases = eval::hardCases();
+  const auto cases = scene::hardCases();
   int failures = 0;
   for (size_t i = 0; i < cases.size(); ++i) {
     const auto& hc = cases[i];
     for (const auto& variant : hc.variants) {
       RenderOptions ro = parseRenderFlags(args, splitFlags(variant));
-      render::RenderSettings s = ro.params.render;
-      hc.adjust(s);
+      applyHardCase(hc, ro.params);
+      const render::RenderSettings& s = ro.params.render;
       render::SessionOptions so = sessionOptions(ro);
       so.sceneData = hc.scene;
-      so.settings = s;
       progress.update("[" + std::to_string(i + 1) + "/" + std::to_string(cases.size()) + "] " + hc.name, 0.0,
                       variant, true);
       render::RenderSession session(so);

@@ -10,6 +10,8 @@
 #include "app/command.h"
 #include "app/converge_report.h"
 #include "app/render_options.h"
+#include "render/parameters.h"
+#include "scene/hard_cases.h"
 
 namespace wb::app {
 
@@ -39,5 +41,9 @@ class ConvergeCommand : public Command {
 };
 
 int runConvergeCommand(const std::vector<std::string>& args);
+
+// A hard case's settings over `params` (a variant's flags) through the parameter registry, then its lower
+// bound on max_bounces. Throws std::invalid_argument on a setting the registry refuses.
+void applyHardCase(const scene::HardCase& hc, render::Parameters& params);
 
 }  // namespace wb::app

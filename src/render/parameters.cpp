@@ -312,6 +312,20 @@ void setParameter(Parameters& values, const std::string& nameOrFlag, const std::
   values = next;
 }
 
+std::optional<std::pair<std::string, std::string>> splitAssignment(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos) return std::nullopt;
+  return std::make_pair(assignment.substr(0, eq), assignment.substr(eq + 1));
+}
+
+void setParameters(Parameters& values, const std::vector<std::string>& assignments) {
+  for (const auto& a : assignments) {
+    const auto nameValue = splitAssignment(a);
+    if (!nameValue) throw std::invalid_argument("expected NAME=VALUE, got '" + a + "'");
+    setParameter(values, nameValue->first, nameValue->second);
+  }
+}
+
 std::vector<const ParameterInfo*> changedParameters(const Parameters& a, const Parameters& b) {
   std::vector<const ParameterInfo*> changed;
   for (const auto& p : parameterList()) {

@@ -5,7 +5,9 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 #include <glm/glm.hpp>
@@ -80,6 +82,11 @@ std::string formatParameter(const ParameterInfo& p, const Parameters& values);
 // std::invalid_argument and leaves `values` unchanged. A Bool found by its flag takes "flag given" values
 // (set no_rr on == --no-rr).
 void setParameter(Parameters& values, const std::string& nameOrFlag, const std::string& text);
+// `NAME=VALUE` (a `--set` argument) split at the first '='; nullopt when there is none.
+std::optional<std::pair<std::string, std::string>> splitAssignment(const std::string& assignment);
+// setParameter for each `NAME=VALUE` in turn. Throws std::invalid_argument on a text without '=' or one that
+// setParameter refuses; the assignments before it stay applied.
+void setParameters(Parameters& values, const std::vector<std::string>& assignments);
 // The rules between parameters (0 < rr_min <= rr_max <= 1). Throws std::invalid_argument.
 void validateParameters(const Parameters& values);
 // The parameters that restart accumulation and differ between a and b.

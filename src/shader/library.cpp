@@ -123,128 +123,71 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& ke
     throw;
   }
   const std::string vid = r.variant.hex();
+  if (auto cached = fromMemory(r, vid)) return cached;
+  if (auto loaded = fromDisk(key, r, t0)) return remember(vid, r.path, std::move(*loaded));
+  return remember(vid, r.path, compileNew(key, r, vid, t0));
+}
 
-  // 1. Memory: same files with the same contents as last time -> the same object.
+std::shared_ptr<const CompiledShader> ShaderLibrary::fromMemory(const Resolved& r, const std::string& vid) {
+  // Same files with the same contents as last time -> the same object.
+  std::shared_ptr<const CompiledShader> cached;
+  std::vector<uint64_t> expected;
   {
-    std::shared_ptr<const CompiledShader> cached;
-    std::vector<uint64_t> expected;
-    {
-      std::lock_guard lock(mutex_);
-      auto it = memory_.find(vid);
-      if (it != memory_.end()) {
-        cached = it->second.shader;
-        expected = it->second.hashes;
-      }
-    }
-    if (cached) {
-      bool same = true;
-      for (size_t i = 0; same && i < cached->files.size(); ++i) {
-        auto h = hashes_.hash(cached->files[i]);
-        same = h && *h == expected[i];
-      }
-      if (same) {
-        std::lock_guard lock(mutex_);
-        ++stats_.hits;
-        // A failed compile in between registered the files it touched; the stage depends on these again.
-        graph_.setStageFiles(vid, cached->files);
-        auto& st = statuses_[r.path];
-        st.ok = true;
-        st.diagnostics = cached->warnings;
-        st.lastCacheHit = true;
-        st.lastCompileMs = 0;
-        markIncludesOk(*cached);
-        return cached;
-      }
-    }
-  }
-
-  auto finish = [&](std::shared_ptr<CompiledShader> s, std::vector<uint64_t> hashes) {
     std::lock_guard lock(mutex_);
-    memory_[vid] = MemEntry{s, std::move(hashes)};
-    graph_.setStageFiles(vid, s->files);
-    auto& st = statuses_[r.path];
-    st.ok = true;
-    st.diagnostics = s->warnings;
-    st.lastCompileMs = s->compileMs;
-    st.lastCacheHit = s->cacheHit;
-    markIncludesOk(*s);
-    return std::shared_ptr<const CompiledShader>(std::move(s));
-  };
-
-  // 2. Disk: the index gives the dependency list; the content key is recomputed from current contents.
-  if (disk_.enabled()) {
-    if (auto deps = disk_.loadIndex(r.variant); deps && deps->front() == r.path) {
-      std::vector<uint64_t> hashes;
-      if (auto k = contentKey(r.variant, *deps, &hashes)) {
-        if (auto e = disk_.load(*k); e && e->files == *deps) {
-          auto s = std::make_shared<CompiledShader>();
-          s->key = key;
-          s->stage = r.stage;
-          s->spirv = std::move(e->spirv);
-          s->files = std::move(e->files);
-          s->warnings = std::move(e->warnings);
-          s->cacheHit = true;
-          s->reflection = reflectSpirv(s->spirv, r.stage, r.path);
-          s->compileMs = msSince(t0);
-          try {
-            checkBindingAliases(*s);  // entries written before this check existed
-          } catch (const CompileError& e) {
-            recordStatus(r.path, e.diagnostics, false, s->compileMs, true);
-            throw;
-          }
-          {
-            std::lock_guard lock(mutex_);
-            ++stats_.hits;
-          }
-          return finish(std::move(s), std::move(hashes));
-        }
-      }
-    }
+    auto it = memory_.find(vid);
+    if (it == memory_.end()) return nullptr;
+    cached = it->second.shader;
+    expected = it->second.hashes;
   }
+  for (size_t i = 0; i < cached->files.size(); ++i) {
+    auto h = hashes_.hash(cached->files[i]);
+    if (!h || *h != expected[i]) return nullptr;
+  }
+  std::lock_guard lock(mutex_);
+  ++stats_.hits;
+  // A failed compile in between registered the files it touched; the stage depends on these again.
+  graph_.setStageFiles(vid, cached->files);
+  auto& st = statuses_[r.path];
+  st.ok = true;
+  st.diagnostics = cached->warnings;
+  st.lastCacheHit = true;
+  st.lastCompileMs = 0;
+  markIncludesOk(*cached);
+  return cached;
+}
 
-  // 3. Compile.
-  CompileInput in;
-  in.path = r.path;
-  auto source = readFile(r.path);
-  if (!source) throw CompileError({{r.path, 0, "error", "cannot read shader file"}});
-  in.source = std::move(*source);
-  in.stage = r.stage;
-  in.defines = key.defines;
-  in.entry = key.entry;
-  in.includeRoots = options_.includeRoots;
-  in.options = {options_.optimize, options_.validate};
-  CompileOutput out;
+std::optional<ShaderLibrary::MemEntry> ShaderLibrary::fromDisk(const ShaderKey& key, const Resolved& r,
+                                                               std::chrono::steady_clock::time_point t0) {
+  // The index gives the dependency list; the content key is recomputed from current contents.
+  if (!disk_.enabled()) return std::nullopt;
+  auto deps = disk_.loadIndex(r.variant);
+  if (!deps || deps->front() != r.path) return std::nullopt;
+  std::vector<uint64_t> hashes;
+  auto k = contentKey(r.variant, *deps, &hashes);
+  if (!k) return std::nullopt;
+  auto entry = disk_.load(*k);
+  if (!entry || entry->files != *deps) return std::nullopt;
+  auto s =
+      makeShader(key, r, std::move(entry->spirv), std::move(entry->files), std::move(entry->warnings), true);
+  s->compileMs = msSince(t0);
   try {
-    out = compileGlsl(in);
+    checkBindingAliases(*s);  // entries written before this check existed
   } catch (const CompileError& e) {
-    const double ms = msSince(t0);
-    {
-      std::lock_guard lock(mutex_);
-      ++stats_.misses;
-      ++stats_.compiles;
-      stats_.compileMs += ms;
-      // Keep the graph useful while broken: previous files + files named by the errors.
-      std::set<fs::path> files{r.path};
-      if (auto it = memory_.find(vid); it != memory_.end())
-        files.insert(it->second.shader->files.begin(), it->second.shader->files.end());
-      for (const auto& d : e.diagnostics)
-        if (!d.file.empty()) files.insert(d.file);
-      std::vector<fs::path> list{r.path};
-      for (const auto& f : files)
-        if (f != r.path) list.push_back(f);
-      graph_.setStageFiles(vid, list);
-    }
-    recordStatus(r.path, e.diagnostics, false, ms, false);
+    recordStatus(r.path, e.diagnostics, false, s->compileMs, true);
     throw;
   }
-  auto s = std::make_shared<CompiledShader>();
-  s->key = key;
-  s->stage = r.stage;
-  s->spirv = std::move(out.spirv);
-  s->files = out.files;
-  s->warnings = std::move(out.warnings);
-  s->cacheHit = false;
-  s->reflection = reflectSpirv(s->spirv, r.stage, r.path);
+  {
+    std::lock_guard lock(mutex_);
+    ++stats_.hits;
+  }
+  return MemEntry{std::move(s), std::move(hashes)};
+}
+
+ShaderLibrary::MemEntry ShaderLibrary::compileNew(const ShaderKey& key, const Resolved& r,
+                                                  const std::string& vid,
+                                                  std::chrono::steady_clock::time_point t0) {
+  CompileOutput out = runGlslang(key, r, vid, t0);
+  auto s = makeShader(key, r, std::move(out.spirv), out.files, std::move(out.warnings), false);
   s->compileMs = out.ms;
   {
     std::lock_guard lock(mutex_);
@@ -262,15 +205,89 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::compile(const ShaderKey& ke
     recordStatus(r.path, e.diagnostics, false, out.ms, false);
     throw;
   }
-  if (disk_.enabled()) {
-    // The key is built from exactly the bytes glslang compiled.
-    Hasher h;
-    h.add(r.variant.lo).add(r.variant.hi);
-    for (size_t i = 0; i < out.files.size(); ++i) h.add(out.files[i].string()).add(out.contentHashes[i]);
-    disk_.store(CacheEntry{h.finish(), s->spirv, s->files, s->warnings});
-    disk_.storeIndex(r.variant, s->files);
+  if (disk_.enabled()) storeOnDisk(r, out, *s);
+  return MemEntry{std::move(s), std::move(out.contentHashes)};
+}
+
+CompileOutput ShaderLibrary::runGlslang(const ShaderKey& key, const Resolved& r, const std::string& vid,
+                                        std::chrono::steady_clock::time_point t0) {
+  CompileInput in;
+  in.path = r.path;
+  auto source = readFile(r.path);
+  if (!source) throw CompileError({{r.path, 0, "error", "cannot read shader file"}});
+  in.source = std::move(*source);
+  in.stage = r.stage;
+  in.defines = key.defines;
+  in.entry = key.entry;
+  in.includeRoots = options_.includeRoots;
+  in.options = {options_.optimize, options_.validate};
+  try {
+    return compileGlsl(in);
+  } catch (const CompileError& e) {
+    recordFailedCompile(r, vid, e.diagnostics, msSince(t0));
+    throw;
   }
-  return finish(std::move(s), std::move(out.contentHashes));
+}
+
+void ShaderLibrary::recordFailedCompile(const Resolved& r, const std::string& vid,
+                                        const std::vector<Diagnostic>& diags, double ms) {
+  {
+    std::lock_guard lock(mutex_);
+    ++stats_.misses;
+    ++stats_.compiles;
+    stats_.compileMs += ms;
+    // Keep the graph useful while broken: previous files + files named by the errors.
+    std::set<fs::path> files{r.path};
+    if (auto it = memory_.find(vid); it != memory_.end())
+      files.insert(it->second.shader->files.begin(), it->second.shader->files.end());
+    for (const auto& d : diags)
+      if (!d.file.empty()) files.insert(d.file);
+    std::vector<fs::path> list{r.path};
+    for (const auto& f : files)
+      if (f != r.path) list.push_back(f);
+    graph_.setStageFiles(vid, list);
+  }
+  recordStatus(r.path, diags, false, ms, false);
+}
+
+std::shared_ptr<CompiledShader> ShaderLibrary::makeShader(const ShaderKey& key, const Resolved& r,
+                                                          std::vector<uint32_t> spirv,
+                                                          std::vector<fs::path> files,
+                                                          std::vector<Diagnostic> warnings,
+                                                          bool cacheHit) const {
+  auto s = std::make_shared<CompiledShader>();
+  s->key = key;
+  s->stage = r.stage;
+  s->spirv = std::move(spirv);
+  s->files = std::move(files);
+  s->warnings = std::move(warnings);
+  s->cacheHit = cacheHit;
+  s->reflection = reflectSpirv(s->spirv, r.stage, r.path);
+  return s;
+}
+
+void ShaderLibrary::storeOnDisk(const Resolved& r, const CompileOutput& out, const CompiledShader& s) {
+  // The key is built from exactly the bytes glslang compiled.
+  Hasher h;
+  h.add(r.variant.lo).add(r.variant.hi);
+  for (size_t i = 0; i < out.files.size(); ++i) h.add(out.files[i].string()).add(out.contentHashes[i]);
+  disk_.store(CacheEntry{h.finish(), s.spirv, s.files, s.warnings});
+  disk_.storeIndex(r.variant, s.files);
+}
+
+std::shared_ptr<const CompiledShader> ShaderLibrary::remember(const std::string& vid, const fs::path& path,
+                                                              MemEntry entry) {
+  std::lock_guard lock(mutex_);
+  std::shared_ptr<const CompiledShader> s = entry.shader;
+  memory_[vid] = std::move(entry);
+  graph_.setStageFiles(vid, s->files);
+  auto& st = statuses_[path];
+  st.ok = true;
+  st.diagnostics = s->warnings;
+  st.lastCompileMs = s->compileMs;
+  st.lastCacheHit = s->cacheHit;
+  markIncludesOk(*s);
+  return s;
 }
 
 std::vector<Diagnostic> mergeStageDiagnostics(std::vector<Diagnostic> diags) {

@@ -7,9 +7,11 @@
 #include "shader/reflection.h"
 #include "shader/types.h"
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 
 namespace wb::shader {
@@ -95,6 +97,26 @@ class ShaderLibrary {
   void warn(const std::string& w);
   void markIncludesOk(const CompiledShader& s);
   void recordStatus(const fs::path& file, const std::vector<Diagnostic>& diags, bool ok, double ms, bool hit);
+
+  // The steps of compile(): the memory cache, the disk cache, glslang; remember() keeps what the last two
+  // give in memory and records the stage's status.
+  std::shared_ptr<const CompiledShader> fromMemory(const Resolved& r, const std::string& vid);
+  std::optional<MemEntry> fromDisk(const ShaderKey& key, const Resolved& r,
+                                   std::chrono::steady_clock::time_point t0);
+  MemEntry compileNew(const ShaderKey& key, const Resolved& r, const std::string& vid,
+                      std::chrono::steady_clock::time_point t0);
+  // glslang on the stage's file; a failure is counted and recorded before it is rethrown.
+  CompileOutput runGlslang(const ShaderKey& key, const Resolved& r, const std::string& vid,
+                           std::chrono::steady_clock::time_point t0);
+  void recordFailedCompile(const Resolved& r, const std::string& vid, const std::vector<Diagnostic>& diags,
+                           double ms);
+  // A compiled stage from its SPIR-V, reflected.
+  std::shared_ptr<CompiledShader> makeShader(const ShaderKey& key, const Resolved& r,
+                                             std::vector<uint32_t> spirv, std::vector<fs::path> files,
+                                             std::vector<Diagnostic> warnings, bool cacheHit) const;
+  void storeOnDisk(const Resolved& r, const CompileOutput& out, const CompiledShader& s);
+  std::shared_ptr<const CompiledShader> remember(const std::string& vid, const fs::path& path,
+                                                 MemEntry entry);
 
   Options options_;
   FileHashCache hashes_;

@@ -111,6 +111,57 @@ void keepLoadedLibrariesResident() {
   for (const auto& n : names) dlopen(n.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
 }
 
+// The feature structures the device is created with: Vulkan 1.2/1.3 core pieces plus ray tracing, the
+// essentials on and the optional ones where `have` supports them. Chained in place like SupportedFeatures.
+struct EnabledFeatures {
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 base{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+
+  explicit EnabledFeatures(const SupportedFeatures& have) {
+    as.accelerationStructure = VK_TRUE;
+    rt.rayTracingPipeline = VK_TRUE;
+    rt.pNext = &as;
+    f13.dynamicRendering = VK_TRUE;
+    f13.synchronization2 = VK_TRUE;
+    f13.maintenance4 = have.f13.maintenance4;
+    f13.pNext = &rt;
+    f12.bufferDeviceAddress = VK_TRUE;
+    f12.descriptorIndexing = VK_TRUE;
+    f12.runtimeDescriptorArray = VK_TRUE;
+    f12.shaderSampledImageArrayNonUniformIndexing = have.f12.shaderSampledImageArrayNonUniformIndexing;
+    f12.shaderStorageBufferArrayNonUniformIndexing = have.f12.shaderStorageBufferArrayNonUniformIndexing;
+    f12.descriptorBindingPartiallyBound = VK_TRUE;
+    f12.descriptorBindingVariableDescriptorCount = have.f12.descriptorBindingVariableDescriptorCount;
+    f12.scalarBlockLayout = VK_TRUE;
+    f12.hostQueryReset = have.f12.hostQueryReset;
+    f12.timelineSemaphore = VK_TRUE;
+    f12.pNext = &f13;
+    base.features.shaderInt64 = have.base.features.shaderInt64;
+    base.features.samplerAnisotropy = VK_FALSE;
+    base.pNext = &f12;
+  }
+  EnabledFeatures(const EnabledFeatures&) = delete;
+  EnabledFeatures& operator=(const EnabledFeatures&) = delete;
+};
+
+// The first queue family that does graphics and compute.
+uint32_t graphicsComputeQueueFamily(VkPhysicalDevice device, const std::string& deviceName) {
+  uint32_t n = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &n, nullptr);
+  std::vector<VkQueueFamilyProperties> families(n);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &n, families.data());
+  for (uint32_t i = 0; i < n; ++i) {
+    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT))
+      return i;
+  }
+  throw VulkanError("device '" + deviceName + "' has no graphics+compute queue");
+}
+
 template <typename T>
 void load(VkDevice device, T& fn, const char* name) {
   fn = reinterpret_cast<T>(vkGetDeviceProcAddr(device, name));
@@ -278,63 +329,13 @@ void Context::pickDevice(const ContextOptions& options) {
 }
 
 void Context::createDevice(const ContextOptions& options) {
-  uint32_t n = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, nullptr);
-  std::vector<VkQueueFamilyProperties> families(n);
-  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, families.data());
-  bool found = false;
-  for (uint32_t i = 0; i < n; ++i) {
-    if ((families[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
-      queueFamily_ = i;
-      found = true;
-      break;
-    }
-  }
-  if (!found) throw VulkanError("device '" + deviceName_ + "' has no graphics+compute queue");
-
-  // Features: Vulkan 1.2/1.3 core pieces plus ray tracing.
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  asFeatures.accelerationStructure = VK_TRUE;
-  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtFeatures{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
-  rtFeatures.rayTracingPipeline = VK_TRUE;
-  rtFeatures.pNext = &asFeatures;
-  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  f13.dynamicRendering = VK_TRUE;
-  f13.synchronization2 = VK_TRUE;
-  f13.maintenance4 = VK_TRUE;
-  f13.pNext = &rtFeatures;
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  f12.bufferDeviceAddress = VK_TRUE;
-  f12.descriptorIndexing = VK_TRUE;
-  f12.runtimeDescriptorArray = VK_TRUE;
-  f12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
-  f12.shaderStorageBufferArrayNonUniformIndexing = VK_TRUE;
-  f12.descriptorBindingPartiallyBound = VK_TRUE;
-  f12.descriptorBindingVariableDescriptorCount = VK_TRUE;
-  f12.scalarBlockLayout = VK_TRUE;
-  f12.hostQueryReset = VK_TRUE;
-  f12.timelineSemaphore = VK_TRUE;
-  f12.pNext = &f13;
-  VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  features.features.shaderInt64 = VK_TRUE;
-  features.features.samplerAnisotropy = VK_FALSE;
-  features.pNext = &f12;
-
+  queueFamily_ = graphicsComputeQueueFamily(physical_, deviceName_);
   // Selection already refused devices without the essentials; the optional ones are enabled where present.
   const SupportedFeatures have(physical_);
   std::string missing;
   for (const auto& m : have.missingEssentials()) missing += " " + m;
   if (!missing.empty()) throw VulkanError("device '" + deviceName_ + "' lacks features:" + missing);
-  const auto& h12 = have.f12;
-  const auto& h13 = have.f13;
-  f12.shaderStorageBufferArrayNonUniformIndexing = h12.shaderStorageBufferArrayNonUniformIndexing;
-  f12.shaderSampledImageArrayNonUniformIndexing = h12.shaderSampledImageArrayNonUniformIndexing;
-  f12.descriptorBindingVariableDescriptorCount = h12.descriptorBindingVariableDescriptorCount;
-  f12.hostQueryReset = h12.hostQueryReset;
-  f13.maintenance4 = h13.maintenance4;
-  features.features.shaderInt64 = have.base.features.shaderInt64;
+  const EnabledFeatures features(have);
 
   std::vector<const char*> extensions;
   for (const auto& e : requiredDeviceExtensions()) extensions.push_back(e.c_str());
@@ -347,7 +348,7 @@ void Context::createDevice(const ContextOptions& options) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  dci.pNext = &features;
+  dci.pNext = &features.base;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
   dci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
@@ -355,6 +356,12 @@ void Context::createDevice(const ContextOptions& options) {
   WB_VK(vkCreateDevice(physical_, &dci, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
+  loadDeviceFunctions();
+  createPipelineCache(options.pipelineCacheDir);
+  createSubmitObjects();
+}
+
+void Context::loadDeviceFunctions() {
   load(device_, vkCreateAccelerationStructureKHR, "vkCreateAccelerationStructureKHR");
   load(device_, vkDestroyAccelerationStructureKHR, "vkDestroyAccelerationStructureKHR");
   load(device_, vkGetAccelerationStructureBuildSizesKHR, "vkGetAccelerationStructureBuildSizesKHR");
@@ -368,19 +375,23 @@ void Context::createDevice(const ContextOptions& options) {
   load(device_, vkDeferredOperationJoinKHR, "vkDeferredOperationJoinKHR");
   load(device_, vkGetDeferredOperationResultKHR, "vkGetDeferredOperationResultKHR");
   load(device_, vkGetDeferredOperationMaxConcurrencyKHR, "vkGetDeferredOperationMaxConcurrencyKHR");
+}
 
+void Context::createPipelineCache(const std::string& dir) {
   VkPhysicalDeviceProperties props;
   vkGetPhysicalDeviceProperties(physical_, &props);
   std::string cacheFile;
-  if (!options.pipelineCacheDir.empty()) {
+  if (!dir.empty()) {
     char name[64];
     std::snprintf(name, sizeof(name), "vk_pipeline_cache_%04x_%04x.bin", props.vendorID, props.deviceID);
-    cacheFile = options.pipelineCacheDir + "/" + name;
+    cacheFile = dir + "/" + name;
   }
   pipelineCache_ = std::make_unique<PipelineCache>(device_, props, cacheFile);
   if (!pipelineCache_->warning().empty())
     std::fprintf(stderr, "warning: %s\n", pipelineCache_->warning().c_str());
+}
 
+void Context::createSubmitObjects() {
   VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
   pci.queueFamilyIndex = queueFamily_;

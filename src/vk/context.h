@@ -94,6 +94,10 @@ class Context {
   void createInstance(const ContextOptions& options);
   void pickDevice(const ContextOptions& options);
   void createDevice(const ContextOptions& options);
+  void loadDeviceFunctions();  // the extension entry points above
+  // The pipeline cache, persisted in `dir` (a file per device) unless it is empty.
+  void createPipelineCache(const std::string& dir);
+  void createSubmitObjects();  // submitAndWait's command pool and fence
   void destroy();
 
   VkInstance instance_ = VK_NULL_HANDLE;

@@ -88,6 +88,25 @@ class RayTracingPipeline {
   double createMs_ = 0;
   RtLibraryStats stats_;
   std::vector<std::string> libraryKeys_;
+
+  struct Inputs;        // what both creation paths work from
+  struct GroupLibrary;  // one shader group's stages, re-indexed for a library of its own
+  // One pipeline from every stage and group, created through a deferred operation.
+  void createMonolithic(const Inputs& in);
+  // A pipeline linked from per-group libraries, taken from `libraries` or compiled into it.
+  void createLinked(const Inputs& in, RtLibraryCache& libraries);
+  VkRayTracingPipelineInterfaceCreateInfoKHR libraryInterface(const Inputs& in) const;
+  // Each group's library, with its cache key appended to libraryKeys_.
+  std::vector<GroupLibrary> groupLibraries(const Inputs& in,
+                                           const VkRayTracingPipelineInterfaceCreateInfoKHR& iface);
+  // The groups' libraries from the cache, compiling those it lacks; records stats_.
+  std::vector<VkPipeline> makeLibraries(const Inputs& in, const std::vector<GroupLibrary>& local,
+                                        const VkRayTracingPipelineInterfaceCreateInfoKHR& iface,
+                                        RtLibraryCache& libraries);
+  VkPipeline compileLibrary(const Inputs& in, const GroupLibrary& library,
+                            const VkRayTracingPipelineInterfaceCreateInfoKHR& iface) const;
+  void linkLibraries(const Inputs& in, const std::vector<VkPipeline>& libs,
+                     const VkRayTracingPipelineInterfaceCreateInfoKHR& iface);
 };
 
 }  // namespace wb::vk

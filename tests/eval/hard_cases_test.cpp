@@ -1,4 +1,4 @@
-// The hard-case suite of `converge --hard-cases` (src/eval/hard_cases.cpp), run as a test at small size: no
+// The hard-case suite of `converge --hard-cases` (src/scene/hard_cases.cpp), run as a test at small size: no
 // case and configuration drops a NaN/Inf sample or leaves a non-finite pixel, energy-preserving furnaces stay
 // at 1, and no furnace creates energy beyond the known single-scattering dielectric excess (~2%).
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/cmd_converge.h"
 #include "app/render_options.h"
-#include "eval/hard_cases.h"
 #include "eval/metrics.h"
 #include "gpu_fixture.h"
 
@@ -19,7 +19,8 @@ using namespace wb;
 
 namespace {
 
-render::RenderSettings settingsFor(const std::string& variant) {
+// The variant's flags at 16x16 and 16 spp, with the case's settings over them as converge applies them.
+render::RenderSettings settingsFor(const scene::HardCase& hc, const std::string& variant) {
   app::RenderOptions ro;
   CLI::App cli;
   app::addRenderOptions(cli, ro);
@@ -31,20 +32,17 @@ render::RenderSettings settingsFor(const std::string& variant) {
   ro.size = "16x16";
   app::finishRenderOptions(ro);
   ro.params.render.spp = 16;
+  app::applyHardCase(hc, ro.params);
   return ro.params.render;
 }
 
 std::vector<std::string> hardCaseNames() {
   std::vector<std::string> names;
-  for (const auto& hc : eval::hardCases()) names.push_back(hc.name);
+  for (const auto& hc : scene::hardCases()) names.push_back(hc.name);
   return names;
 }
 
 }  // namespace
-
-TEST(HardCaseSuite, HasTheCases) {
-  EXPECT_GE(eval::hardCases().size(), 10u);
-}
 
 // One test per case, each of its flag variants in turn.
 class HardCase : public ::testing::TestWithParam<std::string> {};
@@ -56,17 +54,16 @@ TEST_P(HardCase, NoNanOrInfAndFurnacesHoldTheirEnergy) {
   const std::set<std::string> exact = {"grazing-lambert", "metal-rough0",         "scale-1e-3",
                                        "scale-1e5",       "degenerate-triangles", "broken-tangents",
                                        "alpha-foliage",   "opaque-leaves-control"};
-  const auto cases = eval::hardCases();
+  const auto cases = scene::hardCases();
   const auto it =
-      std::find_if(cases.begin(), cases.end(), [](const eval::HardCase& c) { return c.name == GetParam(); });
+      std::find_if(cases.begin(), cases.end(), [](const scene::HardCase& c) { return c.name == GetParam(); });
   ASSERT_NE(it, cases.end());
   const auto& hc = *it;
   for (const auto& variant : hc.variants) {
     SCOPED_TRACE(hc.name + " " + variant);
     render::SessionOptions o;
     o.sceneData = hc.scene;
-    o.settings = settingsFor(variant);
-    hc.adjust(o.settings);
+    o.settings = settingsFor(hc, variant);
     o.quiet = true;
     auto session = wb::testing::makeSession(o);
     session->render(o.settings.spp);

@@ -90,6 +90,21 @@ TEST(Parameters, SetFindsNamesAndFlagsAndKeepsTheRules) {
   EXPECT_THROW(setParameter(p, "sampler", "halton"), std::invalid_argument);
 }
 
+TEST(Parameters, NameEqualsValueTextsApplyInTurnThroughSetParameter) {
+  EXPECT_EQ(splitAssignment("env=a=b.hdr"), std::make_pair(std::string("env"), std::string("a=b.hdr")));
+  EXPECT_EQ(splitAssignment("env="), std::make_pair(std::string("env"), std::string()));
+  EXPECT_FALSE(splitAssignment("max_bounces"));
+  Parameters p;
+  setParameters(p, {"max_bounces=3", "no_rr=on", "env_color=1,0.5,0", "max_bounces=5"});
+  EXPECT_EQ(p.render.maxBounces, 5u);
+  EXPECT_FALSE(p.render.russianRoulette);
+  EXPECT_EQ(p.render.envColor, glm::vec3(1.0f, 0.5f, 0.0f));
+  for (const std::string bad : {"bounces=3", "max_bounces", "max_bounces=-1", "rr_min=0.99"}) {
+    Parameters q;
+    EXPECT_THROW(setParameters(q, {bad}), std::invalid_argument) << bad;
+  }
+}
+
 TEST(Parameters, TheImageKeyFollowsWhatChangesTheImage) {
   Parameters a;
   Parameters b = a;

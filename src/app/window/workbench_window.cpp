@@ -84,9 +84,9 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &queries_));
 
   for (const auto& s : o.sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos) throw std::invalid_argument("--set: expected NAME=VALUE, got '" + s + "'");
-    applySetting(state_, s.substr(0, eq), s.substr(eq + 1));
+    const auto nameValue = render::splitAssignment(s);
+    if (!nameValue) throw std::invalid_argument("--set: expected NAME=VALUE, got '" + s + "'");
+    applySetting(state_, nameValue->first, nameValue->second);
   }
   if (!o.scriptPath.empty()) {
     script_ = Script::fromFile(o.scriptPath);

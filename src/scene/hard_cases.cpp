@@ -1,8 +1,7 @@
-#include "eval/hard_cases.h"
+#include "scene/hard_cases.h"
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -12,38 +11,37 @@
 
 #include "scene/procedural.h"
 
-namespace wb::eval {
+namespace wb::scene {
 namespace {
 
 gpu::Vertex vertex(glm::vec3 p, glm::vec3 n, glm::vec2 uv, glm::vec4 t) {
-  return scene::makeVertex(p, n, uv, t);
+  return makeVertex(p, n, uv, t);
 }
 
 gpu::Material material(glm::vec3 base, float metallic, float roughness, float specular) {
-  return scene::makeMaterial(base, metallic, roughness, specular);
+  return makeMaterial(base, metallic, roughness, specular);
 }
 
 gpu::Material whiteLambert() {
   return material(glm::vec3(1.0f), 0.0f, 1.0f, 0.0f);
 }
 
-scene::Primitive quad(float h, int mat) {
-  return scene::makeQuad(h, mat).primitives[0];
+Primitive quad(float h, int mat) {
+  return makeQuad(h, mat).primitives[0];
 }
 
-scene::Primitive sphere(float r, int mat, int segments = 48, int rings = 24) {
-  return scene::makeUvSphere(r, mat, segments, rings).primitives[0];
+Primitive sphere(float r, int mat, int segments = 48, int rings = 24) {
+  return makeUvSphere(r, mat, segments, rings).primitives[0];
 }
 
-scene::Scene oneMesh(const std::string& name, std::vector<gpu::Material> materials,
-                     std::vector<scene::Primitive> prims, glm::vec3 eye, glm::vec3 target, float yfov,
-                     float radius) {
-  scene::Scene sc;
+Scene oneMesh(const std::string& name, std::vector<gpu::Material> materials, std::vector<Primitive> prims,
+              glm::vec3 eye, glm::vec3 target, float yfov, float radius) {
+  Scene sc;
   sc.sourcePath = name;
   sc.materials = std::move(materials);
   for (size_t i = 0; i < sc.materials.size(); ++i)
     sc.materialNames.push_back(std::string("m").append(std::to_string(i)));
-  scene::Mesh mesh;
+  Mesh mesh;
   mesh.name = name;
   mesh.primitives = std::move(prims);
   sc.meshes = {mesh};
@@ -72,11 +70,11 @@ std::string tinySunEnvironment(float peak) {
   return path.string();
 }
 
-void furnaceEnv(render::RenderSettings& s) {
-  s.maxBounces = std::max(s.maxBounces, 64u);  // a furnace only converges to 1 without a short bounce cap
-  s.envPath.clear();
-  s.envColor = glm::vec3(1.0f);
-  s.envIntensity = 1.0f;
+// A white furnace's environment: uniform radiance 1, no map. A furnace only converges to 1 without a short
+// bounce cap.
+void furnace(HardCase& c) {
+  c.settings = {"env=", "env_color=1,1,1", "env_intensity=1"};
+  c.minBounces = 64;
 }
 
 }  // namespace
@@ -92,7 +90,7 @@ std::vector<HardCase> hardCases() {
     c.scene = oneMesh(c.name, {whiteLambert()}, {quad(1000.0f, 0)}, {0, 0.05f, 0},
                       {0, 0.05f - 0.0087f * 6, -6}, 0.3f, 1000.0f);
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     c.furnaceValue = 1.0;
     cases.push_back(std::move(c));
   }
@@ -103,7 +101,7 @@ std::vector<HardCase> hardCases() {
     c.scene = oneMesh(c.name, {material(glm::vec3(1.0f), 1.0f, 0.05f, 1.0f)}, {quad(1000.0f, 0)},
                       {0, 0.05f, 0}, {0, 0.05f - 0.0087f * 6, -6}, 0.3f, 1000.0f);
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     cases.push_back(std::move(c));
   }
   // Roughness 0 and 1 on metals and dielectrics: spheres in the white furnace.
@@ -122,7 +120,7 @@ std::vector<HardCase> hardCases() {
     c.scene = oneMesh(c.name, {material(glm::vec3(1.0f), r.metallic, r.roughness, r.specular)},
                       {sphere(1.0f, 0)}, {0, 0, 2.2f}, {0, 0, 0}, 0.8f, 1.0f);
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     c.furnaceValue = 1.0;  // the ideal; single-scattering microfacet models lose some energy at roughness 1
     c.note =
         "`--no-mis` samples the environment by light sampling only: a (near-)delta specular lobe cannot be "
@@ -142,10 +140,7 @@ std::vector<HardCase> hardCases() {
     c.scene = sc;
     c.variants = samplingVariants;
     const std::string env = tinySunEnvironment(5.0e4f);
-    c.adjust = [env](render::RenderSettings& s) {
-      s.envPath = env;
-      s.envIntensity = 1.0f;
-    };
+    c.settings = {"env=" + env, "env_intensity=1"};
     cases.push_back(std::move(c));
   }
   for (float scale : {1e-3f, 1e5f}) {  // Extreme scales: the furnace sphere at 1 mm and 100 km.
@@ -155,7 +150,7 @@ std::vector<HardCase> hardCases() {
     c.scene = oneMesh(c.name, {whiteLambert()}, {sphere(scale, 0)}, glm::vec3(0, 0, 2.2f * scale), {0, 0, 0},
                       0.8f, scale);
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     c.furnaceValue = 1.0;
     cases.push_back(std::move(c));
   }
@@ -186,7 +181,7 @@ std::vector<HardCase> hardCases() {
     }
     c.scene = oneMesh(c.name, {whiteLambert()}, {p}, {0, 0, 2.2f}, {0, 0, 0}, 0.8f, 1.0f);
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     c.furnaceValue = 1.0;  // the slivers are inside the sphere: hidden
     cases.push_back(std::move(c));
   }
@@ -218,7 +213,7 @@ std::vector<HardCase> hardCases() {
     }
     c.scene = oneMesh(c.name, {whiteLambert()}, {p}, {0, 0, 2.2f}, {0, 0, 0}, 0.8f, 1.0f);
     // A flat normal map (128, 128, 255) so the tangent frame is used.
-    scene::Image img;
+    Image img;
     img.name = "flat-normal";
     img.width = img.height = 4;
     for (int k = 0; k < 16; ++k) img.rgba8.insert(img.rgba8.end(), {128, 128, 255, 255});
@@ -227,7 +222,7 @@ std::vector<HardCase> hardCases() {
     c.scene.textureIsSrgb.push_back(false);
     c.scene.materials[0].normalTexture = 0;
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     c.furnaceValue = 1.0;
     cases.push_back(std::move(c));
   }
@@ -246,10 +241,8 @@ std::vector<HardCase> hardCases() {
     c.scene = oneMesh(c.name, {material(glm::vec3(1.0f), 1.0f, 0.0f, 1.0f)}, {a, b}, {0, 0, 0},
                       {0, -0.3f, -1}, 0.9f, 50.0f);
     c.variants = {"", "--no-rr"};
-    c.adjust = [](render::RenderSettings& s) {
-      furnaceEnv(s);
-      s.maxBounces = 256;
-    };
+    furnace(c);
+    c.settings.push_back("max_bounces=256");
     c.furnaceValue = 1.0;
     c.note = "paths that run out of bounces are black";
     cases.push_back(std::move(c));
@@ -262,7 +255,7 @@ std::vector<HardCase> hardCases() {
     m.alphaMode = WB_ALPHA_MASK;
     m.flags = WB_MATERIAL_DOUBLE_SIDED;
     m.baseColorTexture = 0;
-    std::vector<scene::Primitive> prims;
+    std::vector<Primitive> prims;
     for (int k = 0; k < 24; ++k) {
       auto q = quad(1.0f, 0);
       for (auto& v : q.vertices) {
@@ -275,7 +268,7 @@ std::vector<HardCase> hardCases() {
       prims.push_back(q);
     }
     c.scene = oneMesh(c.name, {m}, prims, {0, 0, 3.0f}, {0, 0, -1}, 0.7f, 3.0f);
-    scene::Image img;
+    Image img;
     img.name = "checker-alpha";
     img.width = img.height = 8;
     for (int y = 0; y < 8; ++y)
@@ -286,7 +279,7 @@ std::vector<HardCase> hardCases() {
     c.scene.textures.push_back({0, 0});
     c.scene.textureIsSrgb.push_back(true);
     c.variants = samplingVariants;
-    c.adjust = furnaceEnv;
+    furnace(c);
     c.furnaceValue = 1.0;
     // Control: the same leaves opaque and untextured (isolates the alpha mask from the stacked geometry).
     HardCase control;
@@ -296,7 +289,7 @@ std::vector<HardCase> hardCases() {
     control.scene.materials[0].alphaMode = WB_ALPHA_OPAQUE;
     control.scene.materials[0].baseColorTexture = -1;
     control.variants = {""};
-    control.adjust = furnaceEnv;
+    furnace(control);
     control.furnaceValue = 1.0;
     cases.push_back(std::move(c));
     cases.push_back(std::move(control));
@@ -304,4 +297,4 @@ std::vector<HardCase> hardCases() {
   return cases;
 }
 
-}  // namespace wb::eval
+}  // namespace wb::scene
