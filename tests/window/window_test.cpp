@@ -318,6 +318,20 @@ TEST(Window, NoDisplayFallsBackToHeadlessRender) {
   EXPECT_TRUE(fs::exists(out)) << r.output;
 }
 
+// A display the device cannot present to (a swapchain that cannot be made, as NVIDIA's driver on Xvfb): the
+// window closes, says why, and renders headless as without a display.
+TEST(Window, ADisplayTheDeviceCannotPresentToFallsBackToHeadlessRender) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("nopresent");
+  const auto out = dir / "fallback.png";
+  auto r = runWindow("--size 32x24 --spp 1 --out " + out.string(), "WB_SIMULATE_NO_PRESENT=1");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("cannot present to a window on display"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("VK_ERROR_UNKNOWN"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rendering headless instead"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out)) << r.output;
+}
+
 TEST(Window, HybridAndReflectionModesRenderAndSwitchBack) {
   REQUIRE_XVFB();
   const auto dir = tempDir("modes");

@@ -27,7 +27,8 @@ bool parseWindowSize(const std::string& text, uint32_t& w, uint32_t& h) {
   return true;
 }
 
-int openWindow(const WindowOptions& o) {
+// `why` says why when it returns kNoDisplay after a window opened (the device cannot present to it).
+int openWindow(const WindowOptions& o, std::string& why) {
   if (!glfwInit()) return kNoDisplay;
   if (!glfwVulkanSupported()) {
     glfwTerminate();
@@ -44,6 +45,9 @@ int openWindow(const WindowOptions& o) {
   try {
     WorkbenchWindow app(window, o);
     code = app.run();
+  } catch (const PresentationUnavailable& e) {
+    why = e.what();
+    code = kNoDisplay;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench: error: %s\n", e.what());
     code = 1;
@@ -105,9 +109,12 @@ void WindowCommand::finish() {
 int WindowCommand::run() {
   const auto display = env::get("DISPLAY"), wayland = env::get("WAYLAND_DISPLAY");
   if (!display && !wayland) return runHeadless("no display (DISPLAY is not set)");
-  const int code = openWindow(options);
+  std::string why;
+  const int code = openWindow(options, why);
   if (code != kNoDisplay) return code;
-  return runHeadless("cannot open a window on display '" + display.value_or(wayland.value_or("")) + "'");
+  const std::string name = display.value_or(wayland.value_or(""));
+  if (!why.empty()) return runHeadless("cannot present to a window on display '" + name + "': " + why);
+  return runHeadless("cannot open a window on display '" + name + "'");
 }
 
 int WindowCommand::runHeadless(const std::string& why) {

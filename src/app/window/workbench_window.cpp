@@ -1,6 +1,8 @@
 // The workbench window: set-up and tear-down, hot reload targets, access to the renderer of the current mode.
 #include "app/window/workbench_window.h"
 
+#include "common/env.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -38,13 +40,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   session_ = std::make_unique<render::RenderSession>(so);
   auto& ctx = session_->context();
 
-  VkSurfaceKHR surface = VK_NULL_HANDLE;
-  if (glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface) != VK_SUCCESS)
-    throw std::runtime_error("cannot create a Vulkan surface for the window");
-  swapchain_ = std::make_unique<vk::Swapchain>(ctx, surface);
-  int fbw = 0, fbh = 0;
-  glfwGetFramebufferSize(window_, &fbw, &fbh);
-  swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
+  makeSwapchain();
   display_ = std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass());
   input_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
   gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
@@ -91,6 +87,30 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   if (!o.scriptPath.empty()) {
     script_ = Script::fromFile(o.scriptPath);
     hasScript_ = true;
+  }
+}
+
+void WorkbenchWindow::makeSwapchain() {
+  auto& ctx = session_->context();
+  const std::string device = " (" + ctx.deviceName() + ")";
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  if (glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface) != VK_SUCCESS)
+    throw PresentationUnavailable("cannot create a Vulkan surface for the window" + device);
+  try {
+    swapchain_ = std::make_unique<vk::Swapchain>(ctx, surface);
+  } catch (const std::exception& e) {
+    vkDestroySurfaceKHR(ctx.instance(), surface, nullptr);
+    throw PresentationUnavailable(e.what() + device);
+  }
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  try {
+    if (env::enabled("WB_SIMULATE_NO_PRESENT"))
+      throw std::runtime_error("vkCreateSwapchainKHR failed with VK_ERROR_UNKNOWN (WB_SIMULATE_NO_PRESENT)");
+    swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
+  } catch (const std::exception& e) {
+    swapchain_.reset();  // destroys the surface too
+    throw PresentationUnavailable(e.what() + device);
   }
 }
 

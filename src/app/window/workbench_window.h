@@ -8,6 +8,7 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,13 @@ struct WindowOptions {
 // Half the diagonal of the scene's bounds (at least 1e-3): the orbit camera's radius, the depth view's scale.
 float sceneRadius(const scene::Scene& s);
 
+// The window opened but the device cannot present to it (no surface, no queue that presents, or the swapchain
+// cannot be made, as with NVIDIA's driver on an X server without its display support): the command renders
+// headless instead, saying why.
+struct PresentationUnavailable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 class WorkbenchWindow : public ScriptHost {
   using Clock = std::chrono::steady_clock;
 
@@ -88,6 +96,8 @@ class WorkbenchWindow : public ScriptHost {
   }
 
  private:
+  // The window surface and its swapchain; throws PresentationUnavailable when the device cannot present.
+  void makeSwapchain();
   void registerHotReload();
   // The A/B comparison (workbench_window_ab.cpp): a reload that installed pipelines is compared after its
   // first frame (when the comparison is on), and the panel's Revert/Accept are applied at a frame boundary.
