@@ -26,7 +26,15 @@ void lowerThreadPriority() {
 namespace wb::shader {
 
 namespace {
-using Clock = std::chrono::steady_clock;
+using TimePoint = std::chrono::steady_clock::time_point;
+
+class SteadyClock : public Reloader::Clock {
+ public:
+  TimePoint now() const override { return std::chrono::steady_clock::now(); }
+  void wait(std::span<pollfd> fds, int timeoutMs) override {
+    ::poll(fds.data(), static_cast<nfds_t>(fds.size()), timeoutMs);
+  }
+};
 
 bool shaderLike(const fs::path& p) {
   if (stageFromPath(p)) return true;
@@ -50,7 +58,9 @@ Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs)
     : Reloader(lib, std::move(watchDirs), {}) {}
 
 Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing)
-    : lib_(lib), dirs_(std::move(watchDirs)), timing_(timing) {}
+    : lib_(lib), dirs_(std::move(watchDirs)), timing_(std::move(timing)) {
+  if (!timing_.clock) timing_.clock = std::make_shared<SteadyClock>();
+}
 
 Reloader::~Reloader() {
   stop();
@@ -117,9 +127,9 @@ bool Reloader::newerChange() const {
 }
 
 bool Reloader::rebuild(const std::vector<fs::path>& files,
-                       const std::vector<ShaderLibrary::ProgramId>& programs, Clock::time_point editTime,
+                       const std::vector<ShaderLibrary::ProgramId>& programs, TimePoint editTime,
                        bool force) {
-  const auto t0 = Clock::now();
+  const auto t0 = timing_.clock->now();
   rebuildStart_ = t0.time_since_epoch().count();
   rebuilding_ = true;
   lib_.invalidateFiles(files);
@@ -159,7 +169,7 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
   }
   for (auto& [id, stages] : next) last_[id] = std::move(stages);
   r.stagesRecompiled.assign(recompiled.begin(), recompiled.end());
-  r.compileMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  r.compileMs = std::chrono::duration<double, std::milli>(timing_.clock->now() - t0).count();
   ++reloads_;
   std::lock_guard lock(mutex_);
   results_.push_back(std::move(r));
@@ -171,26 +181,27 @@ void Reloader::run() {
   std::set<fs::path> pending;
   std::set<fs::path> writing;  // modified but not yet closed
   bool overflow = false;
-  Clock::time_point first{}, last{};
+  TimePoint first{}, last{};
+  Clock& clock = *timing_.clock;
   while (running_) {
     int timeoutMs = -1;
     if (!pending.empty() || overflow) {
-      const auto since = Clock::now() - last;
+      const auto since = clock.now() - last;
       const auto wait = timing_.quiet - std::chrono::duration_cast<std::chrono::milliseconds>(since);
       timeoutMs = std::max<int>(1, static_cast<int>(wait.count()));
     }
     pollfd fds[2] = {{watcher_->fd(), POLLIN, 0}, {wakeFd_, POLLIN, 0}};
-    ::poll(fds, 2, timeoutMs);
+    clock.wait(fds, timeoutMs);
     if (!running_) break;
     if (fds[1].revents & POLLIN) {
       uint64_t v;
       [[maybe_unused]] auto n = ::read(wakeFd_, &v, sizeof v);
     }
-    if (reloadAll_.exchange(false)) rebuild({}, lib_.programs(), Clock::now(), true);
+    if (reloadAll_.exchange(false)) rebuild({}, lib_.programs(), clock.now(), true);
     // Folds newly read events into the burst; false when there were none.
     auto absorb = [&](const std::vector<DirWatcher::Event>& events) {
       for (const auto& e : events) {
-        const auto now = Clock::now();
+        const auto now = clock.now();
         if (pending.empty() && !overflow) first = now;
         last = now;
         if (e.overflow()) {
@@ -209,7 +220,7 @@ void Reloader::run() {
     absorb(watcher_->read());
     changesPending_ = !pending.empty() || overflow;
     if (pending.empty() && !overflow) continue;
-    const auto quietFor = Clock::now() - last;
+    const auto quietFor = clock.now() - last;
     if (quietFor < timing_.quiet) continue;
     if (!writing.empty() && quietFor < timing_.writeGrace) continue;  // never compile a half-written file
     // Map files to programs.
@@ -252,7 +263,7 @@ void Reloader::run() {
       pending.insert(files.begin(), files.end());
       overflow = wasOverflow;
       changesPending_ = true;
-      last = Clock::now();
+      last = clock.now();
     }
   }
 }

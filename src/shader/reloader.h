@@ -4,11 +4,15 @@
 #pragma once
 #include "shader/library.h"
 
+#include <poll.h>
+
 #include <atomic>
 #include <chrono>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <thread>
 
 namespace wb::shader {
@@ -35,10 +39,22 @@ struct ReloadResult {
 
 class Reloader {
  public:
+  // The worker's time source: when events came, how long a burst has been quiet, the times a result reports,
+  // and how the worker waits for events. The default is std::chrono::steady_clock with poll()'s timeout; a
+  // test passes a clock that moves only when told and wakes the worker when it does.
+  class Clock {
+   public:
+    virtual ~Clock() = default;
+    virtual std::chrono::steady_clock::time_point now() const = 0;
+    // Waits as ::poll(fds, timeoutMs) does (-1: until an fd is readable) and fills the fds' revents. The
+    // timeout is in this clock's time: a clock that does not pass by itself wakes the worker when it moves.
+    virtual void wait(std::span<pollfd> fds, int timeoutMs) = 0;
+  };
   struct Timing {
     std::chrono::milliseconds quiet{15};           // no events for this long = the burst is over
     std::chrono::milliseconds writeGrace{1000};    // wait this long for a file still open for writing
     std::chrono::milliseconds recreateGrace{300};  // wait this long for a deleted dependency to reappear
+    std::shared_ptr<Clock> clock;                  // null: std::chrono::steady_clock
   };
   Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs);
   Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing);

@@ -1,13 +1,18 @@
-// Reloader: editor save patterns, broken edits, dependency-driven rebuilds.
+// Reloader: editor save patterns, broken edits, dependency-driven rebuilds. The tests of its timing logic
+// (quiet period, write and recreate graces) see real inotify events and move a manual clock instead of
+// sleeping.
 #include "shader/reloader.h"
 #include "shader/watcher.h"
 #include "test_util.h"
 
 #include <fcntl.h>
+#include <poll.h>
+#include <sys/eventfd.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -47,6 +52,66 @@ layout(location = 0) rayPayloadInEXT vec3 p;
 void main() { p = TINT; }
 )";
 
+// A clock for the reloader that moves only when the test advances it. The worker waits on it for events and
+// for advance(), never for real time to pass. settle() waits until the worker is blocked with nothing unread:
+// the events of every file operation that returned before it, and every advance, have been taken into
+// account.
+class ManualClock : public Reloader::Clock {
+ public:
+  ManualClock() : wakeFd_(::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC)) {}
+  ~ManualClock() override { ::close(wakeFd_); }
+
+  std::chrono::steady_clock::time_point now() const override {
+    std::lock_guard lock(mutex_);
+    return now_;
+  }
+  void wait(std::span<pollfd> fds, int /*timeoutMs: real time, not this clock's*/) override {
+    std::vector<pollfd> all(fds.begin(), fds.end());
+    all.push_back({wakeFd_, POLLIN, 0});
+    {
+      std::lock_guard lock(mutex_);
+      watched_ = all;
+      blocked_ = true;
+    }
+    ::poll(all.data(), all.size(), -1);
+    {
+      std::lock_guard lock(mutex_);
+      blocked_ = false;
+    }
+    uint64_t v;
+    [[maybe_unused]] auto n = ::read(wakeFd_, &v, sizeof v);
+    for (size_t i = 0; i < fds.size(); ++i) fds[i].revents = all[i].revents;
+  }
+  void advance(std::chrono::milliseconds d) {
+    {
+      std::lock_guard lock(mutex_);
+      now_ += d;
+    }
+    const uint64_t one = 1;
+    [[maybe_unused]] auto n = ::write(wakeFd_, &one, sizeof one);
+  }
+  // False only when the worker stays busy past the (generous) limit.
+  bool settle(std::chrono::milliseconds limit = 300000ms) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+      {
+        std::lock_guard lock(mutex_);
+        if (blocked_ && !readable(watched_)) return true;
+      }
+      std::this_thread::sleep_for(1ms);
+    }
+    return false;
+  }
+
+ private:
+  static bool readable(std::vector<pollfd> fds) { return ::poll(fds.data(), fds.size(), 0) > 0; }
+  const int wakeFd_;
+  mutable std::mutex mutex_;
+  std::chrono::steady_clock::time_point now_{};
+  std::vector<pollfd> watched_;
+  bool blocked_ = false;
+};
+
 struct ReloaderFixture : ::testing::Test {
   TempDir t;
   fs::path dir;
@@ -70,6 +135,38 @@ struct ReloaderFixture : ::testing::Test {
     reloader->start();
   }
   void TearDown() override { reloader->stop(); }
+
+  // For the tests of the timing logic: the reloader restarted on a clock that moves only through pass().
+  std::shared_ptr<ManualClock> clock;
+  const Reloader::Timing timing;  // the production defaults the tests' steps are measured against
+  void useManualClock() {
+    reloader->stop();
+    clock = std::make_shared<ManualClock>();
+    Reloader::Timing t = timing;
+    t.clock = clock;
+    reloader = std::make_unique<Reloader>(*lib, std::vector<fs::path>{dir}, t);
+    reloader->start();
+    EXPECT_TRUE(clock->settle()) << "the worker never went idle";
+  }
+  // Manual clock: the worker takes in what happened so far, then `d` passes and it takes that in.
+  void pass(std::chrono::milliseconds d) {
+    EXPECT_TRUE(clock->settle()) << "the worker stayed busy";
+    clock->advance(d);
+    EXPECT_TRUE(clock->settle()) << "the worker stayed busy";
+  }
+  // Manual clock: the burst's quiet period passes and gives one reload; then time runs on past every grace
+  // and no second one comes.
+  ReloadResult expectOneReload() {
+    pass(timing.quiet);
+    auto r = reloader->poll();
+    EXPECT_TRUE(r.has_value()) << "no reload once the burst was quiet";
+    if (!r) return {};
+    pass(timing.writeGrace + timing.recreateGrace);
+    auto extra = reloader->poll();
+    EXPECT_FALSE(extra.has_value()) << "a second reload for one save: "
+                                    << (extra ? describeResult(*extra) + " after " + describeResult(*r) : "");
+    return *r;
+  }
 
   // Results are waited for with a generous cap: a busy machine makes a reload slow, never absent.
   std::optional<ReloadResult> waitResult(std::chrono::milliseconds timeout = 300000ms) {
@@ -149,17 +246,41 @@ TEST_F(ReloaderFixture, EditRightAfterStartIsRecompiledHoweverLateTheWorkerRuns)
 }
 
 TEST_F(ReloaderFixture, TruncateThenSlowWriteIsNotCompiledHalfWay) {
+  useManualClock();
   const std::string text = edited(kVert);
   const int fd = ::open((dir / "g.vert").c_str(), O_WRONLY | O_TRUNC);
   ASSERT_GE(fd, 0);
   const size_t half = text.size() / 2;
   ASSERT_EQ(::write(fd, text.data(), half), ssize_t(half));
-  std::this_thread::sleep_for(250ms);  // longer than the quiet period
+  ASSERT_LT(timing.quiet, timing.writeGrace / 2);
+  pass(timing.writeGrace / 2);  // the quiet period is over; the file is still open for writing
+  EXPECT_FALSE(reloader->poll().has_value()) << "the half-written file was compiled";
   ASSERT_EQ(::write(fd, text.data() + half, text.size() - half), ssize_t(text.size() - half));
   ::close(fd);
-  auto r = expectOne();
+  auto r = expectOneReload();
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+}
+
+// A writer that never closes its file (a crashed editor) holds the reload back only for the write grace.
+TEST_F(ReloaderFixture, AFileLeftOpenIsCompiledOnceTheWriteGraceIsOver) {
+  useManualClock();
+  const std::string text = edited(kVert);
+  const int fd = ::open((dir / "g.vert").c_str(), O_WRONLY | O_TRUNC);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(::write(fd, text.data(), text.size()), ssize_t(text.size()));
+  pass(timing.writeGrace / 2);
+  EXPECT_FALSE(reloader->poll().has_value()) << "compiled within the write grace";
+  pass(timing.writeGrace / 2 + timing.quiet);
+  auto r = reloader->poll();
+  ASSERT_TRUE(r.has_value()) << "no reload after the write grace";
+  EXPECT_TRUE(r->ok) << r->error;
+  EXPECT_EQ(r->programs, std::vector<ShaderLibrary::ProgramId>{graphics});
+  // The close comes later: a reload of the same contents, with nothing to rebuild.
+  ::close(fd);
+  auto again = expectOneReload();
+  EXPECT_TRUE(again.programs.empty());
+  EXPECT_EQ(again.unchangedPrograms, std::vector<ShaderLibrary::ProgramId>{graphics});
 }
 
 TEST_F(ReloaderFixture, WriteTempThenRenameOver) {
@@ -172,40 +293,51 @@ TEST_F(ReloaderFixture, WriteTempThenRenameOver) {
 }
 
 TEST_F(ReloaderFixture, DeleteThenRecreate) {
-  const auto t0 = std::chrono::steady_clock::now();
+  useManualClock();
   fs::remove(dir / "common.glsl");
-  std::this_thread::sleep_for(100ms);  // longer than the quiet period
+  ASSERT_LT(timing.quiet, timing.recreateGrace / 2);
+  pass(timing.recreateGrace / 2);  // the quiet period is over; the deleted include may still come back
+  EXPECT_FALSE(reloader->poll().has_value()) << "compiled without the deleted include";
   writeFile(dir / "common.glsl", "#define TINT vec3(0.0, 1.0, 0.0)\n");
-  const auto gap = std::chrono::steady_clock::now() - t0;
-  if (gap > Reloader::Timing{}.recreateGrace - 50ms) {
-    // The machine held this thread past the recreate grace: the reloader rightly gave up waiting, so a failed
-    // reload (the include is missing) may come first; the recreated file must still recover.
-    auto r = waitResult();
-    ASSERT_TRUE(r.has_value());
-    if (!r->ok) r = waitResult();
-    ASSERT_TRUE(r.has_value());
-    EXPECT_TRUE(r->ok) << r->error;
-    GTEST_SKIP() << "recreated " << std::chrono::duration_cast<std::chrono::milliseconds>(gap).count()
-                 << " ms after the delete, past the grace: the one-reload case was not exercised";
-  }
-  auto r = expectOne();
+  auto r = expectOneReload();
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(has(r.programs, graphics));
   EXPECT_TRUE(has(r.programs, rt));
 }
 
+// An include deleted for longer than the recreate grace: the programs that use it fail, and recover when it
+// comes back.
+TEST_F(ReloaderFixture, DeleteWithoutRecreateFailsAfterTheGraceAndRecovers) {
+  useManualClock();
+  fs::remove(dir / "common.glsl");
+  pass(timing.recreateGrace);
+  auto r = reloader->poll();
+  ASSERT_TRUE(r.has_value()) << "no reload after the recreate grace";
+  EXPECT_FALSE(r->ok);
+  EXPECT_TRUE(has(r->failedPrograms, graphics));
+  EXPECT_TRUE(has(r->failedPrograms, rt));
+  writeFile(dir / "common.glsl", "#define TINT vec3(0.0, 1.0, 0.0)\n");
+  auto back = expectOneReload();
+  EXPECT_TRUE(back.ok) << back.error;
+  EXPECT_TRUE(has(back.programs, graphics));
+  EXPECT_TRUE(has(back.programs, rt));
+}
+
 // A writer descheduled between creating the file and writing it (seen under load in CI): the empty new file
 // is not compiled; the reload comes once, with the written contents.
 TEST_F(ReloaderFixture, DeleteThenSlowRecreate) {
+  useManualClock();
   fs::remove(dir / "common.glsl");
-  std::this_thread::sleep_for(60ms);
+  pass(timing.recreateGrace / 5);
   const int fd = ::open((dir / "common.glsl").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   ASSERT_GE(fd, 0);
-  std::this_thread::sleep_for(200ms);  // longer than the quiet period, shorter than the write grace
+  ASSERT_LT(timing.recreateGrace, timing.writeGrace / 2);
+  pass(timing.writeGrace / 2);  // past the quiet period and the recreate grace, within the write grace
+  EXPECT_FALSE(reloader->poll().has_value()) << "the empty new file was compiled";
   const std::string text = "#define TINT vec3(0.0, 0.0, 1.0)\n";
   ASSERT_EQ(::write(fd, text.data(), text.size()), ssize_t(text.size()));
   ::close(fd);
-  auto r = expectOne();
+  auto r = expectOneReload();
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(has(r.programs, graphics));
 }
@@ -221,8 +353,9 @@ TEST_F(ReloaderFixture, Touch) {
 }
 
 TEST_F(ReloaderFixture, UnrelatedFileDoesNothing) {
+  useManualClock();
   writeFile(dir / "notes.txt", "hello");
-  std::this_thread::sleep_for(400ms);
+  pass(timing.writeGrace + timing.recreateGrace);
   EXPECT_FALSE(reloader->poll().has_value());
 }
 
@@ -288,16 +421,17 @@ TEST_F(ReloaderFixture, RequestReloadAll) {
 }
 
 TEST_F(ReloaderFixture, NewSubdirectoryIsWatched) {
+  useManualClock();
   writeFile(dir / "newdir/x.glsl", kCommon);
-  std::this_thread::sleep_for(300ms);
+  pass(timing.writeGrace + timing.recreateGrace);
   while (reloader->poll()) {
   }
   writeFile(dir / "g.vert",
             std::string(kVert).replace(std::string(kVert).find("common.glsl"), 11, "newdir/x.glsl"));
-  auto r = expectOne();
+  auto r = expectOneReload();
   EXPECT_TRUE(r.ok) << r.error;
   writeFile(dir / "newdir/x.glsl", "#define TINT vec3(0.0)\n");
-  r = expectOne();
+  r = expectOneReload();
   EXPECT_TRUE(r.ok) << r.error;
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
 }
