@@ -136,11 +136,8 @@ void HotReload::run() {
   std::set<shader::ShaderLibrary::ProgramId> carried;
   std::set<std::string> carriedFiles;
   while (running_) {
-    auto result = reloader_.poll();
-    if (!result) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-      continue;
-    }
+    auto result = reloader_.waitResult(std::chrono::milliseconds(50));  // and checks running_ between waits
+    if (!result) continue;
     // With auto-reload off, file changes are noticed (the UI shows them) but only a manual reload applies.
     if (!autoReload_ && !manualRequest_.exchange(false)) continue;
     manualRequest_ = false;

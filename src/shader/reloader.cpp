@@ -98,6 +98,14 @@ void Reloader::requestReloadAll() {
   }
 }
 
+std::optional<ReloadResult> Reloader::waitResult(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  if (!resultReady_.wait_for(lock, timeout, [&] { return !results_.empty(); })) return std::nullopt;
+  ReloadResult r = std::move(results_.front());
+  results_.pop_front();
+  return r;
+}
+
 std::optional<ReloadResult> Reloader::poll() {
   std::lock_guard lock(mutex_);
   if (results_.empty()) return std::nullopt;
@@ -174,6 +182,7 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
   std::lock_guard lock(mutex_);
   results_.push_back(std::move(r));
   rebuilding_ = false;
+  resultReady_.notify_all();
   return true;
 }
 

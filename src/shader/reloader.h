@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -51,7 +52,7 @@ class Reloader {
     virtual void wait(std::span<pollfd> fds, int timeoutMs) = 0;
   };
   struct Timing {
-    std::chrono::milliseconds quiet{15};           // no events for this long = the burst is over
+    std::chrono::milliseconds quiet{5};            // no events for this long = the burst is over
     std::chrono::milliseconds writeGrace{1000};    // wait this long for a file still open for writing
     std::chrono::milliseconds recreateGrace{300};  // wait this long for a deleted dependency to reappear
     std::shared_ptr<Clock> clock;                  // null: std::chrono::steady_clock
@@ -66,6 +67,8 @@ class Reloader {
   void start();
   void stop();
   std::optional<ReloadResult> poll();  // non-blocking; one result per coalesced change
+  // poll(), waiting up to `timeout` for a result (a consumer thread takes each one as soon as it is there).
+  std::optional<ReloadResult> waitResult(std::chrono::milliseconds timeout);
   void requestReloadAll();
   uint64_t reloadCount() const { return reloads_; }
   bool rebuilding() const { return rebuilding_; }  // a coalesced change is being compiled right now
@@ -101,6 +104,7 @@ class Reloader {
   std::atomic<std::chrono::steady_clock::rep> rebuildStart_{0};
   mutable std::mutex mutex_;
   std::deque<ReloadResult> results_;
+  std::condition_variable resultReady_;
   std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> last_;
 };
 
