@@ -16,7 +16,7 @@ constexpr double kIdlePresentSeconds = 1.0;
 // Input within this long keeps every frame presented (the user is interacting).
 constexpr double kInteractionSeconds = 0.5;
 // The trace time of one trace-only submission: input that arrives meanwhile waits at most this long.
-constexpr double kTraceOnlyBudgetMs = 100.0;
+constexpr double kTraceOnlyBudgetMs = 50.0;
 
 }  // namespace
 
