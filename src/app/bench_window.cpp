@@ -350,7 +350,8 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
     result["edit_to_first_frame_vs_pipeline_build_under_load_p50"] = median(loadPerEdit);
     // Against the driver's build on the idle machine: what the user waits for, loaded, relative to the least
     // the driver needs (its single-threaded JIT alone slows down under the load).
-    result["edit_to_first_frame_under_load_vs_idle_pipeline_build_p50"] = median(load.toFirstFrame) / buildIdle;
+    result["edit_to_first_frame_under_load_vs_idle_pipeline_build_p50"] =
+        median(load.toFirstFrame) / buildIdle;
   }
   result["what"] =
       "window: the README's run command (default window size) under a script, on the display or on Xvfb; "
