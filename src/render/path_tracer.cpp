@@ -146,16 +146,37 @@ PathTracer::~PathTracer() {
 }
 
 void PathTracer::createImages() {
-  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  accum_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
-  albedo_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
-  normal_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
-  info_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
-  stats_ = vk::Image(ctx_, settings_.width, settings_.height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  constexpr size_t kSpareSets = 2;
+  const uint32_t w = settings_.width, h = settings_.height;
+  ImageSet current{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
+                   std::move(stats_)};
+  auto spare = std::find_if(spareImages_.begin(), spareImages_.end(),
+                            [&](const ImageSet& s) { return s.accum.width() == w && s.accum.height() == h; });
+  const bool fresh = spare == spareImages_.end();
+  if (!fresh) {
+    accum_ = std::move(spare->accum);
+    albedo_ = std::move(spare->albedo);
+    normal_ = std::move(spare->normal);
+    info_ = std::move(spare->info);
+    stats_ = std::move(spare->stats);
+    spareImages_.erase(spare);
+  } else {
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    accum_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+    albedo_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+    normal_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+    info_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
+    stats_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+    ++imageSetsAllocated_;
+  }
+  if (current.accum.handle()) {
+    spareImages_.insert(spareImages_.begin(), std::move(current));  // the most recent first
+    if (spareImages_.size() > kSpareSets) spareImages_.pop_back();
+  }
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_, &stats_}) {
-      vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      if (fresh) vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       VkClearColorValue zero{};
       VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
       vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);

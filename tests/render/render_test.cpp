@@ -125,3 +125,37 @@ TEST(Render, TiledDispatchGivesTheSameImage) {
   ASSERT_EQ(full.pixels.size(), tiled.pixels.size());
   for (size_t i = 0; i < full.pixels.size(); ++i) ASSERT_EQ(full.pixels[i], tiled.pixels[i]) << "at " << i;
 }
+
+TEST(Render, ASizeUsedBeforeReusesItsImagesClearedAndRendersTheSame) {
+  // Going back to a size (the window's preview and full resolution) takes that size's images again instead of
+  // allocating, cleared: the image rendered there is the one a fresh session renders.
+  render::SessionOptions o;
+  o.sceneData = makeShadowScene().scene;
+  o.settings.width = 40;
+  o.settings.height = 24;
+  auto fresh = makeSession(o);
+  fresh->render(2);
+  const auto expected = fresh->image();
+
+  auto session = makeSession(o);
+  auto& pt = session->pathTracer();
+  session->render(3);
+  const uint32_t allocated = pt.imageSetsAllocated();
+  render::RenderSettings s = pt.settings();
+  s.width = 10;
+  s.height = 6;
+  pt.setSettings(s);
+  session->render(1);
+  s.width = 40;
+  s.height = 24;
+  pt.setSettings(s);
+  EXPECT_EQ(pt.imageSetsAllocated(), allocated + 1) << "only the new size allocates";
+  const auto cleared = session->image();
+  for (size_t i = 0; i < cleared.pixels.size(); i += 4) ASSERT_EQ(cleared.pixels[i], 0.0f) << "at " << i;
+  session->render(2);
+  const auto again = session->image();
+  ASSERT_EQ(again.pixels.size(), expected.pixels.size());
+  for (size_t i = 0; i < again.pixels.size(); ++i)
+    ASSERT_EQ(again.pixels[i], expected.pixels[i]) << "at " << i;
+  expectNoValidationErrors(*session);
+}
