@@ -42,9 +42,9 @@ bool layerAvailable(const char* name) {
   return false;
 }
 
-// What a device supports of the feature structures the device is created with (one query, chained in place:
-// not copyable, the pNext chain points into the object itself).
-struct SupportedFeatures {
+// The feature structures the device is created with, chained in place (not copyable: the pNext chain points
+// into the object itself).
+struct FeatureChain {
   VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
   VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
@@ -53,15 +53,19 @@ struct SupportedFeatures {
   VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 base{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
 
-  explicit SupportedFeatures(VkPhysicalDevice d) {
+  FeatureChain() {
     rt.pNext = &as;
     f13.pNext = &rt;
     f12.pNext = &f13;
     base.pNext = &f12;
-    vkGetPhysicalDeviceFeatures2(d, &base);
   }
-  SupportedFeatures(const SupportedFeatures&) = delete;
-  SupportedFeatures& operator=(const SupportedFeatures&) = delete;
+  FeatureChain(const FeatureChain&) = delete;
+  FeatureChain& operator=(const FeatureChain&) = delete;
+};
+
+// What a device supports of the feature chain (one query).
+struct SupportedFeatures : FeatureChain {
+  explicit SupportedFeatures(VkPhysicalDevice d) { vkGetPhysicalDeviceFeatures2(d, &base); }
 
   // The features the workbench cannot run without.
   std::vector<std::string> missingEssentials() const {
@@ -111,25 +115,15 @@ void keepLoadedLibrariesResident() {
   for (const auto& n : names) dlopen(n.c_str(), RTLD_NOW | RTLD_NOLOAD | RTLD_NODELETE);
 }
 
-// The feature structures the device is created with: Vulkan 1.2/1.3 core pieces plus ray tracing, the
-// essentials on and the optional ones where `have` supports them. Chained in place like SupportedFeatures.
-struct EnabledFeatures {
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
-  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-  VkPhysicalDeviceFeatures2 base{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-
+// The feature chain the device is created with: Vulkan 1.2/1.3 core pieces plus ray tracing, the essentials
+// on and the optional ones where `have` supports them.
+struct EnabledFeatures : FeatureChain {
   explicit EnabledFeatures(const SupportedFeatures& have) {
     as.accelerationStructure = VK_TRUE;
     rt.rayTracingPipeline = VK_TRUE;
-    rt.pNext = &as;
     f13.dynamicRendering = VK_TRUE;
     f13.synchronization2 = VK_TRUE;
     f13.maintenance4 = have.f13.maintenance4;
-    f13.pNext = &rt;
     f12.bufferDeviceAddress = VK_TRUE;
     f12.descriptorIndexing = VK_TRUE;
     f12.runtimeDescriptorArray = VK_TRUE;
@@ -140,13 +134,9 @@ struct EnabledFeatures {
     f12.scalarBlockLayout = VK_TRUE;
     f12.hostQueryReset = have.f12.hostQueryReset;
     f12.timelineSemaphore = VK_TRUE;
-    f12.pNext = &f13;
     base.features.shaderInt64 = have.base.features.shaderInt64;
     base.features.samplerAnisotropy = VK_FALSE;
-    base.pNext = &f12;
   }
-  EnabledFeatures(const EnabledFeatures&) = delete;
-  EnabledFeatures& operator=(const EnabledFeatures&) = delete;
 };
 
 // The first queue family that does graphics and compute.
