@@ -4,6 +4,7 @@
 #include "shader/types.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct CompileOutput {
 void initCompiler();
 // Throws CompileError with file:line diagnostics (also inside included files).
 CompileOutput compileGlsl(const CompileInput& in);
+// SPIR-V validation for Vulkan 1.2 (the validation compileGlsl runs): nothing when valid, else the
+// validator's messages with ids shown by their names.
+std::optional<std::string> validateSpirv(const std::vector<uint32_t>& spirv, bool scalarBlockLayout);
 // A string that changes when the compiler or its settings change (glslang version, target env, SPIR-V
 // version).
 std::string compilerFingerprint();

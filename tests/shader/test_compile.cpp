@@ -1,4 +1,5 @@
 // Compiler, includes, stage detection, diagnostics and reflection.
+#include "shader/compiler.h"
 #include "shader/library.h"
 #include "test_util.h"
 
@@ -386,4 +387,36 @@ TEST(ShaderCompile, ThreadSafe) {
   EXPECT_EQ(failures, 0);
   EXPECT_EQ(lib.stats().hits + lib.stats().misses, 32u);
   EXPECT_TRUE(lib.cacheWarnings().empty());
+}
+
+// A module that glslang wrote but the validator refuses: the error is reported, and its message names the
+// ids by their GLSL names (the validator runs without names first, and again with them only on failure).
+TEST(ShaderCompile, InvalidSpirvIsRefusedWithNamedIds) {
+  TempDir t;
+  writeFile(t / "a.comp", R"(#version 460
+layout(local_size_x = 1) in;
+layout(set = 0, binding = 0, std430) buffer Out { uint counterValue; } outBuf;
+void main() { outBuf.counterValue = 3u; }
+)");
+  CompileInput in{t / "a.comp", readAll(t / "a.comp"), Stage::Compute};
+  in.options.validate = false;
+  auto out = compileGlsl(in);
+  ASSERT_FALSE(validateSpirv(out.spirv, false)) << "the module as written is valid";
+  // The store writes through the buffer variable itself instead of its member's pointer.
+  uint32_t bufferVariable = 0;
+  size_t storeAt = 0;
+  for (size_t i = 5; i < out.spirv.size(); i += out.spirv[i] >> 16) {
+    ASSERT_GT(out.spirv[i] >> 16, 0u);
+    const uint32_t op = out.spirv[i] & 0xffff;
+    if (op == 59 /* OpVariable */ && out.spirv[i + 3] == 12 /* StorageBuffer */)
+      bufferVariable = out.spirv[i + 2];
+    if (op == 62 /* OpStore */) storeAt = i;
+  }
+  ASSERT_NE(bufferVariable, 0u);
+  ASSERT_NE(storeAt, 0u);
+  out.spirv[storeAt + 1] = bufferVariable;
+  const auto problem = validateSpirv(out.spirv, false);
+  ASSERT_TRUE(problem);
+  EXPECT_NE(problem->find("SPIR-V validation (word "), std::string::npos) << *problem;
+  EXPECT_NE(problem->find("[%outBuf]"), std::string::npos) << "ids by their names: " << *problem;
 }
