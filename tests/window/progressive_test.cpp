@@ -1,6 +1,6 @@
 // ProgressiveTracer's preview levels, on the path tracer of a headless session: a change is previewed at a
-// quarter of the resolution, a new pipeline (a reset from outside) first at an eighth, then at a quarter,
-// and both then go on at full resolution as one restart.
+// quarter of the resolution, a new pipeline (a reset from outside) first at a coarser level chosen from the
+// measured rate, then at a quarter, and both then go on at full resolution as one restart.
 #include <gtest/gtest.h>
 
 #include "app/window/progressive.h"
@@ -44,26 +44,54 @@ TEST_F(ProgressiveFixture, AChangePreviewsAtAQuarterThenTracesTheFullImage) {
   EXPECT_EQ(progressive->resets(), 1u);
 }
 
-TEST_F(ProgressiveFixture, ANewPipelineIsShownAtAnEighthFirst) {
+TEST_F(ProgressiveFixture, ANewPipelineIsShownCoarserFirst) {
   progressive->invalidate();
   frame();
   frame();
   ASSERT_EQ(progressive->samples(), 1u);
   const auto resets = progressive->resets();
+  // 250 pixels per ms (the estimate before any frame was timed): a few ms are 750 pixels, which 320x240 at a
+  // sixteenth (20x15) fits and at an eighth (40x30) does not.
+  ASSERT_EQ(progressive->pixelsPerMs(), 250.0);
+  EXPECT_EQ(progressive->coarseDivisor(), 16u);
   session->pathTracer().resetAccumulation();  // what installing a hot-reloaded pipeline does
   frame();
   EXPECT_TRUE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 40u);
+  EXPECT_EQ(traceWidth(), 20u);
   frame();
   EXPECT_TRUE(progressive->inPreview());
   EXPECT_EQ(traceWidth(), 80u);
-  EXPECT_TRUE(progressive->previewValid()) << "the coarse preview is kept to show under the finer one";
-  EXPECT_EQ(progressive->previewImage().width(), 40u);
+  EXPECT_TRUE(progressive->previewValid()) << "the coarse image is kept to show under the preview";
+  EXPECT_EQ(progressive->previewImage().width(), 20u);
   frame();
   EXPECT_FALSE(progressive->inPreview());
   EXPECT_EQ(traceWidth(), 320u);
   EXPECT_EQ(progressive->samples(), 1u);
   EXPECT_EQ(progressive->resets(), resets + 1) << "the three levels are one restart";
+}
+
+TEST_F(ProgressiveFixture, TheCoarseLevelFollowsTheMeasuredRate) {
+  // Slower: the coarse level stops at the smallest image worth showing (16x16 pixels or more).
+  for (int i = 0; i < 40; ++i) progressive->reportTraceTime(10, 1.0);
+  EXPECT_EQ(progressive->coarseDivisor(), 16u) << "320x240 / 32 is 10x7, under 256 pixels";
+  // Faster: an eighth (40x30 = 1200 pixels) traces within the few ms at 500 pixels per ms.
+  for (int i = 0; i < 40; ++i) progressive->reportTraceTime(500, 1.0);
+  EXPECT_NEAR(progressive->pixelsPerMs(), 500.0, 1.0);
+  EXPECT_EQ(progressive->coarseDivisor(), 8u);
+  // A device on which the quarter preview itself is that fast (a GPU) has no coarse level: a new pipeline is
+  // previewed at a quarter, like any change.
+  for (int i = 0; i < 40; ++i) progressive->reportTraceTime(100000, 1.0);
+  EXPECT_EQ(progressive->coarseDivisor(), 4u);
+  progressive->invalidate();
+  frame();
+  frame();
+  session->pathTracer().resetAccumulation();
+  frame();
+  EXPECT_TRUE(progressive->inPreview());
+  EXPECT_EQ(traceWidth(), 80u);
+  frame();
+  EXPECT_FALSE(progressive->inPreview());
+  EXPECT_EQ(traceWidth(), 320u);
 }
 
 }  // namespace

@@ -23,6 +23,11 @@ vk::Image makePreviewImage(vk::Context& ctx, uint32_t w, uint32_t h) {
   return img;
 }
 
+// A new pipeline's first image traces in about this long at the measured rate, and has at least this many
+// pixels (16x16).
+constexpr double kCoarseImageMs = 3.0;
+constexpr double kMinCoarsePixels = 256.0;
+
 }  // namespace
 
 ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, render::PathTracer& tracer)
@@ -83,17 +88,17 @@ void ProgressiveTracer::beginFrame() {
   bool fromOutside = false;
   if (tracer_.samplesAccumulated() != expectedSamples_) pendingInvalidate_ = fromOutside = true;
   const uint32_t divisor = std::max(options_.previewDivisor, 1u);
-  const uint32_t coarse = divisor * 2;
+  const uint32_t coarse = coarseDivisor();
   const uint32_t pw = std::max(1u, targetWidth_ / divisor), ph = std::max(1u, targetHeight_ / divisor);
   const bool previewWorthIt = options_.preview && divisor > 1 && targetWidth_ * targetHeight_ >= 4096;
-  const bool coarseWorthIt = previewWorthIt && (targetWidth_ / coarse) * (targetHeight_ / coarse) >= 1024;
+  const bool coarseWorthIt = previewWorthIt && coarse > divisor;
   if (pendingInvalidate_) {
     pendingInvalidate_ = false;
     if (previewWorthIt) {
       inPreview_ = true;
       coarsePreview_ = fromOutside && coarseWorthIt;
       if (coarsePreview_) {
-        resize(targetWidth_ / coarse, targetHeight_ / coarse);
+        resize(std::max(1u, targetWidth_ / coarse), std::max(1u, targetHeight_ / coarse));
       } else {
         resize(pw, ph);
       }
@@ -131,6 +136,19 @@ void ProgressiveTracer::beginFrame() {
     --resets_;  // the same restart, continued at the next resolution
     resetTime_ = keep;
   }
+}
+
+uint32_t ProgressiveTracer::coarseDivisor() const {
+  // The preview level is fast enough already when it traces within the coarse image's time.
+  const double budget = std::max(kMinCoarsePixels, pixelsPerMs_ * kCoarseImageMs);
+  const uint32_t divisor = std::max(options_.previewDivisor, 1u);
+  auto pixelsAt = [&](uint32_t d) { return double(targetWidth_ / d) * double(targetHeight_ / d); };
+  if (pixelsAt(divisor) <= budget) return divisor;
+  // Powers of two past the preview's divisor: the levels keep their sizes from one edit to the next (the
+  // path tracer keeps the images of sizes used before), down to the smallest image still worth showing.
+  uint32_t d = divisor * 2;
+  while (pixelsAt(d) > budget && pixelsAt(d * 2) >= kMinCoarsePixels) d *= 2;
+  return d;
 }
 
 bool ProgressiveTracer::done() const {

@@ -1,7 +1,9 @@
 // Progressive tracing that keeps the window responsive when one sample of the full image takes a second (as
 // on lavapipe): each frame traces horizontal strips of the image within a time budget, and right after a
 // change the image is first traced at a lower preview resolution, which is then shown under the rows the
-// full-resolution sample has not reached yet. A new pipeline (hot reload) starts one level coarser still.
+// full-resolution sample has not reached yet. A new pipeline (hot reload) starts coarser still: at the power
+// of two that traces in a few milliseconds at the measured rate (none on a device where the preview is that
+// fast).
 #pragma once
 #include <cstdint>
 
@@ -50,6 +52,8 @@ class ProgressiveTracer {
   uint64_t resets() const { return resets_; }          // restarts caused by changes
   uint64_t generation() const { return generation_; }  // every restart, preview -> full resolution too
   double pixelsPerMs() const { return pixelsPerMs_; }
+  // The divisor of a new pipeline's first image (previewDivisor when the preview level is fast enough).
+  uint32_t coarseDivisor() const;
   const vk::Image& previewImage() const { return preview_; }
   bool previewValid() const { return previewValid_; }
   // Seconds of wall time since the last restart (for the Stats panel).
@@ -64,7 +68,7 @@ class ProgressiveTracer {
   ProgressiveOptions options_;
   uint32_t targetWidth_ = 0, targetHeight_ = 0;
   bool inPreview_ = false;
-  bool coarsePreview_ = false;  // the preview at half the preview resolution, before the preview
+  bool coarsePreview_ = false;  // the coarse level (coarseDivisor()), before the preview
   bool pendingInvalidate_ = false;
   bool previewValid_ = false;
   uint32_t cursor_ = 0;
