@@ -26,17 +26,28 @@ void HotReload::addTarget(shader::ShaderLibrary::ProgramId program, Target targe
   targets_[program] = std::move(target);
 }
 
-void HotReload::addRenderer(Renderer& renderer) {
-  Warmup* warmup = nullptr;
-  {
-    std::lock_guard lock(mutex_);
-    auto& w = warmups_[&renderer];
-    if (!w) {
-      w = std::make_unique<Warmup>();
-      w->enabled = renderer.context().policy().jitWarmup;
-    }
-    warmup = w.get();
+HotReload::Warmup& HotReload::warmupFor(const Renderer& renderer) {
+  std::lock_guard lock(mutex_);
+  auto& w = warmups_[&renderer];
+  if (!w) {
+    w = std::make_unique<Warmup>();
+    w->enabled = renderer.context().policy().jitWarmup;
   }
+  return *w;
+}
+
+void HotReload::compileAhead(Renderer& renderer) {
+  Warmup& warmup = warmupFor(renderer);
+  if (!warmup.enabled) return;
+  const auto programs = renderer.programs();
+  for (size_t i = 0; i < programs.size(); ++i) {
+    const auto build = library_.buildProgram(programs[i].id);
+    renderer.installPipeline(programs[i].id, buildWithWarmup(renderer, warmup, i, programs[i].id, build));
+  }
+}
+
+void HotReload::addRenderer(Renderer& renderer) {
+  Warmup* warmup = &warmupFor(renderer);
   const auto programs = renderer.programs();
   for (size_t i = 0; i < programs.size(); ++i) {
     const auto id = programs[i].id;

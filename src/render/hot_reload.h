@@ -104,6 +104,11 @@ class HotReload {
   // so that the first edit does not wait for it. `renderer` must outlive this object.
   void addRenderer(Renderer& renderer);
   WarmupStats jitWarmup(const Renderer& renderer) const;
+  // With DevicePolicy::jitWarmup: rebuilds each of `renderer`'s pipelines beside a warm-up of it (as a reload
+  // does), so that its first frame loads the machine code from Mesa's cache instead of compiling on the
+  // render loop. For a renderer made off the loop (a mode being prepared), before addRenderer; blocks for the
+  // compile. Nothing to do on other devices. Throws what the compile and pipeline creation throw.
+  void compileAhead(Renderer& renderer);
   void start();
   void stop();
 
@@ -163,6 +168,7 @@ class HotReload {
     WarmupSlot<JitWarmup> slot;
   };
   void run();
+  Warmup& warmupFor(const Renderer& renderer);  // made on first use
   std::unique_ptr<vk::BuiltPipeline> buildWithWarmup(Renderer& renderer, Warmup& warmup, size_t programIndex,
                                                      shader::ShaderLibrary::ProgramId program,
                                                      const shader::ShaderLibrary::ProgramBuild& build);

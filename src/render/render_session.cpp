@@ -133,8 +133,18 @@ std::unique_ptr<Renderer> RenderSession::makeRenderer(RenderMode mode, const Ren
 void RenderSession::prepareMode(RenderMode mode, const RenderSettings& settings) {
   const size_t m = size_t(mode);
   if (renderers_[m] || preparing_[m].valid()) return;
-  preparing_[m] = std::async(std::launch::async, [this, mode, settings, hybrid = hybrid_] {
-    return constructRenderer(mode, settings, hybrid);
+  preparing_[m] = std::async(std::launch::async, [this, mode, settings, hybrid = hybrid_, hot = hot_] {
+    auto r = constructRenderer(mode, settings, hybrid);
+    // Where the driver compiles at the first dispatch, that compile happens here too, not on the render loop.
+    if (hot) {
+      try {
+        hot->compileAhead(*r);
+      } catch (const std::exception& e) {
+        if (!quiet_)
+          std::fprintf(stderr, "warning: compile ahead of %s: %s\n", renderModeName(mode), e.what());
+      }
+    }
+    return r;
   });
 }
 
@@ -207,6 +217,7 @@ void RenderSession::setHybridSettings(const HybridSettings& hybrid) {
 }
 
 void RenderSession::attachHotReload(HotReload* hot) {
+  finishPreparing();  // a renderer being made may use the hot reload attached so far
   hot_ = hot;
   if (hot_) forEachRenderer([&](Renderer& r) { hot_->addRenderer(r); });
 }

@@ -66,7 +66,8 @@ class RenderSession {
   // The renderer of `mode`, or nullptr when it has not been made.
   Renderer* rendererFor(RenderMode mode) { return renderers_[size_t(mode)].get(); }
   // Starts making `mode`'s renderer on a worker thread (unless it is made or being made), so that a frame
-  // loop keeps drawing the current mode while the other one's pipelines are created. Render thread only.
+  // loop keeps drawing the current mode while the other one's pipelines are created (and, with a hot reload
+  // attached, compiled ahead: HotReload::compileAhead). Render thread only.
   void prepareMode(RenderMode mode, const RenderSettings& settings);
   // Whether `mode`'s renderer is made; one the worker finished is taken here and given the session's camera,
   // lights and hot reload. Rethrows the worker's failure. Render thread only.

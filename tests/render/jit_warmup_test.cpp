@@ -187,3 +187,52 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
   wb::testing::expectNoValidationErrors(*s);
   EXPECT_EQ(wb::vk::Context::processValidationErrors(), 0u) << "the warm-up device too";
 }
+
+// A mode made off the render loop (RenderSession::prepareMode, the window's mode switch) with a hot reload
+// attached has its pipelines compiled ahead on the warm-up device: its first frame loads them. Without, the
+// first frame of a mode whose code is new compiles on the render device.
+TEST_F(JitWarmup, AModePreparedOffTheLoopIsCompiledAhead) {
+  using wb::render::RenderMode;
+  auto prepareHybrid = [](wb::render::RenderSession& s) {
+    const wb::render::RenderSettings settings = s.renderer().settings();
+    s.prepareMode(RenderMode::Hybrid, settings);
+    for (auto deadline = std::chrono::steady_clock::now() + 600s;  // a cap for a busy machine, not a timing
+         !s.modeReady(RenderMode::Hybrid) && std::chrono::steady_clock::now() < deadline;)
+      std::this_thread::sleep_for(10ms);
+    ASSERT_TRUE(s.modeReady(RenderMode::Hybrid));
+    s.setMode(RenderMode::Hybrid, settings);
+  };
+  uint64_t warmedFrame = 0;
+  {
+    auto s = session(RenderMode::PathTrace);
+    if (!s->context().policy().jitWarmup)
+      GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
+    s->render(1);
+    wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    s->attachHotReload(&hot);
+    prepareHybrid(*s);
+    auto* hybrid = s->hybrid();
+    ASSERT_NE(hybrid, nullptr);
+    const auto warmup = hot.jitWarmup(*hybrid);
+    EXPECT_EQ(warmup.warmups, hybrid->programs().size()) << "every pipeline of the mode compiled ahead";
+    EXPECT_EQ(warmup.mismatches, 0u);
+    const uint64_t before = settledCacheBytes();
+    s->render(1);
+    warmedFrame = settledCacheBytes() - before;
+    wb::testing::expectNoValidationErrors(*s);
+    s->attachHotReload(nullptr);
+  }
+  // New shadow/AO code, and a mode made without a hot reload attached.
+  edit(root_ / "shaders/hybrid/shadow_ao.rgen", "const float phi = 2.0 * kPi * u.y;",
+       "const float phi = 2.0 * kPi * u.y * 0.9999;");
+  auto s = session(RenderMode::PathTrace);
+  s->render(1);
+  prepareHybrid(*s);
+  const uint64_t before = settledCacheBytes();
+  s->render(1);
+  const uint64_t coldFrame = settledCacheBytes() - before;
+  EXPECT_GT(coldFrame, 4u * 1024u) << "without compiling ahead the first frame compiles the new code";
+  EXPECT_LT(warmedFrame, coldFrame / 4)
+      << warmedFrame << " bytes stored after compiling ahead vs " << coldFrame;
+  EXPECT_EQ(wb::vk::Context::processValidationErrors(), 0u) << "the warm-up device too";
+}
