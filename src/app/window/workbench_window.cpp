@@ -163,7 +163,7 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
 
 void WorkbenchWindow::applyMode(bool wait) {
   if (session_->mode() == state_.params.mode) {
-    if (!modeSwitch_.empty()) timingModeSwitch_ = false;  // switched back before the other mode was ready
+    if (!modeSwitch_.empty()) modeSwitchTimer_.cancelled();  // switched back before the other mode was ready
     modeSwitch_.clear();
     return;
   }
@@ -174,22 +174,14 @@ void WorkbenchWindow::applyMode(bool wait) {
   const std::string name = render::renderModeName(state_.params.mode);
   if (!wait && modeSwitch_ != name) {  // a switch the user waits for: timed for the stats
     modeSwitch_ = name;
-    modeSwitchStart_ = Clock::now();
-    modeSwitches_.push_back({name});
-    timingModeSwitch_ = true;
-    modeSwitchFramesLeft_ = -1;
+    modeSwitchTimer_.requested(name, Clock::now());
   }
   if (!wait && !session_->modeReady(state_.params.mode)) {
     session_->prepareMode(state_.params.mode, s);
     return;
   }
   session_->setMode(state_.params.mode, s);
-  if (!modeSwitch_.empty() && timingModeSwitch_) {
-    modeSwitches_.back().prepareMs =
-        std::chrono::duration<double, std::milli>(Clock::now() - modeSwitchStart_).count();
-    modeSwitches_.back().done = true;
-    modeSwitchFramesLeft_ = 2;
-  }
+  if (!modeSwitch_.empty()) modeSwitchTimer_.tookEffect(Clock::now());
   modeSwitch_.clear();
 }
 
@@ -198,13 +190,9 @@ void WorkbenchWindow::scriptSwitchMode(const std::string& mode) {
   applyState();  // starts the switch; the frames that follow complete it
 }
 
-void WorkbenchWindow::addFrameTime(float ms) {
-  frames_.add(ms);
-  if (!timingModeSwitch_) return;
-  auto& r = modeSwitches_.back();
-  r.longestFrameMs = std::max(r.longestFrameMs, double(ms));
-  ++r.frames;
-  if (modeSwitchFramesLeft_ > 0 && --modeSwitchFramesLeft_ == 0) timingModeSwitch_ = false;
+void WorkbenchWindow::addFrameTime(Clock::time_point begin, Clock::time_point end) {
+  frames_.add(std::chrono::duration<float, std::milli>(end - begin).count());
+  modeSwitchTimer_.frame(begin, end);
 }
 
 uint32_t WorkbenchWindow::currentSamples() const {

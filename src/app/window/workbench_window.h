@@ -24,6 +24,7 @@
 #include "app/window/frame_stats.h"
 #include "app/window/gui_layer.h"
 #include "app/window/input_events.h"
+#include "app/window/mode_switch_timer.h"
 #include "app/window/panels.h"
 #include "app/window/pixel_picker.h"
 #include "app/window/progressive.h"
@@ -120,7 +121,7 @@ class WorkbenchWindow : public ScriptHost {
   bool stepScript(int& exitCode);
   bool drawFrame(float dt);
   // A frame interval of the loop, for the frame statistics and the mode switch being timed.
-  void addFrameTime(float ms);
+  void addFrameTime(Clock::time_point begin, Clock::time_point end);
   // Reads the last submission's GPU times: trace only, or trace and display.
   void readTimestamps(bool withDisplay);
   // Whether the loop may trace without drawing or presenting: converging at full resolution, no input for a
@@ -200,19 +201,9 @@ class WorkbenchWindow : public ScriptHost {
   uint64_t frameCount_ = 0;
   uint64_t traceOnlySubmits_ = 0;
   std::string modeSwitch_;  // the mode being made off the frame loop (empty: none)
-  Clock::time_point modeSwitchStart_;
   // Mode switches made off the frame loop, as the stats report them: the longest frame interval from the
   // request to the new mode's second frame (its first traces included).
-  struct ModeSwitchRecord {
-    std::string to;
-    double prepareMs = 0;
-    double longestFrameMs = 0;
-    uint64_t frames = 0;
-    bool done = false;  // the new mode took effect
-  };
-  std::vector<ModeSwitchRecord> modeSwitches_;
-  bool timingModeSwitch_ = false;
-  int modeSwitchFramesLeft_ = 0;  // frames still timed after the switch took effect
+  ModeSwitchTimer modeSwitchTimer_;
   Clock::time_point lastPresent_ = Clock::now();
   Clock::time_point lastInput_ = Clock::now();
   float panelWidth_ = 0;

@@ -252,7 +252,7 @@ bool WorkbenchWindow::drawFrame(float dt) {
                      : progressive_->secondsSinceReset(),
       &liveError_,
       modeSwitch_,
-      std::chrono::duration<double>(Clock::now() - modeSwitchStart_).count(),
+      std::chrono::duration<double>(Clock::now() - modeSwitchTimer_.requestTime()).count(),
 
       &inspector_};
   const float W = float(swapchain_->extent().width), H = float(swapchain_->extent().height);
@@ -368,7 +368,7 @@ int WorkbenchWindow::run() {
     }
     const auto now = Clock::now();
     const float dt = std::chrono::duration<float>(now - last).count();
-    if (frameCount_ > 0) addFrameTime(dt * 1000.0f);
+    if (frameCount_ > 0) addFrameTime(last, now);
     last = now;
     frameBegin = now;
 

@@ -109,10 +109,11 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["shader_error"] = err;
   j["banner"] = err.empty() ? "" : "shader error (still rendering with the last good pipeline):\n" + err;
   j["mode_switches"] = nlohmann::json::array();
-  for (const auto& m : modeSwitches_) {
+  for (const auto& m : modeSwitchTimer_.records()) {
     j["mode_switches"].push_back({{"to", m.to},
                                   {"prepare_ms", m.prepareMs},
                                   {"longest_frame_ms", m.longestFrameMs},
+                                  {"total_ms", m.totalMs},
                                   {"frames", m.frames},
                                   {"done", m.done}});
   }
