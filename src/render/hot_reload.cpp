@@ -177,7 +177,8 @@ void HotReload::run() {
       } catch (const shader::CompileError& e) {
         result->ok = false;
         result->failedPrograms.push_back(id);
-        result->error += (result->error.empty() ? "" : "\n") + library_.programName(id) + ":\n" + e.what();
+        result->programErrors[id] = library_.programName(id) + ":\n" + e.what();
+        result->error += (result->error.empty() ? "" : "\n") + result->programErrors[id];
       }
     }
     Pending p;
@@ -232,9 +233,12 @@ void HotReload::run() {
     {
       std::lock_guard lock(mutex_);
       for (auto id : result->failedPrograms) {
-        errors_[id] = result->error;
+        const auto it = result->programErrors.find(id);
+        errors_[id] = it != result->programErrors.end() ? it->second : result->error;
       }
-      for (const auto& [id, ptr] : p.built) {
+      // Every program that compiled is rid of its compile error, built here or not (a program without a
+      // target, such as a variant no renderer uses now, would otherwise keep it forever).
+      for (auto id : result->programs) {
         errors_.erase(id);
         pipelineFailed_.erase(id);
       }
@@ -379,7 +383,9 @@ std::vector<ReloadEvent> HotReload::history() const {
 std::string HotReload::currentError() const {
   std::lock_guard lock(mutex_);
   std::string all;
-  for (const auto& [id, e] : errors_) all += (all.empty() ? "" : "\n") + e;
+  std::set<std::string> shown;  // programs of the same name and file fail alike: each message once
+  for (const auto& [id, e] : errors_)
+    if (shown.insert(e).second) all += (all.empty() ? "" : "\n") + e;
   return all;
 }
 

@@ -171,8 +171,9 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
     } catch (const CompileError& e) {
       r.ok = false;
       r.failedPrograms.push_back(id);
+      r.programErrors[id] = lib_.programName(id) + ":\n" + e.what();
       if (!r.error.empty()) r.error += '\n';
-      r.error += lib_.programName(id) + ":\n" + e.what();
+      r.error += r.programErrors[id];
     }
   }
   for (auto& [id, stages] : next) last_[id] = std::move(stages);

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -34,7 +35,9 @@ struct ReloadResult {
   std::vector<ShaderLibrary::ProgramId> unchangedPrograms;
   double compileMs = 0;  // wall time of the rebuild
   bool ok = true;
-  std::string error;                               // file:line: severity: message lines of every failure
+  std::string error;  // file:line: severity: message lines of every failure
+  // Each failed program's own lines ("name:" then its messages), keyed like failedPrograms.
+  std::map<ShaderLibrary::ProgramId, std::string> programErrors;
   std::chrono::steady_clock::time_point editTime;  // when the first change of the burst was seen
 };
 

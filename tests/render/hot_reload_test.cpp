@@ -209,3 +209,32 @@ TEST(HotReload, ASaveThatChangesNoSpirvRebuildsNothing) {
   EXPECT_EQ(builds.load(), 1);
   hot.stop();
 }
+
+// Two programs of the same file, one of them without a pipeline (a variant no renderer uses now): a broken
+// save is one error in the banner, and fixing it clears the error of both.
+TEST(HotReload, AFixClearsTheErrorOfEveryProgramOfTheFileOnce) {
+  Fixture f("variants");
+  const auto unused = f.lib->registerProgram("test", {{f.file, std::nullopt, {{"VARIANT", "1"}}}});
+  f.lib->buildProgram(unused);
+  wb::render::HotReload hot(*f.lib, {f.dir});
+  hot.addTarget(f.id, {"test pipeline",
+                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+                         return std::make_unique<wb::vk::BuiltPipeline>();
+                       },
+                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) {}});
+  hot.start();
+  { std::ofstream(f.file, std::ios::trunc) << "#version 460\nvoid main() { broken }\n"; }
+  auto bad = waitForEvent(hot);
+  ASSERT_TRUE(bad);
+  EXPECT_FALSE(bad->ok);
+  const std::string error = hot.currentError();
+  const auto first = error.find("c.comp:2");
+  ASSERT_NE(first, std::string::npos) << error;
+  EXPECT_EQ(error.find("c.comp:2", first + 1), std::string::npos) << "the same message twice:\n" << error;
+  writeShader(f.file, 1003);
+  auto fixed = waitForEvent(hot);
+  ASSERT_TRUE(fixed);
+  EXPECT_TRUE(fixed->ok) << fixed->error;
+  EXPECT_EQ(hot.currentError(), "") << "an error of the program without a pipeline stayed";
+  hot.stop();
+}
