@@ -548,7 +548,8 @@ TEST(Window, AModeSwitchIsPreparedWhileTheWindowDraws) {
   REQUIRE_XVFB();
   const auto dir = tempDir("switch");
   const fs::path a = dir / "a.json", b = dir / "b.json";
-  writeFile(dir / "s.txt", "wait_samples 1 300\nswitch_mode hybrid\nstats " + a.string() +
+  // The sleep puts seconds of path tracing before the switch: the hybrid mode's clock starts with it.
+  writeFile(dir / "s.txt", "wait_samples 1 300\nsleep 3\nswitch_mode hybrid\nstats " + a.string() +
                                "\nwait_mode 600\nframes 3\nstats " + b.string() + "\nquit\n");
   auto r = runWindow("--script " + (dir / "s.txt").string());
   ASSERT_EQ(r.code, 0) << r.output;
@@ -563,6 +564,8 @@ TEST(Window, AModeSwitchIsPreparedWhileTheWindowDraws) {
   const double longest = jb["mode_switches"][0]["longest_frame_ms"].get<double>();
   EXPECT_GT(longest, 0.0);
   EXPECT_LE(longest, jb["mode_switches"][0]["total_ms"].get<double>()) << "timed from before the request";
+  EXPECT_LT(jb["seconds_since_reset"].get<double>(), ja["seconds_since_reset"].get<double>())
+      << "the hybrid mode's elapsed time counts from before the switch";
 }
 
 // A script that sleeps goes on afterwards; a switch to a mode that does not exist fails the script with the

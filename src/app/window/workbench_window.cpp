@@ -181,6 +181,13 @@ void WorkbenchWindow::applyMode(bool wait) {
     return;
   }
   session_->setMode(state_.params.mode, s);
+  // A hybrid mode starts its accumulation with the switch: its frames, elapsed time and noise estimate count
+  // from here, not from its last reset (before an earlier switch away, or at startup).
+  if (auto* h = activeHybrid()) {
+    h->resetAccumulation();
+    ++hybridGeneration_;
+    hybridReset_ = Clock::now();
+  }
   if (!modeSwitch_.empty()) modeSwitchTimer_.tookEffect(Clock::now());
   modeSwitch_.clear();
 }
