@@ -377,8 +377,10 @@ void drawOverlays(PanelContext& c, const Rect& view) {
                     e.pipelineMs, e.editToFirstFrameMs * 1e-3);
     }
   }
+  float bannerTop = view.y + 6;  // the error banner goes under the busy line, which stays readable
   if (busy[0]) {
     const ImVec2 bs = ImGui::CalcTextSize(busy);
+    bannerTop += bs.y + 10;
     const ImVec2 bp(view.x + view.w - bs.x - 10, view.y + 6);
     dl->AddRectFilled(ImVec2(bp.x - 4, bp.y - 2), ImVec2(bp.x + bs.x + 4, bp.y + bs.y + 2),
                       active ? IM_COL32(170, 110, 0, 220) : IM_COL32(0, 0, 0, 140), 3.0f);
@@ -398,7 +400,7 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   if (text.size() > 900) text.resize(900), text.append("...");
   const float wrap = std::max(view.w - 24.0f, 50.0f);
   const ImVec2 ts = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
-  const ImVec2 a(view.x + 6, view.y + 6), b(view.x + 18 + ts.x, view.y + 18 + ts.y);
+  const ImVec2 a(view.x + 6, bannerTop), b(view.x + 18 + ts.x, bannerTop + 12 + ts.y);
   dl->AddRectFilled(a, b, IM_COL32(150, 20, 20, 225), 4.0f);
   dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(a.x + 6, a.y + 6), IM_COL32(255, 240, 240, 255),
               text.c_str(), nullptr, wrap);
