@@ -412,6 +412,19 @@ TEST(Window, RunningErrorAgainstAReferenceAndTheNoiseEstimate) {
   EXPECT_LT(b["history"][3]["rmse"].get<double>(), b["history"][0]["rmse"].get<double>());
 }
 
+// A --reference that cannot be read is said on the terminal (the panel says it too) and the window goes on
+// with the noise estimate.
+TEST(Window, AnUnreadableReferenceIsSaidAndTheWindowGoesOn) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("noref");
+  auto r = runWindow("--reference " + (dir / "missing.exr").string() + " --frames 3 --stats " +
+                     (dir / "s.json").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("reference " + (dir / "missing.exr").string() + " not used"), std::string::npos)
+      << r.output;
+  EXPECT_NE(readJson(dir / "s.json")["live_error"]["error"].get<std::string>(), "");
+}
+
 namespace {
 
 int pngWidth(const fs::path& png, int* height = nullptr) {

@@ -2,6 +2,8 @@
 // mouse and keyboard input.
 #include "app/window/workbench_window.h"
 
+#include <cstdio>
+
 #include <imgui.h>
 
 #include "app/render_options.h"
@@ -89,7 +91,11 @@ void WorkbenchWindow::applyState() {
     if (st.referencePath.empty()) {
       liveError_.clearReference();
     } else {
-      liveError_.loadReference(st.referencePath);  // a failure is shown in the panel (liveError_.error())
+      // A failure is shown in the panel (liveError_.error()) and said on the terminal, where --reference was
+      // typed.
+      if (!liveError_.loadReference(st.referencePath))
+        std::fprintf(stderr, "workbench: reference %s not used: %s (the running error is a noise estimate)\n",
+                     st.referencePath.c_str(), liveError_.error().c_str());
     }
   }
   if (st.resetAccumulation) {
