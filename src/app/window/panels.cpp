@@ -20,10 +20,15 @@ std::string relativeToRoot(const std::filesystem::path& p) {
   return ec || rel.empty() ? p.string() : rel.string();
 }
 
+// The mode whose renderer draws the image: while another one is being made, its controls wait for it.
+render::RenderMode activeMode(const PanelContext& c) {
+  return c.hybrid ? c.hybrid->mode() : render::RenderMode::PathTrace;
+}
+
 // The parameters of the active mode (render/parameters.h), then the window's own controls.
 void renderPanel(PanelContext& c) {
   auto& st = c.state;
-  const render::RenderMode mode = st.params.mode;
+  const render::RenderMode mode = activeMode(c);
   drawParameterGroup("Render", st.params, mode);
   if (mode != render::RenderMode::PathTrace) {
     ImGui::Separator();
@@ -67,12 +72,13 @@ void renderPanel(PanelContext& c) {
 
 void inspectPanel(PanelContext& c) {
   auto& st = c.state;
-  if (st.params.mode == render::RenderMode::PathTrace) {
+  const bool pathTracing = activeMode(c) == render::RenderMode::PathTrace;
+  if (pathTracing) {
     drawParameter(*render::findParameter("view").info, st.params);
   } else {
     ImGui::TextDisabled("debug views are the path tracer's");
   }
-  if (c.inspector) drawInspectorSection(st, *c.inspector, st.params.mode == render::RenderMode::PathTrace);
+  if (c.inspector) drawInspectorSection(st, *c.inspector, pathTracing);
   ImGui::Separator();
   ImGui::TextDisabled("hover the image to pick; click to pin");
   if (!c.pick) {
@@ -142,7 +148,7 @@ void lightsPanel(PanelContext& c) {
   }
   ImGui::Separator();
   ImGui::TextUnformatted("environment");
-  drawParameterGroup("Environment", st.params, st.params.mode);
+  drawParameterGroup("Environment", st.params, activeMode(c));
   if (!st.envError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", st.envError.c_str());
 }
 
