@@ -27,6 +27,20 @@ struct ProgressiveFixture : ::testing::Test {
     session->context().submitAndWait([&](VkCommandBuffer cmd) { progressive->record(cmd); });
   }
   uint32_t traceWidth() const { return session->pathTracer().settings().width; }
+  // One frame, then whether it traced `width` wide, in the preview or at full resolution.
+  ::testing::AssertionResult frameAt(bool preview, uint32_t width) {
+    frame();
+    if (progressive->inPreview() == preview && traceWidth() == width) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << "traced " << traceWidth() << " wide " << (progressive->inPreview() ? "in" : "after")
+           << " the preview; expected " << width << (preview ? " in" : " after") << " it";
+  }
+  // A change traced to its first full-resolution sample (the preview, then the full image).
+  void firstSample() {
+    progressive->invalidate();
+    frame();
+    frame();
+  }
 
   std::unique_ptr<wb::render::RenderSession> session;
   std::unique_ptr<wb::app::ProgressiveTracer> progressive;
@@ -34,20 +48,14 @@ struct ProgressiveFixture : ::testing::Test {
 
 TEST_F(ProgressiveFixture, AChangePreviewsAtAQuarterThenTracesTheFullImage) {
   progressive->invalidate();
-  frame();
-  EXPECT_TRUE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 80u);
-  frame();
-  EXPECT_FALSE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 320u);
+  EXPECT_TRUE(frameAt(true, 80u));
+  EXPECT_TRUE(frameAt(false, 320u));
   EXPECT_EQ(progressive->samples(), 1u);
   EXPECT_EQ(progressive->resets(), 1u);
 }
 
 TEST_F(ProgressiveFixture, ANewPipelineIsShownCoarserFirst) {
-  progressive->invalidate();
-  frame();
-  frame();
+  firstSample();
   ASSERT_EQ(progressive->samples(), 1u);
   const auto resets = progressive->resets();
   // 250 pixels per ms (the estimate before any frame was timed): a few ms are 750 pixels, which 320x240 at a
@@ -55,17 +63,11 @@ TEST_F(ProgressiveFixture, ANewPipelineIsShownCoarserFirst) {
   ASSERT_EQ(progressive->pixelsPerMs(), 250.0);
   EXPECT_EQ(progressive->coarseDivisor(), 16u);
   session->pathTracer().resetAccumulation();  // what installing a hot-reloaded pipeline does
-  frame();
-  EXPECT_TRUE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 20u);
-  frame();
-  EXPECT_TRUE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 80u);
+  EXPECT_TRUE(frameAt(true, 20u));
+  EXPECT_TRUE(frameAt(true, 80u));
   EXPECT_TRUE(progressive->previewValid()) << "the coarse image is kept to show under the preview";
   EXPECT_EQ(progressive->previewImage().width(), 20u);
-  frame();
-  EXPECT_FALSE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 320u);
+  EXPECT_TRUE(frameAt(false, 320u));
   EXPECT_EQ(progressive->samples(), 1u);
   EXPECT_EQ(progressive->resets(), resets + 1) << "the three levels are one restart";
 }
@@ -82,16 +84,10 @@ TEST_F(ProgressiveFixture, TheCoarseLevelFollowsTheMeasuredRate) {
   // previewed at a quarter, like any change.
   for (int i = 0; i < 40; ++i) progressive->reportTraceTime(100000, 1.0);
   EXPECT_EQ(progressive->coarseDivisor(), 4u);
-  progressive->invalidate();
-  frame();
-  frame();
+  firstSample();
   session->pathTracer().resetAccumulation();
-  frame();
-  EXPECT_TRUE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 80u);
-  frame();
-  EXPECT_FALSE(progressive->inPreview());
-  EXPECT_EQ(traceWidth(), 320u);
+  EXPECT_TRUE(frameAt(true, 80u));
+  EXPECT_TRUE(frameAt(false, 320u));
 }
 
 }  // namespace

@@ -31,7 +31,6 @@ class ModeSwitchTimer {
   void frame(Clock::time_point begin, Clock::time_point end);
 
   bool timing() const { return timing_; }
-  const std::string& timingTo() const { return timing_ ? records_.back().to : none_; }
   Clock::time_point requestTime() const { return start_; }
   const std::vector<Record>& records() const { return records_; }
 
@@ -40,7 +39,6 @@ class ModeSwitchTimer {
   Clock::time_point start_{};
   bool timing_ = false;
   int framesLeft_ = 0;  // frames still timed after the switch took effect (-1: not yet in effect)
-  std::string none_;
 };
 
 }  // namespace wb::app
