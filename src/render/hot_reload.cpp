@@ -146,8 +146,18 @@ void HotReload::run() {
   // content (cached: nothing compiles twice).
   std::set<shader::ShaderLibrary::ProgramId> carried;
   std::set<std::string> carriedFiles;
+  std::optional<shader::ReloadResult> next;  // a newer result, taken while the older one was handled
+  // A newer change is seen: its result, once there, or nothing when the change yields none (a file no program
+  // uses) and the result in hand stands.
+  auto newerResult = [&]() -> std::optional<shader::ReloadResult> {
+    while (running_ && reloader_.newerChange())
+      if (auto r = reloader_.waitResult(std::chrono::milliseconds(5))) return r;
+    return std::nullopt;
+  };
   while (running_) {
-    auto result = reloader_.waitResult(std::chrono::milliseconds(50));  // and checks running_ between waits
+    std::optional<shader::ReloadResult> result = std::move(next);
+    next.reset();
+    if (!result) result = reloader_.waitResult(std::chrono::milliseconds(50));  // running_ checked between
     if (!result) continue;
     // With auto-reload off, file changes are noticed (the UI shows them) but only a manual reload applies.
     if (!autoReload_ && !manualRequest_.exchange(false)) continue;
@@ -162,7 +172,7 @@ void HotReload::run() {
       ++superseded_;
       preparing_ = false;
     };
-    if (reloader_.newerChange()) {
+    if ((next = newerResult())) {
       supersede();
       continue;
     }
@@ -178,7 +188,6 @@ void HotReload::run() {
         result->ok = false;
         result->failedPrograms.push_back(id);
         result->programErrors[id] = library_.programName(id) + ":\n" + e.what();
-        result->error += (result->error.empty() ? "" : "\n") + result->programErrors[id];
       }
     }
     Pending p;
@@ -189,7 +198,7 @@ void HotReload::run() {
     p.event.stagesRecompiled = result->stagesRecompiled;
     p.event.compileMs = result->compileMs;
     p.event.ok = result->ok;
-    p.event.error = result->error;
+    p.event.error = result->error();
     auto t0 = std::chrono::steady_clock::now();
     std::map<shader::ShaderLibrary::ProgramId, std::string> pipelineErrors;
     bool dropped = false;
@@ -221,7 +230,7 @@ void HotReload::run() {
         p.event.error += (p.event.error.empty() ? "" : "\n") + message;
         pipelineErrors[result->programs[i]] = message;
       }
-      dropped = reloader_.newerChange();  // the build just made is dropped as soon as a newer save is seen
+      dropped = (next = newerResult()).has_value();  // the build just made is dropped for a newer result
     }
     if (dropped) {
       supersede();
@@ -232,10 +241,7 @@ void HotReload::run() {
     p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
     {
       std::lock_guard lock(mutex_);
-      for (auto id : result->failedPrograms) {
-        const auto it = result->programErrors.find(id);
-        errors_[id] = it != result->programErrors.end() ? it->second : result->error;
-      }
+      for (const auto& [id, message] : result->programErrors) errors_[id] = message;
       // Every program that compiled is rid of its compile error, built here or not (a program without a
       // target, such as a variant no renderer uses now, would otherwise keep it forever).
       for (auto id : result->programs) {

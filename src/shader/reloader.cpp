@@ -54,6 +54,15 @@ std::string describe(const ShaderKey& k) {
 }
 }  // namespace
 
+std::string ReloadResult::error() const {
+  std::string all;
+  for (auto id : failedPrograms) {
+    const auto it = programErrors.find(id);
+    if (it != programErrors.end()) all += (all.empty() ? "" : "\n") + it->second;
+  }
+  return all;
+}
+
 Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs)
     : Reloader(lib, std::move(watchDirs), {}) {}
 
@@ -124,14 +133,18 @@ void Reloader::snapshot() {
 }
 
 bool Reloader::eventsWaiting() const {
+  if (!watcher_) return false;  // not started
   pollfd fd{watcher_->fd(), POLLIN, 0};
   return ::poll(&fd, 1, 0) > 0 && (fd.revents & POLLIN);
 }
 
 bool Reloader::newerChange() const {
   if (rebuilding_ || changesPending_) return true;
-  std::lock_guard lock(mutex_);
-  return !results_.empty();
+  {
+    std::lock_guard lock(mutex_);
+    if (!results_.empty()) return true;
+  }
+  return eventsWaiting();  // written already, not yet read by the worker (a busy machine delays it)
 }
 
 bool Reloader::rebuild(const std::vector<fs::path>& files,
@@ -172,8 +185,6 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
       r.ok = false;
       r.failedPrograms.push_back(id);
       r.programErrors[id] = lib_.programName(id) + ":\n" + e.what();
-      if (!r.error.empty()) r.error += '\n';
-      r.error += r.programErrors[id];
     }
   }
   for (auto& [id, stages] : next) last_[id] = std::move(stages);
@@ -227,6 +238,9 @@ void Reloader::run() {
       }
       return !events.empty();
     };
+    // Flagged before the read: between taking the events from the kernel and folding them in, neither
+    // eventsWaiting() nor `pending` shows them to newerChange().
+    if (fds[0].revents & POLLIN) changesPending_ = true;
     absorb(watcher_->read());
     changesPending_ = !pending.empty() || overflow;
     if (pending.empty() && !overflow) continue;

@@ -35,9 +35,11 @@ struct ReloadResult {
   std::vector<ShaderLibrary::ProgramId> unchangedPrograms;
   double compileMs = 0;  // wall time of the rebuild
   bool ok = true;
-  std::string error;  // file:line: severity: message lines of every failure
-  // Each failed program's own lines ("name:" then its messages), keyed like failedPrograms.
+  // Each failed program's own lines ("name:" then its file:line: severity: messages), keyed like
+  // failedPrograms.
   std::map<ShaderLibrary::ProgramId, std::string> programErrors;
+  // Every failure's lines, in failedPrograms order.
+  std::string error() const;
   std::chrono::steady_clock::time_point editTime;  // when the first change of the burst was seen
 };
 
@@ -75,8 +77,10 @@ class Reloader {
   void requestReloadAll();
   uint64_t reloadCount() const { return reloads_; }
   bool rebuilding() const { return rebuilding_; }  // a coalesced change is being compiled right now
-  // A change newer than the last published result exists: files changed and not yet compiled, a compile in
-  // progress, or results not yet taken by poll(). A consumer building pipelines for an older result drops it.
+  // A change newer than the last published result may exist: events not yet read, files changed and not yet
+  // compiled, a compile in progress, or results not yet taken by poll(). It may still come to nothing (a file
+  // no program uses): a consumer drops a build for an older result only once a newer result is there. Between
+  // start() and stop().
   bool newerChange() const;
   // When the compile in progress began (meaningful while rebuilding()).
   std::chrono::steady_clock::time_point rebuildStart() const {

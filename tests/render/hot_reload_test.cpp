@@ -166,14 +166,55 @@ TEST(HotReload, SavesDuringABuildSupersedeItAndOnlyTheNewestIsInstalled) {
   auto e = waitForEvent(hot);
   ASSERT_TRUE(e) << "no reload";
   EXPECT_TRUE(e->ok) << e->error;
-  std::lock_guard lock(m);
-  EXPECT_EQ(installed, std::vector<uint32_t>{1004}) << "only the newest save is installed";
-  EXPECT_EQ(std::count(built.begin(), built.end(), 1004u), 1) << "the newest content is built once";
-  EXPECT_EQ(std::count(built.begin(), built.end(), 1003u), 0) << "a save superseded before its build is "
-                                                                 "not built";
+  {
+    // Not held past these reads: a build still running (after a failure here) takes it before hot.stop().
+    std::lock_guard lock(m);
+    EXPECT_EQ(installed, std::vector<uint32_t>{1004}) << "only the newest save is installed";
+    EXPECT_EQ(std::count(built.begin(), built.end(), 1004u), 1) << "the newest content is built once";
+    EXPECT_EQ(std::count(built.begin(), built.end(), 1003u), 0) << "a save superseded before its build is "
+                                                                   "not built";
+  }
   EXPECT_GE(hot.status().superseded, 1u);
   EXPECT_EQ(hot.history().size(), 1u) << "one reload for the burst of saves";
   EXPECT_FALSE(hot.poll()) << "nothing else pending";
+  hot.stop();
+}
+
+// A file no program uses, written while a build runs (an editor's swap or backup file beside the shader):
+// the build is not dropped for it, since no newer result comes of it.
+TEST(HotReload, AnUnrelatedFileDuringABuildDoesNotDropIt) {
+  Fixture f("unrelated");
+  std::mutex m;
+  std::condition_variable cv;
+  bool started = false, release = false;
+  std::atomic<int> installs{0};
+  wb::render::HotReload hot(*f.lib, {f.dir});
+  hot.addTarget(f.id, {"test pipeline",
+                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+                         std::unique_lock lock(m);
+                         started = true;
+                         cv.notify_all();
+                         cv.wait(lock, [&] { return release; });
+                         return std::make_unique<wb::vk::BuiltPipeline>();
+                       },
+                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) { ++installs; }});
+  hot.start();
+  writeShader(f.file, 1002);
+  {
+    std::unique_lock lock(m);
+    ASSERT_TRUE(cv.wait_for(lock, 300s, [&] { return started; })) << "no build after a save";
+  }
+  std::ofstream(f.dir / ".c.comp.swp") << "not a shader";
+  {
+    std::lock_guard lock(m);
+    release = true;
+  }
+  cv.notify_all();
+  auto e = waitForEvent(hot);
+  ASSERT_TRUE(e) << "the build was dropped for the unrelated file and never installed";
+  EXPECT_TRUE(e->ok) << e->error;
+  EXPECT_EQ(installs.load(), 1);
+  EXPECT_EQ(hot.status().superseded, 0u);
   hot.stop();
 }
 

@@ -191,7 +191,8 @@ struct ReloaderFixture : ::testing::Test {
   static std::string describeResult(const ReloadResult& r) {
     std::string files;
     for (const auto& f : r.filesChanged) files += (files.empty() ? "" : ", ") + f.filename().string();
-    return std::string(r.ok ? "ok" : "failed") + " reload of [" + files + "]" + (r.ok ? "" : ": " + r.error);
+    return std::string(r.ok ? "ok" : "failed") + " reload of [" + files + "]" +
+           (r.ok ? "" : ": " + r.error());
   }
   static bool has(const std::vector<std::string>& v, const fs::path& p) {
     return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.rfind(p.string(), 0) == 0; });
@@ -217,7 +218,7 @@ TEST_F(ReloaderFixture, WriteInPlace) {
   std::fwrite(text.data(), 1, text.size(), f);
   std::fclose(f);
   auto r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
   EXPECT_EQ(r.stagesRecompiled, std::vector<std::string>{(dir / "g.vert").string()});
 }
@@ -241,7 +242,7 @@ TEST_F(ReloaderFixture, EditRightAfterStartIsRecompiledHoweverLateTheWorkerRuns)
   busy = false;
   for (auto& h : hogs) h.join();
   auto r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_EQ(r.stagesRecompiled, std::vector<std::string>{(dir / "g.vert").string()});
 }
 
@@ -258,7 +259,7 @@ TEST_F(ReloaderFixture, TruncateThenSlowWriteIsNotCompiledHalfWay) {
   ASSERT_EQ(::write(fd, text.data() + half, text.size() - half), ssize_t(text.size() - half));
   ::close(fd);
   auto r = expectOneReload();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
 }
 
@@ -274,7 +275,7 @@ TEST_F(ReloaderFixture, AFileLeftOpenIsCompiledOnceTheWriteGraceIsOver) {
   pass(timing.writeGrace / 2 + timing.quiet);
   auto r = reloader->poll();
   ASSERT_TRUE(r.has_value()) << "no reload after the write grace";
-  EXPECT_TRUE(r->ok) << r->error;
+  EXPECT_TRUE(r->ok) << r->error();
   EXPECT_EQ(r->programs, std::vector<ShaderLibrary::ProgramId>{graphics});
   // The close comes later: a reload of the same contents, with nothing to rebuild.
   ::close(fd);
@@ -287,7 +288,7 @@ TEST_F(ReloaderFixture, WriteTempThenRenameOver) {
   writeFile(dir / ".g.vert.swp~", edited(kVert));
   fs::rename(dir / ".g.vert.swp~", dir / "g.vert");
   auto r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
   EXPECT_TRUE(has(r.stagesRecompiled, dir / "g.vert"));
 }
@@ -300,7 +301,7 @@ TEST_F(ReloaderFixture, DeleteThenRecreate) {
   EXPECT_FALSE(reloader->poll().has_value()) << "compiled without the deleted include";
   writeFile(dir / "common.glsl", "#define TINT vec3(0.0, 1.0, 0.0)\n");
   auto r = expectOneReload();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_TRUE(has(r.programs, graphics));
   EXPECT_TRUE(has(r.programs, rt));
 }
@@ -318,7 +319,7 @@ TEST_F(ReloaderFixture, DeleteWithoutRecreateFailsAfterTheGraceAndRecovers) {
   EXPECT_TRUE(has(r->failedPrograms, rt));
   writeFile(dir / "common.glsl", "#define TINT vec3(0.0, 1.0, 0.0)\n");
   auto back = expectOneReload();
-  EXPECT_TRUE(back.ok) << back.error;
+  EXPECT_TRUE(back.ok) << back.error();
   EXPECT_TRUE(has(back.programs, graphics));
   EXPECT_TRUE(has(back.programs, rt));
 }
@@ -338,14 +339,14 @@ TEST_F(ReloaderFixture, DeleteThenSlowRecreate) {
   ASSERT_EQ(::write(fd, text.data(), text.size()), ssize_t(text.size()));
   ::close(fd);
   auto r = expectOneReload();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_TRUE(has(r.programs, graphics));
 }
 
 TEST_F(ReloaderFixture, Touch) {
   fs::last_write_time(dir / "g.frag", fs::file_time_type::clock::now());
   auto r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   // Contents unchanged: the program is reported unchanged, with nothing to rebuild.
   EXPECT_TRUE(r.programs.empty());
   EXPECT_EQ(r.unchangedPrograms, std::vector<ShaderLibrary::ProgramId>{graphics});
@@ -362,7 +363,7 @@ TEST_F(ReloaderFixture, UnrelatedFileDoesNothing) {
 TEST_F(ReloaderFixture, SharedIncludeRebuildsBothVertOnlyEditRebuildsGraphics) {
   writeFile(dir / "common.glsl", "#define TINT vec3(0.25, 0.5, 1.0)\n");
   auto r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_TRUE(has(r.programs, graphics));
   EXPECT_TRUE(has(r.programs, rt));
   EXPECT_TRUE(has(r.stagesRecompiled, dir / "g.vert"));
@@ -381,7 +382,7 @@ TEST_F(ReloaderFixture, BrokenEditReportsErrorThenFixRecovers) {
   writeFile(dir / "common.glsl", std::string(kCommon) + "const float broken = ;\n");
   auto r = expectOne();
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find((dir / "common.glsl").string() + ":2: error"), std::string::npos) << r.error;
+  EXPECT_NE(r.error().find((dir / "common.glsl").string() + ":2: error"), std::string::npos) << r.error();
   EXPECT_TRUE(has(r.failedPrograms, graphics));
   EXPECT_TRUE(has(r.failedPrograms, rt));
   auto st = lib->fileStatuses();
@@ -391,7 +392,7 @@ TEST_F(ReloaderFixture, BrokenEditReportsErrorThenFixRecovers) {
   // are reported unchanged (nothing to rebuild).
   writeFile(dir / "common.glsl", kCommon);
   r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_TRUE(has(r.unchangedPrograms, graphics));
   EXPECT_TRUE(has(r.unchangedPrograms, rt));
   EXPECT_TRUE(r.programs.empty());
@@ -403,12 +404,12 @@ TEST_F(ReloaderFixture, MissingIncludeAppearsLater) {
             std::string(kVert).replace(std::string(kVert).find("common.glsl"), 11, "later.glsl"));
   auto r = expectOne();
   EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("include file not found"), std::string::npos) << r.error;
+  EXPECT_NE(r.error().find("include file not found"), std::string::npos) << r.error();
   // The include that appears holds what common.glsl holds: the program compiles again, to the SPIR-V of the
   // pipeline in use (unchanged, nothing to rebuild).
   writeFile(dir / "later.glsl", kCommon);
   r = expectOne();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_TRUE(has(r.unchangedPrograms, graphics));
 }
 
@@ -429,9 +430,9 @@ TEST_F(ReloaderFixture, NewSubdirectoryIsWatched) {
   writeFile(dir / "g.vert",
             std::string(kVert).replace(std::string(kVert).find("common.glsl"), 11, "newdir/x.glsl"));
   auto r = expectOneReload();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   writeFile(dir / "newdir/x.glsl", "#define TINT vec3(0.0)\n");
   r = expectOneReload();
-  EXPECT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error();
   EXPECT_EQ(r.programs, std::vector<ShaderLibrary::ProgramId>{graphics});
 }
