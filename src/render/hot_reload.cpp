@@ -21,60 +21,54 @@ HotReload::~HotReload() {
   stop();
 }
 
-void HotReload::addTarget(shader::ShaderLibrary::ProgramId program, Target target) {
+std::vector<HotReload::Entry*> HotReload::entries() const {
   std::lock_guard lock(mutex_);
-  targets_[program] = std::move(target);
+  std::vector<Entry*> out;
+  for (const auto& e : entries_) out.push_back(e.get());
+  return out;
 }
 
-HotReload::Warmup& HotReload::warmupFor(const Renderer& renderer) {
+void HotReload::addPass(ReloadTarget& pass) {
+  std::lock_guard lock(mutex_);
+  for (const auto& e : entries_)
+    if (e->pass == &pass) return;
+  auto e = std::make_unique<Entry>();
+  e->pass = &pass;
+  entries_.push_back(std::move(e));
+}
+
+HotReload::Warmup* HotReload::warmupFor(const Renderer& renderer) {
   std::lock_guard lock(mutex_);
   auto& w = warmups_[&renderer];
   if (!w) {
     w = std::make_unique<Warmup>();
     w->enabled = renderer.context().policy().jitWarmup;
   }
-  return *w;
+  return w.get();
 }
 
 void HotReload::compileAhead(Renderer& renderer) {
-  Warmup& warmup = warmupFor(renderer);
-  if (!warmup.enabled) return;
-  const auto programs = renderer.programs();
-  for (size_t i = 0; i < programs.size(); ++i) {
-    const auto build = library_.buildProgram(programs[i].id);
-    renderer.installPipeline(programs[i].id, buildWithWarmup(renderer, warmup, i, programs[i].id, build));
+  Warmup* warmup = warmupFor(renderer);
+  if (!warmup->enabled) return;
+  const auto passes = renderer.passes();
+  for (size_t i = 0; i < passes.size(); ++i) {
+    const Entry entry{passes[i], &renderer, i, warmup};
+    const auto program = passes[i]->program();
+    passes[i]->install(buildWithWarmup(entry, program, library_.buildProgram(program)));
   }
 }
 
 void HotReload::addRenderer(Renderer& renderer) {
-  Warmup* warmup = &warmupFor(renderer);
-  const auto programs = renderer.programs();
-  for (size_t i = 0; i < programs.size(); ++i) {
-    const auto id = programs[i].id;
-    {
-      std::lock_guard lock(mutex_);
-      if (targets_.count(id)) continue;
+  Warmup* warmup = warmupFor(renderer);
+  const auto passes = renderer.passes();
+  {
+    std::lock_guard lock(mutex_);
+    for (size_t i = 0; i < passes.size(); ++i) {
+      const bool known =
+          std::any_of(entries_.begin(), entries_.end(), [&](const auto& e) { return e->pass == passes[i]; });
+      if (known) continue;
+      entries_.push_back(std::make_unique<Entry>(Entry{passes[i], &renderer, i, warmup}));
     }
-    // The build the renderer's pipeline was made from (the library's cache holds it): the A/B comparison's
-    // and a revert's old side of the first edit.
-    try {
-      auto build = library_.buildProgram(id);
-      std::lock_guard lock(mutex_);
-      installedBuilds_.emplace(id, std::move(build));
-    } catch (const std::exception&) {
-      // Not buildable now (a broken file saved since): the first edit has no old side to compare.
-    }
-    addTarget(id, {programs[i].name,
-                   [this, &renderer, warmup, i, id](const shader::ShaderLibrary::ProgramBuild& b) {
-                     return buildWithWarmup(renderer, *warmup, i, id, b);
-                   },
-                   [&renderer, id](std::unique_ptr<vk::BuiltPipeline> p) {
-                     renderer.installPipeline(id, std::move(p));
-                   },
-                   &renderer, i,
-                   [&renderer, id](std::unique_ptr<vk::BuiltPipeline> p) {
-                     return renderer.exchangePipeline(id, std::move(p));
-                   }});
   }
   if (warmup->enabled) {
     const auto options = library_.options();
@@ -82,26 +76,29 @@ void HotReload::addRenderer(Renderer& renderer) {
   }
 }
 
-std::unique_ptr<vk::BuiltPipeline> HotReload::buildWithWarmup(
-    Renderer& renderer, Warmup& warmup, size_t programIndex, shader::ShaderLibrary::ProgramId program,
-    const shader::ShaderLibrary::ProgramBuild& build) {
-  if (!warmup.enabled) return renderer.buildPipeline(program, build);
+PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::ShaderLibrary::ProgramId program,
+                                        const shader::ShaderLibrary::ProgramBuild& build) {
+  Warmup* warmup = entry.warmup;
+  if (!warmup || !warmup->enabled) return entry.pass->buildPipeline(program, build);
+  Renderer& renderer = *entry.owner;
   // The driver's compile on the warm-up device runs beside this device's pipeline creation; the probe comes
   // first so that the warm-up can number its groups like the pipeline built here.
   const auto counter = probeGroupCounter(renderer.context(), build);
   std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran, or not a ray tracing pipeline
   const auto options = library_.options();
-  auto built = buildBesideWarmup(
-      warmup.enabled, [&] { return renderer.buildPipeline(program, build); },
-      [&] {
-        auto make = [&] { return std::make_unique<JitWarmup>(renderer, options); };
-        if (auto* w = warmup.slot.warmOrRenew(make, [&](JitWarmup& x) {
-              return x.warm(renderer, programIndex, build, counter.value_or(0));
-            }))
-          warmedHandles = w->groupHandles();
-      });
-  if (!warmedHandles.empty() && built->rayTracing && warmedHandles != built->rayTracing->sbt().groupHandles())
-    ++warmup.mismatches;
+  bool failed = false;
+  auto built = buildBesideWarmup([&] { return entry.pass->buildPipeline(program, build); },
+                                 [&] {
+                                   auto make = [&] { return std::make_unique<JitWarmup>(renderer, options); };
+                                   if (auto* w = warmup->slot.warmOrRenew(make, [&](JitWarmup& x) {
+                                         return x.warm(renderer, entry.passIndex, build, counter.value_or(0));
+                                       }))
+                                     warmedHandles = w->groupHandles();
+                                 },
+                                 failed);
+  if (failed) ++warmup->failures;
+  const auto& rt = built.pipeline->rayTracing;
+  if (!warmedHandles.empty() && rt && warmedHandles != rt->sbt().groupHandles()) ++warmup->mismatches;
   return built;
 }
 
@@ -118,6 +115,7 @@ HotReload::WarmupStats HotReload::jitWarmup(const Renderer& renderer) const {
   s.present = w->slot.present();
   s.warmups = w->slot.warmups();
   s.mismatches = w->mismatches;
+  s.failures = w->failures;
   return s;
 }
 
@@ -141,126 +139,117 @@ void HotReload::reloadAll() {
   reloader_.requestReloadAll();
 }
 
+namespace {
+
+bool sameSpirv(const shader::ShaderLibrary::ProgramBuild& a, const shader::ShaderLibrary::ProgramBuild& b) {
+  if (a.stages.size() != b.stages.size()) return false;
+  for (size_t i = 0; i < a.stages.size(); ++i)
+    if (!a.stages[i] || !b.stages[i] || a.stages[i]->spirv != b.stages[i]->spirv) return false;
+  return true;
+}
+
+}  // namespace
+
 void HotReload::run() {
-  // Programs of results dropped for a newer save: built with the next result, from the library's newest
-  // content (cached: nothing compiles twice).
-  std::set<shader::ShaderLibrary::ProgramId> carried;
-  std::set<std::string> carriedFiles;
-  std::optional<shader::ReloadResult> next;  // a newer result, taken while the older one was handled
-  // A newer change is seen: its result, once there, or nothing when the change yields none (a file no program
-  // uses) and the result in hand stands.
-  auto newerResult = [&]() -> std::optional<shader::ReloadResult> {
-    while (running_ && reloader_.newerChange())
-      if (auto r = reloader_.waitResult(std::chrono::milliseconds(5))) return r;
-    return std::nullopt;
-  };
   while (running_) {
-    std::optional<shader::ReloadResult> result = std::move(next);
-    next.reset();
-    if (!result) result = reloader_.waitResult(std::chrono::milliseconds(50));  // running_ checked between
+    auto result = reloader_.waitResult(std::chrono::milliseconds(50));  // running_ checked between
     if (!result) continue;
     // With auto-reload off, file changes are noticed (the UI shows them) but only a manual reload applies.
     if (!autoReload_ && !manualRequest_.exchange(false)) continue;
     manualRequest_ = false;
     prepareStart_ = std::chrono::steady_clock::now().time_since_epoch().count();
     preparing_ = true;
-    for (const auto& f : result->filesChanged) carriedFiles.insert(f.string());
-    // A newer save is already there: only the newest content is built.
-    auto supersede = [&] {
-      carried.insert(result->programs.begin(), result->programs.end());
-      carried.insert(result->failedPrograms.begin(), result->failedPrograms.end());
-      ++superseded_;
-      preparing_ = false;
-    };
-    if ((next = newerResult())) {
-      supersede();
-      continue;
-    }
-    for (auto id : result->programs) carried.erase(id);
-    for (auto id : result->failedPrograms) carried.erase(id);
-    // An unchanged program stays carried: its content may be the dropped build's, never installed.
-    std::erase_if(result->unchangedPrograms, [&](auto id) { return carried.count(id) > 0; });
-    for (auto id : carried) {
-      try {
-        result->builds.push_back(library_.buildProgram(id));
-        result->programs.push_back(id);
-      } catch (const shader::CompileError& e) {
-        result->ok = false;
-        result->failedPrograms.push_back(id);
-        result->programErrors[id] = library_.programName(id) + ":\n" + e.what();
-      }
-    }
-    Pending p;
-    p.editTime = result->editTime;
-    p.event.editSeen = result->editTime;
-    p.event.when = std::chrono::system_clock::now();
-    p.event.filesChanged.assign(carriedFiles.begin(), carriedFiles.end());
-    p.event.stagesRecompiled = result->stagesRecompiled;
-    p.event.compileMs = result->compileMs;
-    p.event.ok = result->ok;
-    p.event.error = result->error();
-    auto t0 = std::chrono::steady_clock::now();
-    std::map<shader::ShaderLibrary::ProgramId, std::string> pipelineErrors;
-    bool dropped = false;
-    for (size_t i = 0; i < result->programs.size() && !dropped; ++i) {
-      Target target;
-      {
-        std::lock_guard lock(mutex_);
-        auto it = targets_.find(result->programs[i]);
-        if (it == targets_.end()) continue;
-        target = it->second;
-      }
-      try {
-        p.built.emplace_back(result->programs[i], target.build(result->builds[i]));
-        p.builds.push_back(result->builds[i]);
-        p.event.pipelinesRebuilt.push_back(target.name);
-        const vk::RtLibraryStats s = p.built.back().second->libraryStats();
-        p.event.libraries.librariesCompiled += s.librariesCompiled;
-        p.event.libraries.librariesReused += s.librariesReused;
-        p.event.libraries.libraryMs += s.libraryMs;
-        p.event.libraries.linkMs += s.linkMs;
-      } catch (const std::exception& e) {
-        // The program compiled but its pipeline did not build (or uses a binding the renderer does not fill:
-        // a CompileError at its declaration): the last good pipeline stays, and the error is current (banner,
-        // Shaders panel) until a later build of this program succeeds.
-        const bool compileError = dynamic_cast<const shader::CompileError*>(&e) != nullptr;
-        const std::string message =
-            target.name + (compileError ? ": " : ": pipeline creation failed: ") + e.what();
-        p.event.ok = false;
-        p.event.error += (p.event.error.empty() ? "" : "\n") + message;
-        pipelineErrors[result->programs[i]] = message;
-      }
-      dropped = (next = newerResult()).has_value();  // the build just made is dropped for a newer result
-    }
-    if (dropped) {
-      supersede();
-      continue;
-    }
-    carried.clear();
-    carriedFiles.clear();
-    p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
-    {
-      std::lock_guard lock(mutex_);
-      for (const auto& [id, message] : result->programErrors) errors_[id] = message;
-      // Every program that compiled is rid of its compile error, built here or not (a program without a
-      // target, such as a variant no renderer uses now, would otherwise keep it forever).
-      for (auto id : result->programs) {
-        errors_.erase(id);
-        pipelineFailed_.erase(id);
-      }
-      for (const auto& [id, message] : pipelineErrors) {
-        errors_[id] = message;
-        pipelineFailed_.insert(id);
-      }
-      // The same SPIR-V as the pipeline in use (or as the one that failed to build): nothing to do, except
-      // that a compile error fixed back to the working content is no longer current.
-      for (auto id : result->unchangedPrograms)
-        if (!pipelineFailed_.count(id)) errors_.erase(id);
-      pending_.push_back(std::move(p));
-      preparing_ = false;
-    }
-    if (onReady_) onReady_();
+    const bool ready = prepare(*result);
+    preparing_ = false;
+    if (ready && onReady_) onReady_();
   }
+}
+
+bool HotReload::prepare(shader::ReloadResult& result) {
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& f : result.filesChanged) carriedFiles_.insert(f.string());
+  }
+  // A program changed again since this compile: a newer result is on its way, and what is built from this
+  // one for it would be dropped at install. A result outdated for every program it holds is dropped whole
+  // (its files are reported with the next event).
+  auto outdated = [&](shader::ShaderLibrary::ProgramId id) {
+    return reloader_.lastChange(id) > result.sequence;
+  };
+  bool current = false;
+  for (const auto* list : {&result.programs, &result.unchangedPrograms, &result.failedPrograms})
+    for (auto id : *list) current = current || !outdated(id);
+  if (!current &&
+      (!result.programs.empty() || !result.failedPrograms.empty() || !result.unchangedPrograms.empty())) {
+    ++superseded_;
+    return false;
+  }
+
+  Pending p;
+  p.sequence = result.sequence;
+  p.editTime = result.editTime;
+  p.event.editSeen = result.editTime;
+  p.event.when = std::chrono::system_clock::now();
+  p.event.stagesRecompiled = result.stagesRecompiled;
+  p.event.compileMs = result.compileMs;
+  p.event.ok = result.ok;
+  p.event.error = result.error();
+  const auto t0 = std::chrono::steady_clock::now();
+  std::map<shader::ShaderLibrary::ProgramId, std::string> pipelineErrors;
+  std::set<shader::ShaderLibrary::ProgramId> builtOk;
+  for (Entry* e : entries()) {
+    const auto program = e->pass->program();
+    const auto* build = result.buildOf(program);
+    if (!build || outdated(program)) continue;
+    // The same SPIR-V as the installed pipeline's (a touch, a comment; or a save back to what is
+    // installed): nothing to build, unless a reload of everything was asked for.
+    if (!result.forced && sameSpirv(*build, e->pass->installed().build)) continue;
+    try {
+      Built b{e, buildWithWarmup(*e, program, *build)};
+      const vk::RtLibraryStats s = b.pipeline.pipeline->libraryStats();
+      p.event.libraries.librariesCompiled += s.librariesCompiled;
+      p.event.libraries.librariesReused += s.librariesReused;
+      p.event.libraries.libraryMs += s.libraryMs;
+      p.event.libraries.linkMs += s.linkMs;
+      p.event.pipelinesRebuilt.push_back(e->pass->name());
+      p.built.push_back(std::move(b));
+      builtOk.insert(program);
+    } catch (const std::exception& ex) {
+      // The program compiled but its pipeline did not build (or uses a resource the pass does not bind: a
+      // CompileError at its declaration): the last good pipeline stays, and the error is current (banner,
+      // Shaders panel) until a later build of this program succeeds.
+      const bool compileError = dynamic_cast<const shader::CompileError*>(&ex) != nullptr;
+      const std::string message =
+          e->pass->name() + (compileError ? ": " : ": pipeline creation failed: ") + ex.what();
+      p.event.ok = false;
+      p.event.error += (p.event.error.empty() ? "" : "\n") + message;
+      pipelineErrors[program] = message;
+    }
+  }
+  p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
+  std::lock_guard lock(mutex_);
+  p.event.filesChanged.assign(carriedFiles_.begin(), carriedFiles_.end());
+  carriedFiles_.clear();
+  for (const auto& [id, message] : result.programErrors) errors_[id] = message;
+  // Every program that compiled is rid of its compile error, built here or not (a program no pass uses now,
+  // such as another variant, would otherwise keep it forever); one whose SPIR-V is unchanged keeps the error
+  // of a pipeline that failed to build from that SPIR-V.
+  for (auto id : result.programs) {
+    errors_.erase(id);
+    pipelineFailed_.erase(id);
+  }
+  for (auto id : result.unchangedPrograms)
+    if (!pipelineFailed_.count(id)) errors_.erase(id);
+  for (auto id : builtOk) {
+    errors_.erase(id);
+    pipelineFailed_.erase(id);
+  }
+  for (const auto& [id, message] : pipelineErrors) {
+    errors_[id] = message;
+    pipelineFailed_.insert(id);
+  }
+  pending_.push_back(std::move(p));
+  return true;
 }
 
 HotReload::Status HotReload::status() const {
@@ -309,33 +298,34 @@ std::optional<ReloadEvent> HotReload::poll() {
     pending_.pop_front();
   }
   lastInstalled_.clear();
-  for (size_t i = 0; i < p->built.size(); ++i) {
-    auto& [id, built] = p->built[i];
-    Target target;
-    std::optional<shader::ShaderLibrary::ProgramBuild> before;
-    {
-      std::lock_guard lock(mutex_);
-      target = targets_.at(id);
-      auto it = installedBuilds_.find(id);
-      if (it != installedBuilds_.end()) before = it->second;
-      installedBuilds_[id] = p->builds[i];
+  std::vector<std::string> installed;
+  for (auto& b : p->built) {
+    // A newer save of this program is being compiled or built: this pipeline is outdated.
+    if (reloader_.lastChange(b.pipeline.program) > p->sequence) {
+      ++superseded_;
+      continue;
     }
-    std::shared_ptr<vk::BuiltPipeline> old;
-    if (target.exchange) {
-      old = target.exchange(std::move(built));
-    } else {
-      target.install(std::move(built));
-    }
-    if (before && old && target.renderer)
-      lastInstalled_.push_back(
-          {id, target.name, target.renderer, target.programIndex, std::move(old), *before, p->builds[i]});
+    Entry& e = *b.entry;
+    PassPipeline after = b.pipeline;
+    PassPipeline before = e.pass->install(std::move(b.pipeline));
+    if (!before) continue;  // the pass switched to another program meanwhile
+    installed.push_back(e.pass->name());
+    if (e.owner)
+      lastInstalled_.push_back({e.pass, e.owner, e.passIndex, e.pass->name(), std::move(before), after});
   }
+  const bool nothingInstalled = installed.empty() && !p->built.empty();
+  p->event.pipelinesRebuilt = installed;
   const auto now = std::chrono::steady_clock::now();
   p->event.editToNewPipelineMs = msBetween(p->editTime, now);
-  if (p->built.empty()) p->event.frames = frameTimeline_.stats(p->editTime, false);
+  if (installed.empty()) p->event.frames = frameTimeline_.stats(p->editTime, false);
   std::lock_guard lock(mutex_);
+  if (nothingInstalled && p->event.ok) {
+    // Every build was superseded: the newer event reports these files.
+    for (const auto& f : p->event.filesChanged) carriedFiles_.insert(f);
+    return std::nullopt;
+  }
   history_.push_back(p->event);
-  awaitingFrame_ = p->built.empty() ? std::nullopt : std::optional(p->editTime);
+  awaitingFrame_ = installed.empty() ? std::nullopt : std::optional(p->editTime);
   return p->event;
 }
 
@@ -358,13 +348,9 @@ void HotReload::attachAB(std::vector<ReloadAB> ab, double ms) {
   history_.back().abMs = ms;
 }
 
-void HotReload::revert(const std::vector<InstalledProgram>& installed) {
-  for (const auto& ip : installed) {
-    if (!ip.renderer || !ip.oldPipeline) continue;
-    ip.renderer->exchangePipeline(ip.program, ip.oldPipeline);
-    std::lock_guard lock(mutex_);
-    installedBuilds_[ip.program] = ip.before;
-  }
+void HotReload::revert(const std::vector<InstalledPass>& installed) {
+  for (const auto& ip : installed)
+    if (ip.pass && ip.before) ip.pass->install(ip.before);
   std::lock_guard lock(mutex_);
   if (!history_.empty()) history_.back().reverted = true;
 }

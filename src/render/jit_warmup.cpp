@@ -166,16 +166,17 @@ JitWarmup::JitWarmup(const Renderer& like, const shader::ShaderLibrary::Options&
 
 JitWarmup::~JitWarmup() = default;
 
-bool JitWarmup::warm(const Renderer& like, size_t programIndex,
-                     const shader::ShaderLibrary::ProgramBuild& build, uint32_t renderDeviceGroupCounter) {
+bool JitWarmup::warm(const Renderer& like, size_t passIndex, const shader::ShaderLibrary::ProgramBuild& build,
+                     uint32_t renderDeviceGroupCounter) {
   using Clock = std::chrono::steady_clock;
   // Compiled parameters first: a new specialisation rebuilds a pipeline here (new group numbers).
   renderer_->matchCompiledParameters(like);
   if (!alignGroupCounter(*device_.ctx, build, renderDeviceGroupCounter)) return false;
-  const auto program = renderer_->programs().at(programIndex).id;
-  auto built = renderer_->buildPipeline(program, build);
-  handles_ = built->rayTracing ? built->rayTracing->sbt().groupHandles() : std::vector<uint8_t>{};
-  renderer_->installPipeline(program, std::move(built));
+  Pass& pass = *renderer_->passes().at(passIndex);
+  auto built = pass.buildPipeline(pass.program(), build);
+  const auto& rt = built.pipeline->rayTracing;
+  handles_ = rt ? rt->sbt().groupHandles() : std::vector<uint8_t>{};
+  pass.install(std::move(built));
   const uint64_t before = mesaShaderCacheBytes();
   const auto t1 = Clock::now();
   device_.ctx->submitAndWait([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); });

@@ -9,7 +9,6 @@
 // layout, the specialisation constants and the groups' numbers (see alignGroupCounter), not on the data
 // bound. HotReload runs it beside the render device's own pipeline creation.
 #pragma once
-#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -67,12 +66,12 @@ class JitWarmup {
   JitWarmup(const JitWarmup&) = delete;
   JitWarmup& operator=(const JitWarmup&) = delete;
 
-  // Builds the pipeline of `like`'s program number `programIndex` (in programs() order) from `build` on the
-  // warm-up device and renders one sample there (blocking; call it off the render thread).
+  // Builds the pipeline of `like`'s pass number `passIndex` (in passes() order) from `build` on the warm-up
+  // device and renders one sample there (blocking; call it off the render thread).
   // `renderDeviceGroupCounter` is probeGroupCounter() of the render device, taken before it built its own
   // pipeline of `build`. Returns false when the groups could not be numbered alike (this device numbered more
   // groups already: make a new warm-up). Throws what pipeline creation throws.
-  bool warm(const Renderer& like, size_t programIndex, const shader::ShaderLibrary::ProgramBuild& build,
+  bool warm(const Renderer& like, size_t passIndex, const shader::ShaderLibrary::ProgramBuild& build,
             uint32_t renderDeviceGroupCounter);
   // The group handles of the last warmed pipeline (empty when it was not a ray tracing pipeline): equal to
   // the render device's pipeline's when their numbers matched.
@@ -87,25 +86,29 @@ class JitWarmup {
 };
 
 // Runs `warm()` on a low-priority thread of its own beside `build()` (the render device's pipeline creation,
-// on the calling thread) and returns what build() returned once both are done. A warm-up that throws is
-// reported and turns `enabled` off: the first frame with a new pipeline then compiles it, as without warm-up.
+// on the calling thread) and returns what build() returned once both are done. A warm-up that throws (the
+// program's pipeline cannot be built: build() throws the same) is reported and sets `failed`: that
+// pipeline's first frame compiles it, as without warm-up; the next reload warms again.
 template <class Build, class Warm>
-auto buildBesideWarmup(std::atomic<bool>& enabled, Build&& build, Warm&& warm) {
-  std::future<void> warmed;
-  if (enabled) {
-    warmed = std::async(std::launch::async, [&] {
-      shader::lowerThreadPriority();
-      try {
-        warm();
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "warning: JIT warm-up off after a failure (%s)\n", e.what());
-        enabled = false;
-      }
-    });
-  }
-  auto result = build();
-  if (warmed.valid()) warmed.get();
-  return result;
+auto buildBesideWarmup(Build&& build, Warm&& warm, bool& failed) {
+  failed = false;
+  std::future<void> warmed = std::async(std::launch::async, [&] {
+    shader::lowerThreadPriority();
+    try {
+      warm();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "warning: JIT warm-up failed for this reload (%s)\n", e.what());
+      failed = true;
+    }
+  });
+  // The warm-up thread reads what build() may throw over: it finishes before this returns or throws.
+  struct Join {
+    std::future<void>& f;
+    ~Join() {
+      if (f.valid()) f.wait();
+    }
+  } join{warmed};
+  return build();
 }
 
 }  // namespace wb::render

@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <span>
 #include <thread>
 
@@ -30,9 +31,10 @@ struct ReloadResult {
   std::vector<ShaderLibrary::ProgramId> programs;  // rebuilt successfully, parallel to builds
   std::vector<ShaderLibrary::ProgramBuild> builds;
   std::vector<ShaderLibrary::ProgramId> failedPrograms;  // keep their old pipelines
-  // Built with the same SPIR-V as their last build (a save that changed nothing the compiler keeps, such as a
-  // touch or a comment): nothing to rebuild.
+  // Built with the same SPIR-V as their last compile here (a save that changed nothing the compiler keeps,
+  // such as a touch or a comment), parallel to unchangedBuilds.
   std::vector<ShaderLibrary::ProgramId> unchangedPrograms;
+  std::vector<ShaderLibrary::ProgramBuild> unchangedBuilds;
   double compileMs = 0;  // wall time of the rebuild
   bool ok = true;
   // Each failed program's own lines ("name:" then its file:line: severity: messages), keyed like
@@ -41,6 +43,12 @@ struct ReloadResult {
   // Every failure's lines, in failedPrograms order.
   std::string error() const;
   std::chrono::steady_clock::time_point editTime;  // when the first change of the burst was seen
+  // The change sequence when the compile began: a program with Reloader::lastChange() above it changed again
+  // since (a newer save), and whatever is built from this result for it is outdated.
+  uint64_t sequence = 0;
+  bool forced = false;  // a reload of everything (requestReloadAll): every program is rebuilt
+  // The build of `program` in this result (changed or unchanged), or nullptr (failed, or not compiled).
+  const ShaderLibrary::ProgramBuild* buildOf(ShaderLibrary::ProgramId program) const;
 };
 
 class Reloader {
@@ -82,6 +90,9 @@ class Reloader {
   // no program uses): a consumer drops a build for an older result only once a newer result is there. Between
   // start() and stop().
   bool newerChange() const;
+  // The change sequence at the last change seen to one of `program`'s files (an event read from the watcher,
+  // before its burst is compiled), 0 if none since start(). Thread-safe.
+  uint64_t lastChange(ShaderLibrary::ProgramId program) const;
   // When the compile in progress began (meaningful while rebuilding()).
   std::chrono::steady_clock::time_point rebuildStart() const {
     return std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(rebuildStart_.load()));
@@ -89,11 +100,16 @@ class Reloader {
 
  private:
   void run();
-  // Compiles `programs` and publishes the result. Returns false, publishing nothing, when a newer change
-  // arrives first (the caller then compiles again with it). `force` rebuilds programs whose SPIR-V is
-  // unchanged too.
-  bool rebuild(const std::vector<fs::path>& files, const std::vector<ShaderLibrary::ProgramId>& programs,
+  // Compiles `programs` and publishes the result. A change seen while it compiles is compiled by the next
+  // burst; what is built from this result for the programs it touches is dropped then (lastChange()).
+  // `force` reports every program that compiled as changed.
+  void rebuild(const std::vector<fs::path>& files, const std::vector<ShaderLibrary::ProgramId>& programs,
                std::chrono::steady_clock::time_point editTime, bool force);
+  // The programs a changed file may rebuild: those that include it, and for a shader-like file every program
+  // that failed last time (it may be waiting for exactly this file).
+  std::set<ShaderLibrary::ProgramId> programsFor(const fs::path& file) const;
+  // A change to these programs is seen now.
+  void noteChange(const std::set<ShaderLibrary::ProgramId>& programs);
   bool eventsWaiting() const;  // the watcher has unread events
   void snapshot();
 
@@ -113,6 +129,8 @@ class Reloader {
   std::deque<ReloadResult> results_;
   std::condition_variable resultReady_;
   std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> last_;
+  uint64_t sequence_ = 0;                                    // guarded by mutex_
+  std::map<ShaderLibrary::ProgramId, uint64_t> lastChange_;  // guarded by mutex_
 };
 
 }  // namespace wb::shader

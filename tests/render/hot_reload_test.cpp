@@ -10,6 +10,7 @@
 #include <map>
 #include <mutex>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <random>
 #include <thread>
@@ -37,6 +38,41 @@ std::optional<wb::render::ReloadEvent> waitForEvent(wb::render::HotReload& hot) 
   return std::nullopt;
 }
 
+// A pass without a device: `build` makes its pipelines (stand-ins), `onInstall` sees each install.
+class FakePass : public wb::render::ReloadTarget {
+ public:
+  using Build = std::function<std::shared_ptr<wb::vk::BuiltPipeline>(const ProgramBuild&)>;
+  FakePass(wb::shader::ShaderLibrary& lib, ProgramId program, Build build,
+           std::function<void(const wb::vk::BuiltPipeline*)> onInstall = {})
+      : program_(program), build_(std::move(build)), onInstall_(std::move(onInstall)) {
+    installed_ = {program, lib.buildProgram(program), std::make_shared<wb::vk::BuiltPipeline>()};
+  }
+  const std::string& name() const override { return name_; }
+  ProgramId program() const override { return program_; }
+  wb::render::PassPipeline buildPipeline(ProgramId program, const ProgramBuild& build) const override {
+    return {program, build, build_(build)};
+  }
+  wb::render::PassPipeline install(wb::render::PassPipeline p) override {
+    if (p.program != program_) return {};
+    if (onInstall_) onInstall_(p.pipeline.get());
+    std::lock_guard lock(m_);
+    std::swap(installed_, p);
+    return p;
+  }
+  wb::render::PassPipeline installed() const override {
+    std::lock_guard lock(m_);
+    return installed_;
+  }
+
+ private:
+  std::string name_ = "test pipeline";
+  ProgramId program_;
+  Build build_;
+  std::function<void(const wb::vk::BuiltPipeline*)> onInstall_;
+  mutable std::mutex m_;
+  wb::render::PassPipeline installed_;
+};
+
 }  // namespace
 
 TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
@@ -52,12 +88,14 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
   std::atomic<bool> failing{true};
   std::atomic<int> commits{0};
   wb::render::HotReload hot(lib, {dir});
-  hot.addTarget(id, {"test pipeline",
-                     [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                       if (failing) throw std::runtime_error("the driver refused it");
-                       return std::make_unique<wb::vk::BuiltPipeline>();
-                     },
-                     [&](std::unique_ptr<wb::vk::BuiltPipeline>) { ++commits; }});
+  FakePass pass(
+      lib, id,
+      [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+        if (failing) throw std::runtime_error("the driver refused it");
+        return std::make_shared<wb::vk::BuiltPipeline>();
+      },
+      [&](const wb::vk::BuiltPipeline*) { ++commits; });
+  hot.addPass(pass);
   hot.start();  // the watches are in place when start() returns
 
   writeShader(file, 2);
@@ -131,23 +169,25 @@ TEST(HotReload, SavesDuringABuildSupersedeItAndOnlyTheNewestIsInstalled) {
     return 0;
   };
   wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild& b) {
-                         std::unique_lock lock(m);
-                         built.push_back(valueOf(b));
-                         if (!firstStarted) {  // the first build blocks until the test has saved twice more
-                           firstStarted = true;
-                           cv.notify_all();
-                           cv.wait(lock, [&] { return release; });
-                         }
-                         auto p = std::make_unique<wb::vk::BuiltPipeline>();
-                         tags[p.get()] = valueOf(b);
-                         return p;
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline> p) {
-                         std::lock_guard lock(m);
-                         installed.push_back(tags[p.get()]);
-                       }});
+  FakePass pass(
+      *f.lib, f.id,
+      [&](const wb::shader::ShaderLibrary::ProgramBuild& b) {
+        std::unique_lock lock(m);
+        built.push_back(valueOf(b));
+        if (!firstStarted) {  // the first build blocks until the test has saved twice more
+          firstStarted = true;
+          cv.notify_all();
+          cv.wait(lock, [&] { return release; });
+        }
+        auto p = std::make_shared<wb::vk::BuiltPipeline>();
+        tags[p.get()] = valueOf(b);
+        return p;
+      },
+      [&](const wb::vk::BuiltPipeline* p) {
+        std::lock_guard lock(m);
+        installed.push_back(tags[p]);
+      });
+  hot.addPass(pass);
   hot.start();
   writeShader(f.file, 1002);
   {
@@ -189,15 +229,17 @@ TEST(HotReload, AnUnrelatedFileDuringABuildDoesNotDropIt) {
   bool started = false, release = false;
   std::atomic<int> installs{0};
   wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                         std::unique_lock lock(m);
-                         started = true;
-                         cv.notify_all();
-                         cv.wait(lock, [&] { return release; });
-                         return std::make_unique<wb::vk::BuiltPipeline>();
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) { ++installs; }});
+  FakePass pass(
+      *f.lib, f.id,
+      [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+        std::unique_lock lock(m);
+        started = true;
+        cv.notify_all();
+        cv.wait(lock, [&] { return release; });
+        return std::make_shared<wb::vk::BuiltPipeline>();
+      },
+      [&](const wb::vk::BuiltPipeline*) { ++installs; });
+  hot.addPass(pass);
   hot.start();
   writeShader(f.file, 1002);
   {
@@ -222,12 +264,11 @@ TEST(HotReload, ASaveThatChangesNoSpirvRebuildsNothing) {
   Fixture f("unchanged");
   std::atomic<int> builds{0};
   wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                         ++builds;
-                         return std::make_unique<wb::vk::BuiltPipeline>();
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) {}});
+  FakePass pass(*f.lib, f.id, [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+    ++builds;
+    return std::make_shared<wb::vk::BuiltPipeline>();
+  });
+  hot.addPass(pass);
   hot.start();
   // The same bytes again (an editor's save without changes).
   writeShader(f.file, 1001);
@@ -258,11 +299,10 @@ TEST(HotReload, AFixClearsTheErrorOfEveryProgramOfTheFileOnce) {
   const auto unused = f.lib->registerProgram("test", {{f.file, std::nullopt, {{"VARIANT", "1"}}}});
   f.lib->buildProgram(unused);
   wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                         return std::make_unique<wb::vk::BuiltPipeline>();
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) {}});
+  FakePass pass(*f.lib, f.id, [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+    return std::make_shared<wb::vk::BuiltPipeline>();
+  });
+  hot.addPass(pass);
   hot.start();
   { std::ofstream(f.file, std::ios::trunc) << "#version 460\nvoid main() { broken }\n"; }
   auto bad = waitForEvent(hot);

@@ -20,7 +20,7 @@
 
 using namespace wb;
 using namespace wb::testing;
-using Pass = render::HybridRenderer::Pass;
+using Pass = render::HybridPass;
 
 namespace {
 

@@ -101,8 +101,7 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
     GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
   s->render(1);  // the first pipeline, compiled at its first trace
   // Two more ray tracing pipelines on the render device: its group numbers run ahead of a new device's.
-  for (int i = 0; i < 2; ++i)
-    tracer.swapPipeline(tracer.program(), s->library().buildProgram(tracer.program()));
+  for (int i = 0; i < 2; ++i) tracer.passes()[0]->rebuild();
 
   // A hot reload of the closest-hit shader through the production path: HotReload's worker builds the
   // pipeline and warms it up; poll() installs it.
@@ -129,7 +128,7 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   // The same kind of edit without the warm-up (as a pipeline swapped on the render thread).
   edit(chit, "const float minCos = 1.5e-3;", "const float minCos = 2.5e-3;");
   s->library().invalidateFiles({chit});
-  tracer.swapPipeline(tracer.program(), s->library().buildProgram(tracer.program()));
+  tracer.passes()[0]->rebuild();
   const uint64_t beforeCold = settledCacheBytes();
   s->render(1);
   const uint64_t coldTrace = settledCacheBytes() - beforeCold;
@@ -146,7 +145,6 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
 }
 
 TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
-  using Pass = wb::render::HybridRenderer::Pass;
   auto s = session(wb::render::RenderMode::Reflections);
   auto* hybrid = s->hybrid();
   ASSERT_NE(hybrid, nullptr);
@@ -176,8 +174,7 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
 
   edit(rgen, "u.y * 0.9999;", "u.y * 0.9998;");
   s->library().invalidateFiles({rgen});
-  hybrid->swapPipeline(hybrid->program(Pass::ShadowAo),
-                       s->library().buildProgram(hybrid->program(Pass::ShadowAo)));
+  hybrid->pass(wb::render::HybridPass::ShadowAo).rebuild();
   const uint64_t beforeCold = settledCacheBytes();
   s->render(1);
   const uint64_t coldFrame = settledCacheBytes() - beforeCold;
@@ -214,7 +211,7 @@ TEST_F(JitWarmup, AModePreparedOffTheLoopIsCompiledAhead) {
     auto* hybrid = s->hybrid();
     ASSERT_NE(hybrid, nullptr);
     const auto warmup = hot.jitWarmup(*hybrid);
-    EXPECT_EQ(warmup.warmups, hybrid->programs().size()) << "every pipeline of the mode compiled ahead";
+    EXPECT_EQ(warmup.warmups, hybrid->passes().size()) << "every pipeline of the mode compiled ahead";
     EXPECT_EQ(warmup.mismatches, 0u);
     const uint64_t before = settledCacheBytes();
     s->render(1);

@@ -11,7 +11,7 @@
 namespace wb::app {
 
 void ABView::set(const std::vector<render::ABOutcome>& outcomes,
-                 const std::vector<render::HotReload::InstalledProgram>& programs, double ms,
+                 const std::vector<render::HotReload::InstalledPass>& programs, double ms,
                  double editToFirstFrameMs) {
   results.clear();
   for (const auto& o : outcomes) results.push_back(o.result);

@@ -22,7 +22,7 @@ struct ABView {
   static constexpr double kMaxCostRatio = 0.2;
 
   std::vector<render::ReloadAB> results;  // the last comparison, the active renderer's first
-  std::vector<render::HotReload::InstalledProgram> installed;  // what Revert reinstalls
+  std::vector<render::HotReload::InstalledPass> installed;  // what Revert reinstalls
   double abMs = -1, editMs = -1;  // the last comparison's cost and its edit's time (edit to first frame)
   std::string note;               // why the comparison was switched off, or what Revert/Accept did
   bool decided = false;           // Revert or Accept was pressed for the last comparison
@@ -37,7 +37,7 @@ struct ABView {
   // Takes a comparison's outcomes (shown: the first), the programs it compared and its cost against the
   // edit's time; switches the comparison off when it costs too much (see `enabled`).
   void set(const std::vector<render::ABOutcome>& outcomes,
-           const std::vector<render::HotReload::InstalledProgram>& programs, double ms,
+           const std::vector<render::HotReload::InstalledPass>& programs, double ms,
            double editToFirstFrameMs);
 };
 

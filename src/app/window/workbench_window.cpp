@@ -41,7 +41,8 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   auto& ctx = session_->context();
 
   makeSwapchain();
-  display_ = std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass());
+  display_ =
+      std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass(), swapchain_->format());
   input_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
   gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
   progressive_ = std::make_unique<ProgressiveTracer>(ctx, session_->pathTracer());
@@ -136,11 +137,7 @@ WorkbenchWindow::~WorkbenchWindow() {
 }
 
 void WorkbenchWindow::registerHotReload() {
-  DisplayPass* display = display_.get();
-  hot_->addTarget(
-      display->program(),
-      {"display", [display](const shader::ShaderLibrary::ProgramBuild& b) { return display->build(b); },
-       [display](std::unique_ptr<vk::BuiltPipeline> p) { display->install(std::move(p)); }});
+  hot_->addPass(display_->pass());
 }
 
 void WorkbenchWindow::scriptCommand(const std::string& name) {

@@ -67,7 +67,7 @@ void WorkbenchWindow::applyState() {
   }
   if (settingsChanged) {
     const auto features = render::featuresFor(session_->scene(), s);
-    if (tracer.setFeatures(features)) hot_->addRenderer(tracer);  // the new variant's program
+    tracer.setFeatures(features);
     progressive_->setSettings(s);
     for (auto mode : {render::RenderMode::Hybrid, render::RenderMode::Reflections}) {
       auto* h = session_->rendererFor(mode);
