@@ -103,7 +103,7 @@ void WorkbenchWindow::applyState() {
     restart = true;
   }
   if (st.reloadShaders) {
-    hot_->reloadAll();
+    loop_->hot().reloadAll();
     st.reloadShaders = false;
   }
   if (st.vsync != applied_.vsync) {
@@ -118,7 +118,7 @@ void WorkbenchWindow::applyState() {
   opts.preview = st.preview;
   opts.budgetMs = st.budgetMs;
   // A rebuild compiling gets the share of the cores the device's policy gives it.
-  if (hot_ && hot_->compiling())
+  if (loop_ && loop_->compiling())
     opts.budgetMs = st.budgetMs * session_->context().policy().windowTraceShareWhileCompiling;
   if (restart) {
     progressive_->invalidate();

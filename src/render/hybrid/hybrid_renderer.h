@@ -1,7 +1,7 @@
 // The hybrid renderer: a G-buffer raster pass (dynamic rendering), ray traced sun shadows and ambient
 // occlusion from the G-buffer (ray tracing pipeline, no primary rays), optional ray traced reflections for
 // smooth surfaces, and a compute composite into linear radiance. Every pipeline comes from the ShaderLibrary
-// (compiled, cached, reflected into its layout) and is hot reloadable through render::HotReload.
+// (compiled, cached, reflected into its layout) and is hot reloadable through live::HotReload.
 #pragma once
 #include <array>
 #include <filesystem>

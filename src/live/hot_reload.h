@@ -18,14 +18,15 @@
 #include <vector>
 
 #include "eval/ab.h"
-#include "render/jit_warmup.h"
-#include "render/reload_frames.h"
+#include "live/jit_warmup.h"
+#include "live/reload_frames.h"
 #include "render/pass.h"
+#include "render/render_session.h"
 #include "render/renderer.h"
-#include "render/warmup_slot.h"
-#include "shader/reloader.h"
+#include "live/warmup_slot.h"
+#include "live/reloader.h"
 
-namespace wb::render {
+namespace wb::live {
 
 // The A/B comparison of one rebuilt pipeline (render/ab_comparison.h): old against new at the A/B budget.
 struct ReloadAB {
@@ -67,11 +68,11 @@ class HotReload {
   // A pass whose new pipeline poll() installed: the pipeline (and build) it replaced, kept alive until the
   // next reload (the A/B comparison renders with it, a revert reinstalls it), and the new one.
   struct InstalledPass {
-    ReloadTarget* pass = nullptr;
-    Renderer* owner = nullptr;  // the renderer the pass belongs to (addRenderer), else nullptr
-    size_t passIndex = 0;       // its index in owner->passes()
+    render::ReloadTarget* pass = nullptr;
+    render::Renderer* owner = nullptr;  // the renderer the pass belongs to (addRenderer), else nullptr
+    size_t passIndex = 0;               // its index in owner->passes()
     std::string name;
-    PassPipeline before, after;
+    render::PassPipeline before, after;
   };
   // The JIT warm-up of one renderer's reloads.
   struct WarmupStats {
@@ -89,18 +90,21 @@ class HotReload {
 
   // A pass to reload (it must outlive this object): a compiled change of its program (whichever variant it
   // uses at the time) is built into a pipeline on the worker and installed by poll().
-  void addPass(ReloadTarget& pass);
+  void addPass(render::ReloadTarget& pass);
   // Every pass of `renderer` (those added already are skipped), reloaded with the JIT warm-up where the
   // device's policy asks for it (DevicePolicy::jitWarmup: its warm-up device starts being made now, on a
   // low-priority thread, so that the first edit does not wait for it) and compared by the A/B comparison.
   // `renderer` must outlive this object.
-  void addRenderer(Renderer& renderer);
-  WarmupStats jitWarmup(const Renderer& renderer) const;
+  void addRenderer(render::Renderer& renderer);
+  WarmupStats jitWarmup(const render::Renderer& renderer) const;
   // With DevicePolicy::jitWarmup: rebuilds each of `renderer`'s pipelines beside a warm-up of it (as a reload
   // does), so that its first frame loads the machine code from Mesa's cache instead of compiling on the
   // render loop. For a renderer made off the loop (a mode being prepared), before addRenderer; blocks for the
   // compile. Nothing to do on other devices. Throws what the compile and pipeline creation throw.
-  void compileAhead(Renderer& renderer);
+  void compileAhead(render::Renderer& renderer);
+  // For RenderSession::setRendererHooks: every renderer the session makes is added (addRenderer), and one
+  // made off the render loop is compiled ahead (compileAhead).
+  render::RendererHooks sessionHooks();
   void start();
   void stop();
 
@@ -157,34 +161,35 @@ class HotReload {
   };
   // A pass being reloaded; its address is stable (entries_ holds them by pointer).
   struct Entry {
-    ReloadTarget* pass = nullptr;
-    Renderer* owner = nullptr;
+    render::ReloadTarget* pass = nullptr;
+    render::Renderer* owner = nullptr;
     size_t passIndex = 0;
     Warmup* warmup = nullptr;  // owner's (null without an owner)
   };
   struct Built {
     Entry* entry = nullptr;
-    PassPipeline pipeline;
+    render::PassPipeline pipeline;
   };
   struct Pending {
     ReloadEvent event;
     std::vector<Built> built;
-    uint64_t sequence = 0;  // the compile's (shader::ReloadResult::sequence)
+    uint64_t sequence = 0;  // the compile's (ReloadResult::sequence)
     std::chrono::steady_clock::time_point editTime;
   };
   void run();
   // Builds the pipelines of one compile result; false when a newer save superseded all of it.
-  bool prepare(shader::ReloadResult& result);
-  Warmup* warmupFor(const Renderer& renderer);  // made on first use
-  PassPipeline buildWithWarmup(const Entry& entry, shader::ShaderLibrary::ProgramId program,
-                               const shader::ShaderLibrary::ProgramBuild& build);
+  bool prepare(ReloadResult& result);
+  Warmup* warmupFor(const render::Renderer& renderer);  // made on first use
+  render::PassPipeline buildWithWarmup(const Entry& entry, shader::ShaderLibrary::ProgramId program,
+                                       const shader::ShaderLibrary::ProgramBuild& build);
   std::vector<Entry*> entries() const;
 
   shader::ShaderLibrary& library_;
-  shader::Reloader reloader_;
-  std::function<void()> onReady_;                               // set before start()
-  std::vector<std::unique_ptr<Entry>> entries_;                 // guarded by mutex_
-  std::map<const Renderer*, std::unique_ptr<Warmup>> warmups_;  // guarded by mutex_; entries live as long
+  Reloader reloader_;
+  std::function<void()> onReady_;                // set before start()
+  std::vector<std::unique_ptr<Entry>> entries_;  // guarded by mutex_
+  std::map<const render::Renderer*, std::unique_ptr<Warmup>>
+      warmups_;  // guarded by mutex_; entries live as long
   std::thread thread_;
   std::atomic<bool> running_{false};
   std::atomic<bool> autoReload_{true};
@@ -204,4 +209,4 @@ class HotReload {
   std::optional<std::chrono::steady_clock::time_point> lastFrameEnd_;
 };
 
-}  // namespace wb::render
+}  // namespace wb::live

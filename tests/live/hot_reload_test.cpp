@@ -15,7 +15,7 @@
 #include <random>
 #include <thread>
 
-#include "render/hot_reload.h"
+#include "live/hot_reload.h"
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -29,7 +29,7 @@ void writeShader(const fs::path& p, int value) {
                                     << value << "u; }\n";
 }
 
-std::optional<wb::render::ReloadEvent> waitForEvent(wb::render::HotReload& hot) {
+std::optional<wb::live::ReloadEvent> waitForEvent(wb::live::HotReload& hot) {
   const auto deadline = std::chrono::steady_clock::now() + 300s;  // a cap for a busy machine, not a timing
   while (std::chrono::steady_clock::now() < deadline) {
     if (auto e = hot.poll()) return e;
@@ -87,7 +87,7 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
 
   std::atomic<bool> failing{true};
   std::atomic<int> commits{0};
-  wb::render::HotReload hot(lib, {dir});
+  wb::live::HotReload hot(lib, {dir});
   FakePass pass(
       lib, id,
       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
@@ -168,7 +168,7 @@ TEST(HotReload, SavesDuringABuildSupersedeItAndOnlyTheNewestIsInstalled) {
       if (buildHolds(b, v)) return v;
     return 0;
   };
-  wb::render::HotReload hot(*f.lib, {f.dir});
+  wb::live::HotReload hot(*f.lib, {f.dir});
   FakePass pass(
       *f.lib, f.id,
       [&](const wb::shader::ShaderLibrary::ProgramBuild& b) {
@@ -228,7 +228,7 @@ TEST(HotReload, AnUnrelatedFileDuringABuildDoesNotDropIt) {
   std::condition_variable cv;
   bool started = false, release = false;
   std::atomic<int> installs{0};
-  wb::render::HotReload hot(*f.lib, {f.dir});
+  wb::live::HotReload hot(*f.lib, {f.dir});
   FakePass pass(
       *f.lib, f.id,
       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
@@ -263,7 +263,7 @@ TEST(HotReload, AnUnrelatedFileDuringABuildDoesNotDropIt) {
 TEST(HotReload, ASaveThatChangesNoSpirvRebuildsNothing) {
   Fixture f("unchanged");
   std::atomic<int> builds{0};
-  wb::render::HotReload hot(*f.lib, {f.dir});
+  wb::live::HotReload hot(*f.lib, {f.dir});
   FakePass pass(*f.lib, f.id, [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
     ++builds;
     return std::make_shared<wb::vk::BuiltPipeline>();
@@ -298,7 +298,7 @@ TEST(HotReload, AFixClearsTheErrorOfEveryProgramOfTheFileOnce) {
   Fixture f("variants");
   const auto unused = f.lib->registerProgram("test", {{f.file, std::nullopt, {{"VARIANT", "1"}}}});
   f.lib->buildProgram(unused);
-  wb::render::HotReload hot(*f.lib, {f.dir});
+  wb::live::HotReload hot(*f.lib, {f.dir});
   FakePass pass(*f.lib, f.id, [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
     return std::make_shared<wb::vk::BuiltPipeline>();
   });

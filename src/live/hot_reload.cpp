@@ -1,11 +1,11 @@
-#include "render/hot_reload.h"
+#include "live/hot_reload.h"
 
 #include <algorithm>
 #include <map>
 #include <set>
 #include <thread>
 
-namespace wb::render {
+namespace wb::live {
 namespace {
 
 double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
@@ -28,7 +28,7 @@ std::vector<HotReload::Entry*> HotReload::entries() const {
   return out;
 }
 
-void HotReload::addPass(ReloadTarget& pass) {
+void HotReload::addPass(render::ReloadTarget& pass) {
   std::lock_guard lock(mutex_);
   for (const auto& e : entries_)
     if (e->pass == &pass) return;
@@ -37,7 +37,7 @@ void HotReload::addPass(ReloadTarget& pass) {
   entries_.push_back(std::move(e));
 }
 
-HotReload::Warmup* HotReload::warmupFor(const Renderer& renderer) {
+HotReload::Warmup* HotReload::warmupFor(const render::Renderer& renderer) {
   std::lock_guard lock(mutex_);
   auto& w = warmups_[&renderer];
   if (!w) {
@@ -47,7 +47,7 @@ HotReload::Warmup* HotReload::warmupFor(const Renderer& renderer) {
   return w.get();
 }
 
-void HotReload::compileAhead(Renderer& renderer) {
+void HotReload::compileAhead(render::Renderer& renderer) {
   Warmup* warmup = warmupFor(renderer);
   if (!warmup->enabled) return;
   const auto passes = renderer.passes();
@@ -58,7 +58,11 @@ void HotReload::compileAhead(Renderer& renderer) {
   }
 }
 
-void HotReload::addRenderer(Renderer& renderer) {
+render::RendererHooks HotReload::sessionHooks() {
+  return {[this](render::Renderer& r) { addRenderer(r); }, [this](render::Renderer& r) { compileAhead(r); }};
+}
+
+void HotReload::addRenderer(render::Renderer& renderer) {
   Warmup* warmup = warmupFor(renderer);
   const auto passes = renderer.passes();
   {
@@ -76,11 +80,11 @@ void HotReload::addRenderer(Renderer& renderer) {
   }
 }
 
-PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::ShaderLibrary::ProgramId program,
-                                        const shader::ShaderLibrary::ProgramBuild& build) {
+render::PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::ShaderLibrary::ProgramId program,
+                                                const shader::ShaderLibrary::ProgramBuild& build) {
   Warmup* warmup = entry.warmup;
   if (!warmup || !warmup->enabled) return entry.pass->buildPipeline(program, build);
-  Renderer& renderer = *entry.owner;
+  render::Renderer& renderer = *entry.owner;
   // The driver's compile on the warm-up device runs beside this device's pipeline creation; the probe comes
   // first so that the warm-up can number its groups like the pipeline built here.
   const auto counter = probeGroupCounter(renderer.context(), build);
@@ -102,7 +106,7 @@ PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::ShaderLibrar
   return built;
 }
 
-HotReload::WarmupStats HotReload::jitWarmup(const Renderer& renderer) const {
+HotReload::WarmupStats HotReload::jitWarmup(const render::Renderer& renderer) const {
   const Warmup* w = nullptr;
   {
     std::lock_guard lock(mutex_);
@@ -165,7 +169,7 @@ void HotReload::run() {
   }
 }
 
-bool HotReload::prepare(shader::ReloadResult& result) {
+bool HotReload::prepare(ReloadResult& result) {
   {
     std::lock_guard lock(mutex_);
     for (const auto& f : result.filesChanged) carriedFiles_.insert(f.string());
@@ -216,8 +220,8 @@ bool HotReload::prepare(shader::ReloadResult& result) {
       builtOk.insert(program);
     } catch (const std::exception& ex) {
       // The program compiled but its pipeline did not build (or uses a resource the pass does not bind: a
-      // CompileError at its declaration): the last good pipeline stays, and the error is current (banner,
-      // Shaders panel) until a later build of this program succeeds.
+      // shader::CompileError at its declaration): the last good pipeline stays, and the error is current
+      // (banner, Shaders panel) until a later build of this program succeeds.
       const bool compileError = dynamic_cast<const shader::CompileError*>(&ex) != nullptr;
       const std::string message =
           e->pass->name() + (compileError ? ": " : ": pipeline creation failed: ") + ex.what();
@@ -306,8 +310,8 @@ std::optional<ReloadEvent> HotReload::poll() {
       continue;
     }
     Entry& e = *b.entry;
-    PassPipeline after = b.pipeline;
-    PassPipeline before = e.pass->install(std::move(b.pipeline));
+    render::PassPipeline after = b.pipeline;
+    render::PassPipeline before = e.pass->install(std::move(b.pipeline));
     if (!before) continue;  // the pass switched to another program meanwhile
     installed.push_back(e.pass->name());
     if (e.owner)
@@ -381,4 +385,4 @@ std::string HotReload::currentError() const {
   return all;
 }
 
-}  // namespace wb::render
+}  // namespace wb::live

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "eval/ab.h"
-#include "render/hot_reload.h"
+#include "live/hot_reload.h"
 #include "render/render_session.h"
 
-namespace wb::render {
+namespace wb::live {
 
 // What one comparison costs: the trace size, the samples of each side's image (one run per sample, seeds
 // seed..seed+spp-1, each rendered by both sides: their spread is the paired noise) and the alternating timing
@@ -32,7 +32,7 @@ struct ABOutcome {
 
 class ABComparison {
  public:
-  ABComparison(RenderSession& session, ABBudget budget = {});
+  ABComparison(render::RenderSession& session, ABBudget budget = {});
   ~ABComparison();
   ABComparison(const ABComparison&) = delete;
   ABComparison& operator=(const ABComparison&) = delete;
@@ -53,14 +53,14 @@ class ABComparison {
  private:
   // The stand-in of `live`, made on first use, with live's parameters at the A/B size and live's installed
   // pipelines (shared: compiled by the driver already).
-  Renderer& standIn(Renderer& live);
+  render::Renderer& standIn(render::Renderer& live);
   // Installs `pipeline` (a live pass's) into the stand-in's `standIn` pass unless it has it already.
-  static void use(Pass& standIn, const PassPipeline& pipeline);
+  static void use(render::Pass& standIn, const render::PassPipeline& pipeline);
   ABOutcome compareOne(const HotReload::InstalledPass& ip);
 
-  RenderSession& session_;
+  render::RenderSession& session_;
   ABBudget budget_;
-  std::map<const Renderer*, std::unique_ptr<Renderer>> standIns_;
+  std::map<const render::Renderer*, std::unique_ptr<render::Renderer>> standIns_;
 };
 
-}  // namespace wb::render
+}  // namespace wb::live

@@ -1,10 +1,10 @@
-#include "shader/reloader.h"
+#include "live/reloader.h"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "shader/watcher.h"
+#include "live/watcher.h"
 
 #include <poll.h>
 #include <sys/eventfd.h>
@@ -14,16 +14,16 @@
 #include <algorithm>
 #include <set>
 
-namespace wb::shader {
+namespace wb::live {
 
 void lowerThreadPriority() {
   const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
   ::setpriority(PRIO_PROCESS, tid, 10);  // best effort: a failure only keeps the normal priority
 }
 
-}  // namespace wb::shader
+}  // namespace wb::live
 
-namespace wb::shader {
+namespace wb::live {
 
 namespace {
 using TimePoint = std::chrono::steady_clock::time_point;
@@ -37,12 +37,12 @@ class SteadyClock : public Reloader::Clock {
 };
 
 bool shaderLike(const fs::path& p) {
-  if (stageFromPath(p)) return true;
+  if (shader::stageFromPath(p)) return true;
   const auto e = p.extension();
   return e == ".glsl" || e == ".h" || e == ".inc" || e == ".hlsli";
 }
 
-std::string describe(const ShaderKey& k) {
+std::string describe(const shader::ShaderKey& k) {
   std::string s = k.path.string();
   if (!k.defines.empty()) {
     s += " [";
@@ -54,7 +54,8 @@ std::string describe(const ShaderKey& k) {
 }
 }  // namespace
 
-const ShaderLibrary::ProgramBuild* ReloadResult::buildOf(ShaderLibrary::ProgramId program) const {
+const shader::ShaderLibrary::ProgramBuild* ReloadResult::buildOf(
+    shader::ShaderLibrary::ProgramId program) const {
   for (size_t i = 0; i < programs.size(); ++i)
     if (programs[i] == program) return &builds[i];
   for (size_t i = 0; i < unchangedPrograms.size(); ++i)
@@ -71,10 +72,10 @@ std::string ReloadResult::error() const {
   return all;
 }
 
-Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs)
+Reloader::Reloader(shader::ShaderLibrary& lib, std::vector<fs::path> watchDirs)
     : Reloader(lib, std::move(watchDirs), {}) {}
 
-Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing)
+Reloader::Reloader(shader::ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing)
     : lib_(lib), dirs_(std::move(watchDirs)), timing_(std::move(timing)) {
   if (!timing_.clock) timing_.clock = std::make_shared<SteadyClock>();
 }
@@ -137,7 +138,7 @@ void Reloader::snapshot() {
   for (auto id : lib_.programs()) {
     try {
       last_[id] = lib_.buildProgram(id).stages;
-    } catch (const CompileError&) {
+    } catch (const shader::CompileError&) {
     }
   }
 }
@@ -157,22 +158,22 @@ bool Reloader::newerChange() const {
   return eventsWaiting();  // written already, not yet read by the worker (a busy machine delays it)
 }
 
-uint64_t Reloader::lastChange(ShaderLibrary::ProgramId program) const {
+uint64_t Reloader::lastChange(shader::ShaderLibrary::ProgramId program) const {
   std::lock_guard lock(mutex_);
   const auto it = lastChange_.find(program);
   return it == lastChange_.end() ? 0 : it->second;
 }
 
-void Reloader::noteChange(const std::set<ShaderLibrary::ProgramId>& programs) {
+void Reloader::noteChange(const std::set<shader::ShaderLibrary::ProgramId>& programs) {
   if (programs.empty()) return;
   std::lock_guard lock(mutex_);
   ++sequence_;
   for (auto id : programs) lastChange_[id] = sequence_;
 }
 
-std::set<ShaderLibrary::ProgramId> Reloader::programsFor(const fs::path& file) const {
+std::set<shader::ShaderLibrary::ProgramId> Reloader::programsFor(const fs::path& file) const {
   const auto deps = lib_.programsDependingOn(file);
-  std::set<ShaderLibrary::ProgramId> programs(deps.begin(), deps.end());
+  std::set<shader::ShaderLibrary::ProgramId> programs(deps.begin(), deps.end());
   if (shaderLike(file))
     for (auto id : lib_.programs())
       if (lib_.programOk(id) == false) programs.insert(id);
@@ -180,7 +181,7 @@ std::set<ShaderLibrary::ProgramId> Reloader::programsFor(const fs::path& file) c
 }
 
 void Reloader::rebuild(const std::vector<fs::path>& files,
-                       const std::vector<ShaderLibrary::ProgramId>& programs, TimePoint editTime,
+                       const std::vector<shader::ShaderLibrary::ProgramId>& programs, TimePoint editTime,
                        bool force) {
   const auto t0 = timing_.clock->now();
   rebuildStart_ = t0.time_since_epoch().count();
@@ -195,7 +196,7 @@ void Reloader::rebuild(const std::vector<fs::path>& files,
     r.sequence = sequence_;
   }
   std::set<std::string> recompiled;
-  std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> next;
+  std::map<shader::ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const shader::CompiledShader>>> next;
   for (auto id : programs) {
     try {
       auto b = lib_.buildProgram(id);
@@ -214,7 +215,7 @@ void Reloader::rebuild(const std::vector<fs::path>& files,
       }
       r.programs.push_back(id);
       r.builds.push_back(std::move(b));
-    } catch (const CompileError& e) {
+    } catch (const shader::CompileError& e) {
       r.ok = false;
       r.failedPrograms.push_back(id);
       r.programErrors[id] = lib_.programName(id) + ":\n" + e.what();
@@ -284,7 +285,7 @@ void Reloader::run() {
     if (quietFor < timing_.quiet) continue;
     if (!writing.empty() && quietFor < timing_.writeGrace) continue;  // never compile a half-written file
     // Map files to programs.
-    std::set<ShaderLibrary::ProgramId> programs;
+    std::set<shader::ShaderLibrary::ProgramId> programs;
     std::vector<fs::path> files;
     bool missingDependency = false;
     for (const auto& p : pending) {
@@ -317,4 +318,4 @@ void Reloader::run() {
   }
 }
 
-}  // namespace wb::shader
+}  // namespace wb::live
