@@ -9,7 +9,6 @@
 #include "app/hybrid_json.h"
 #include "app/parameter_json.h"
 #include "app/progress.h"
-#include "app/render_inspect.h"
 #include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"

@@ -1,4 +1,5 @@
-#include "app/render_inspect.h"
+// `render --inspect-pixel X,Y [--inspect-samples N] --inspect-out FILE.json`: the path inspector headless.
+#include "app/cmd_render.h"
 
 #include <cstdio>
 #include <fstream>

@@ -36,6 +36,15 @@ SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
   return f;
 }
 
+bool featuresCover(const SceneFeatures& f, const std::vector<gpu::Material>& materials) {
+  if (f.generic) return true;
+  for (const auto& m : materials) {
+    if (m.emissive != glm::vec3(0.0f) && !f.emissive) return false;
+    if ((m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f)) && !f.specular) return false;
+  }
+  return true;
+}
+
 std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
   std::vector<shader::Define> out;
   if (f.generic) {

@@ -40,6 +40,9 @@ inline constexpr uint32_t kGenericMaxLights = 8;
 SceneFeatures genericFeatures(uint32_t directionalLights = 0);
 // Analyses the scene (materials, textures, lights) and the environment the render will use.
 SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment);
+// Whether a build for `f` renders `materials` as they are (a live edit may add emission or specular factors
+// that a specialised build compiled out).
+bool featuresCover(const SceneFeatures& f, const std::vector<gpu::Material>& materials);
 // Shader defines for a feature set: part of every stage's variant key, so variants are cached like any other.
 std::vector<shader::Define> featureDefines(const SceneFeatures& f);
 // One line for logs and the UI, e.g. "lights=1 env=constant mask normal-maps emissive textures".

@@ -8,7 +8,7 @@
 #include "app/window/path_inspector_view.h"
 #include "app/window/pixel_picker.h"
 #include "app/window/script.h"
-#include "app/window/workbench_state.h"
+#include "live/session_state.h"
 
 TEST(InspectorView, PathPointsProjectOntoThePixelTheirCameraRayLeaves) {
   wb::render::CameraState cam;
@@ -29,14 +29,14 @@ TEST(InspectorView, PathPointsProjectOntoThePixelTheirCameraRayLeaves) {
 }
 
 TEST(InspectorView, SettingsPickThePixelAndAreChecked) {
-  wb::app::WorkbenchState st;
+  wb::live::SessionState st;
   EXPECT_FALSE(st.inspectPixel.has_value());
-  wb::app::applySetting(st, "inspect_pixel", "12,34");
+  wb::live::applySetting(st, "inspect_pixel", "12,34");
   ASSERT_TRUE(st.inspectPixel.has_value());
   EXPECT_EQ(*st.inspectPixel, glm::uvec2(12, 34));
-  wb::app::applySetting(st, "inspect_samples", "8");
+  wb::live::applySetting(st, "inspect_samples", "8");
   EXPECT_EQ(st.inspectSamples, 8u);
-  wb::app::applySetting(st, "inspect_pixel", "off");
+  wb::live::applySetting(st, "inspect_pixel", "off");
   EXPECT_FALSE(st.inspectPixel.has_value());
   for (const auto& [name, value] :
        std::vector<std::pair<std::string, std::string>>{{"inspect_pixel", "12"},
@@ -44,7 +44,7 @@ TEST(InspectorView, SettingsPickThePixelAndAreChecked) {
                                                         {"inspect_pixel", "-1,3"},
                                                         {"inspect_samples", "0"},
                                                         {"inspect_samples", "100000"}}) {
-    EXPECT_THROW(wb::app::applySetting(st, name, value), std::invalid_argument) << name << "=" << value;
+    EXPECT_THROW(wb::live::applySetting(st, name, value), std::invalid_argument) << name << "=" << value;
   }
 }
 

@@ -6,43 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "eval/metrics.h"
-
 namespace wb::app {
-
-void ABView::set(const std::vector<live::ABOutcome>& outcomes,
-                 const std::vector<live::HotReload::InstalledPass>& programs, double ms,
-                 double editToFirstFrameMs) {
-  results.clear();
-  for (const auto& o : outcomes) results.push_back(o.result);
-  installed = programs;
-  abMs = ms;
-  editMs = editToFirstFrameMs;
-  decided = false;
-  note.clear();
-  width = height = 0;
-  oldRgba.clear();
-  newRgba.clear();
-  diffRgba.clear();
-  if (!outcomes.empty()) {
-    const auto& o = outcomes.front();
-    width = o.oldImage.width;
-    height = o.oldImage.height;
-    oldRgba = eval::tonemapToSrgb8(o.oldImage);
-    newRgba = eval::tonemapToSrgb8(o.newImage);
-    // Full scale at the largest difference, so that a change on a few pixels stays visible (a NaN/Inf
-    // difference: the 99th percentile instead).
-    const double largest = results.front().image.maxAbsDiff;
-    diffRgba = eval::errorHeatmap(o.oldImage, o.newImage, std::isfinite(largest) ? largest : 0.0, &diffScale);
-  }
-  if (!userChose && editMs > 0 && abMs > kMaxCostRatio * editMs) {
-    enabled = false;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "off: the comparison took %.0f ms, over %.0f%% of the edit's %.0f ms",
-                  abMs, kMaxCostRatio * 100.0, editMs);
-    note = buf;
-  }
-}
 
 namespace {
 
@@ -62,7 +26,7 @@ void drawPixels(ImDrawList* dl, ImVec2 at, float size, uint32_t w, uint32_t h,
 
 }  // namespace
 
-void drawABPanel(ABView& v, float viewRight, float viewBottom) {
+void drawABPanel(live::ABState& v, float viewRight, float viewBottom) {
   if (v.results.empty() && v.note.empty()) return;
   const float panelW = 300;
   ImGui::SetNextWindowPos(ImVec2(viewRight - panelW - 10, viewBottom - 10), ImGuiCond_Always, ImVec2(0, 1));
@@ -95,37 +59,38 @@ void drawABPanel(ABView& v, float viewRight, float viewBottom) {
     ImGui::Text("A/B %.0f ms, edit %.0f ms", v.abMs, v.editMs);
 
     int show = int(v.show);
-    ImGui::RadioButton("old", &show, int(ABView::Show::Old));
+    ImGui::RadioButton("old", &show, int(live::ABState::Show::Old));
     ImGui::SameLine();
-    ImGui::RadioButton("new", &show, int(ABView::Show::New));
+    ImGui::RadioButton("new", &show, int(live::ABState::Show::New));
     ImGui::SameLine();
-    ImGui::RadioButton("split", &show, int(ABView::Show::Split));
+    ImGui::RadioButton("split", &show, int(live::ABState::Show::Split));
     ImGui::SameLine();
-    ImGui::RadioButton("diff", &show, int(ABView::Show::Difference));
-    v.show = ABView::Show(show);
+    ImGui::RadioButton("diff", &show, int(live::ABState::Show::Difference));
+    v.show = live::ABState::Show(show);
     if (v.width > 0) {
       const float size = panelW - 20;
       const ImVec2 at = ImGui::GetCursorScreenPos();
       ImDrawList* dl = ImGui::GetWindowDrawList();
       switch (v.show) {
-        case ABView::Show::Old:
+        case live::ABState::Show::Old:
           drawPixels(dl, at, size, v.width, v.height, v.oldRgba, v.oldRgba, v.width);
           break;
-        case ABView::Show::New:
+        case live::ABState::Show::New:
           drawPixels(dl, at, size, v.width, v.height, v.newRgba, v.newRgba, v.width);
           break;
-        case ABView::Show::Split:
+        case live::ABState::Show::Split:
           drawPixels(dl, at, size, v.width, v.height, v.oldRgba, v.newRgba, v.width / 2);
           dl->AddLine(ImVec2(at.x + size * 0.5f, at.y), ImVec2(at.x + size * 0.5f, at.y + size),
                       IM_COL32(255, 255, 255, 200));
           break;
-        case ABView::Show::Difference:
+        case live::ABState::Show::Difference:
           drawPixels(dl, at, size, v.width, v.height, v.diffRgba, v.diffRgba, v.width);
           break;
       }
       ImGui::Dummy(ImVec2(size, size * float(v.height) / float(std::max(v.width, v.height))));
-      if (v.show == ABView::Show::Split) ImGui::Text("left: old   right: new");
-      if (v.show == ABView::Show::Difference) ImGui::Text("|new - old|: black 0 .. white %.3g", v.diffScale);
+      if (v.show == live::ABState::Show::Split) ImGui::Text("left: old   right: new");
+      if (v.show == live::ABState::Show::Difference)
+        ImGui::Text("|new - old|: black 0 .. white %.3g", v.diffScale);
     }
     if (!v.decided) {
       if (ImGui::Button("Revert")) v.revertRequested = true;

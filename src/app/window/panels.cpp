@@ -20,25 +20,18 @@ std::string relativeToRoot(const std::filesystem::path& p) {
   return ec || rel.empty() ? p.string() : rel.string();
 }
 
-// The mode whose renderer draws the image: while another one is being made, its controls wait for it.
-render::RenderMode activeMode(const PanelContext& c) {
-  return c.hybrid ? c.hybrid->mode() : render::RenderMode::PathTrace;
-}
-
 // The parameters of the active mode (render/parameters.h), then the window's own controls.
 void renderPanel(PanelContext& c) {
-  auto& st = c.state;
-  const render::RenderMode mode = activeMode(c);
+  auto& st = c.session.state();
+  // The mode whose renderer draws the image: while another one is being made, its controls wait for it.
+  const render::RenderMode mode = c.session.mode();
   drawParameterGroup("Render", st.params, mode);
   if (mode != render::RenderMode::PathTrace) {
     ImGui::Separator();
     drawParameterGroup("Hybrid", st.params, mode);
-    if (c.hybrid) {
-      ImGui::TextDisabled("in use: sun angle %.2f deg, AO radius %.3g",
-                          2.0 * glm::degrees(std::acos(std::clamp(c.hybrid->sunCosAngle(), -1.0f, 1.0f))),
-                          c.hybrid->aoRadius());
-    }
   }
+  if (const std::string inUse = c.session.modeInUse(); !inUse.empty())
+    ImGui::TextDisabled("%s", inUse.c_str());
   ImGui::Separator();
   if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
   ImGui::SameLine();
@@ -46,10 +39,10 @@ void renderPanel(PanelContext& c) {
   ImGui::SameLine();
   if (ImGui::Button("Reset camera")) st.resetCamera = true;
   if (st.fixedSize) {
-    ImGui::Text("trace size %ux%u (--size)", c.traceWidth, c.traceHeight);
+    ImGui::Text("trace size %ux%u (--size)", c.session.imageWidth(), c.session.imageHeight());
   }
   ImGui::SliderFloat("resolution scale", &st.resolutionScale, 0.1f, 1.0f, "%.2f");
-  if (mode == render::RenderMode::PathTrace) ImGui::Checkbox("preview after changes", &st.preview);
+  if (c.session.previews()) ImGui::Checkbox("preview after changes", &st.preview);
   ImGui::SliderFloat("trace budget ms", &st.budgetMs, 5.0f, 200.0f, "%.0f");
   ImGui::Checkbox("vsync", &st.vsync);
   ImGui::SameLine();
@@ -71,14 +64,14 @@ void renderPanel(PanelContext& c) {
 }
 
 void inspectPanel(PanelContext& c) {
-  auto& st = c.state;
-  const bool pathTracing = activeMode(c) == render::RenderMode::PathTrace;
-  if (pathTracing) {
+  auto& st = c.session.state();
+  const bool debugViews = c.session.displayFrame().debugViews;
+  if (debugViews) {
     drawParameter(*render::findParameter("view").info, st.params);
   } else {
     ImGui::TextDisabled("debug views are the path tracer's");
   }
-  if (c.inspector) drawInspectorSection(st, *c.inspector, pathTracing);
+  drawInspectorSection(st, c.session.inspection(), debugViews);
   ImGui::Separator();
   ImGui::TextDisabled("hover the image to pick; click to pin");
   if (!c.pick) {
@@ -109,14 +102,14 @@ void inspectPanel(PanelContext& c) {
                       m.alphaCutoff, m.baseColorTexture, m.normalTexture, m.metallicRoughnessTexture,
                       m.emissiveTexture);
   if (changed) st.materialsDirty = true;
-  if (ImGui::Button("Revert material") && size_t(p.material) < c.scene.materials.size()) {
-    m = c.scene.materials[size_t(p.material)];
+  if (ImGui::Button("Revert material") && size_t(p.material) < c.session.render().scene().materials.size()) {
+    m = c.session.render().scene().materials[size_t(p.material)];
     st.materialsDirty = true;
   }
 }
 
 void lightsPanel(PanelContext& c) {
-  auto& st = c.state;
+  auto& st = c.session.state();
   if (st.lights.empty()) ImGui::TextDisabled("the scene has no directional light");
   for (size_t i = 0; i < st.lights.size(); ++i) {
     ImGui::PushID(int(i));
@@ -140,30 +133,30 @@ void lightsPanel(PanelContext& c) {
       l.radiance = colour * intensity;
       st.lightsDirty = true;
     }
-    if (ImGui::Button("Revert light") && i < c.scene.lights.size()) {
-      l = c.scene.lights[i];
+    if (ImGui::Button("Revert light") && i < c.session.render().scene().lights.size()) {
+      l = c.session.render().scene().lights[i];
       st.lightsDirty = true;
     }
     ImGui::PopID();
   }
   ImGui::Separator();
   ImGui::TextUnformatted("environment");
-  drawParameterGroup("Environment", st.params, activeMode(c));
+  drawParameterGroup("Environment", st.params, c.session.mode());
   if (!st.envError.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", st.envError.c_str());
 }
 
 void shadersPanel(PanelContext& c) {
-  bool autoReload = c.hot.autoReload();
-  if (ImGui::Checkbox("auto reload on save", &autoReload)) c.hot.setAutoReload(autoReload);
+  bool autoReload = c.session.loop().hot().autoReload();
+  if (ImGui::Checkbox("auto reload on save", &autoReload)) c.session.loop().hot().setAutoReload(autoReload);
   ImGui::SameLine();
-  if (ImGui::Button("Reload all (F5)")) c.state.reloadShaders = true;
-  const std::string err = c.hot.currentError();
+  if (ImGui::Button("Reload all (F5)")) c.session.state().reloadShaders = true;
+  const std::string err = c.session.loop().hot().currentError();
   if (!err.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
     ImGui::TextWrapped("%s", err.c_str());
     ImGui::PopStyleColor();
   }
-  const auto files = c.library.fileStatuses();
+  const auto files = c.session.render().library().fileStatuses();
   if (ImGui::BeginTable("files", 4, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
     ImGui::TableSetupColumn("file", ImGuiTableColumnFlags_WidthStretch);
     ImGui::TableSetupColumn("status");
@@ -204,7 +197,7 @@ void shadersPanel(PanelContext& c) {
     }
     ImGui::TreePop();
   }
-  const auto history = c.hot.history();
+  const auto history = c.session.loop().hot().history();
   if (ImGui::TreeNodeEx("reload history", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (auto it = history.rbegin(); it != history.rend() && it - history.rbegin() < 12; ++it) {
       const auto& e = *it;
@@ -227,18 +220,18 @@ void shadersPanel(PanelContext& c) {
 }
 
 void errorSection(PanelContext& c) {
-  const auto& le = *c.liveError;
+  const auto& le = c.session.liveError();
   static std::string refEdit;
   static bool refInit = false;
   if (!refInit) {
-    refEdit = c.state.referencePath;
+    refEdit = c.session.state().referencePath;
     refInit = true;
   }
   ImGui::InputText("##reference", &refEdit);
   ImGui::SameLine();
-  if (ImGui::Button("Load ref")) c.state.referencePath = refEdit;
+  if (ImGui::Button("Load ref")) c.session.state().referencePath = refEdit;
   ImGui::SameLine();
-  if (ImGui::Button("Clear")) c.state.referencePath = refEdit = "";
+  if (ImGui::Button("Clear")) c.session.state().referencePath = refEdit = "";
   if (!le.error().empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", le.error().c_str());
   const auto last = le.latest();
   if (!last) {
@@ -266,20 +259,23 @@ void errorSection(PanelContext& c) {
 }
 
 void statsPanel(PanelContext& c) {
-  const auto& pt = c.progressive;
+  const auto& pt = c.session.progressive();
   std::string target;
-  if (c.state.params.render.spp) target.append(" / ").append(std::to_string(c.state.params.render.spp));
-  const bool preview = !c.hybrid && pt.inPreview();
-  ImGui::Text("%s %u%s%s", c.hybrid ? "frames" : "samples", c.samples, target.c_str(),
-              preview ? "  (preview)" : "");
-  ImGui::Text("trace %ux%u  elapsed %.1f s", c.traceWidth, c.traceHeight, c.secondsSinceReset);
-  if (c.hybrid) {  // the path tracer's counters and rates describe another renderer
-    ImGui::Text("frames/s %.1f", c.samples / std::max(c.secondsSinceReset, 1e-6));
+  if (c.session.state().params.render.spp)
+    target.append(" / ").append(std::to_string(c.session.state().params.render.spp));
+  ImGui::Text("%s %u%s%s", c.session.sampleUnit(), c.session.samples(), target.c_str(),
+              c.session.inPreview() ? "  (preview)" : "");
+  ImGui::Text("trace %ux%u  elapsed %.1f s", c.session.imageWidth(), c.session.imageHeight(),
+              c.session.secondsSinceReset());
+  if (c.session.counters().pathCount == 0) {  // a renderer that does not count paths and rays
+    ImGui::Text("%s/s %.1f", c.session.sampleUnit(),
+                c.session.samples() / std::max(c.session.secondsSinceReset(), 1e-6));
   } else {
-    const double secs = std::max(c.traceSeconds, 1e-6);
-    ImGui::Text("paths/s %s  rays/s %s", humanCount(c.counters.pathCount / secs).c_str(),
-                humanCount(c.counters.rayCount / secs).c_str());
-    ImGui::Text("tracer rate %.0f px/ms  NaN/Inf dropped %u", pt.pixelsPerMs(), c.counters.droppedSamples);
+    const double secs = std::max(c.session.gpuTraceSeconds(), 1e-6);
+    ImGui::Text("paths/s %s  rays/s %s", humanCount(c.session.counters().pathCount / secs).c_str(),
+                humanCount(c.session.counters().rayCount / secs).c_str());
+    ImGui::Text("tracer rate %.0f px/ms  NaN/Inf dropped %u", pt.pixelsPerMs(),
+                c.session.counters().droppedSamples);
   }
   const auto values = c.frames.values();
   char overlay[96];
@@ -287,8 +283,8 @@ void statsPanel(PanelContext& c) {
                 c.frames.mean(), c.frames.max());
   ImGui::PlotLines("##frametimes", values.data(), int(values.size()), 0, overlay, 0.0f,
                    std::max(50.0f, c.frames.max() * 1.1f), ImVec2(ImGui::GetContentRegionAvail().x, 60));
-  if (c.liveError) errorSection(c);
-  ImGui::TextDisabled("%s", c.deviceName.c_str());
+  errorSection(c);
+  ImGui::TextDisabled("%s", c.session.render().context().deviceName().c_str());
 }
 
 }  // namespace
@@ -312,7 +308,7 @@ float sidePanelWidth(float windowWidth) {
 }
 
 float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
-  if (!c.state.showPanel) return 0.0f;
+  if (!c.session.state().showPanel) return 0.0f;
   const float width = sidePanelWidth(windowWidth);
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(width, windowHeight));
@@ -323,9 +319,9 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
   if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) renderPanel(c);
   if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) statsPanel(c);
   // A pixel was just picked: open the Inspect section and scroll the panel to it.
-  const bool showInspect = c.state.inspectOpenPanel > 0;
+  const bool showInspect = c.session.state().inspectOpenPanel > 0;
   if (showInspect) {
-    --c.state.inspectOpenPanel;
+    --c.session.state().inspectOpenPanel;
     ImGui::SetNextItemOpen(true);
   }
   if (ImGui::CollapsingHeader("Inspect")) {
@@ -333,7 +329,7 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
     inspectPanel(c);
   }
   if (ImGui::CollapsingHeader("Lights and environment")) lightsPanel(c);
-  if (ImGui::CollapsingHeader("Shaders", c.hot.currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+  if (ImGui::CollapsingHeader("Shaders", c.session.loop().hot().currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     shadersPanel(c);
   ImGui::PopItemWidth();
   ImGui::End();
@@ -341,22 +337,20 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
 }
 
 void drawOverlays(PanelContext& c, const Rect& view) {
-  if (c.inspector) {
-    const float radius = 0.5f * glm::length(c.scene.bounds.max - c.scene.bounds.min);
-    drawInspectorOverlay(c.state, *c.inspector, c.camera.state(), c.traceWidth, c.traceHeight, view,
-                         std::max(radius, 1e-3f));
+  {
+    const float radius =
+        0.5f * glm::length(c.session.render().scene().bounds.max - c.session.render().scene().bounds.min);
+    drawInspectorOverlay(c.session.state(), c.session.inspection(), c.camera.state(), c.session.imageWidth(),
+                         c.session.imageHeight(), view, std::max(radius, 1e-3f));
   }
   ImDrawList* dl = ImGui::GetForegroundDrawList();
-  const auto& pt = c.progressive;
   char status[192];
-  const bool done =
-      c.hybrid ? c.state.params.render.spp > 0 && c.samples >= c.state.params.render.spp : pt.done();
-  std::snprintf(
-      status, sizeof status, "%s%u %s%s  %ux%u  %.1f s  shown every %.0f ms%s",
-      c.hybrid ? (c.state.params.mode == render::RenderMode::Reflections ? "reflections  " : "hybrid  ") : "",
-      c.samples, c.hybrid ? "frames" : "spp", !c.hybrid && pt.inPreview() ? " (preview)" : "", c.traceWidth,
-      c.traceHeight, c.secondsSinceReset, c.frames.last(),
-      c.state.paused ? "  PAUSED" : (done ? "  done" : ""));
+  const bool done = !c.session.tracing() && !c.session.state().paused;
+  std::snprintf(status, sizeof status, "%s  %u %s%s  %ux%u  %.1f s  shown every %.0f ms%s",
+                render::renderModeName(c.session.mode()), c.session.samples(), c.session.sampleUnit(),
+                c.session.inPreview() ? " (preview)" : "", c.session.imageWidth(), c.session.imageHeight(),
+                c.session.secondsSinceReset(), c.frames.last(),
+                c.session.state().paused ? "  PAUSED" : (done ? "  done" : ""));
   const ImVec2 pos(view.x + 6, view.y + view.h - ImGui::GetTextLineHeight() - 6);
   const ImVec2 size = ImGui::CalcTextSize(status);
   dl->AddRectFilled(ImVec2(pos.x - 3, pos.y - 2), ImVec2(pos.x + size.x + 3, pos.y + size.y + 2),
@@ -366,12 +360,13 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   // Top right: a rebuild or a mode switch in progress (stage, elapsed), else what the last edit cost.
   char busy[192] = "";
   bool active = true;
-  const auto hs = c.hot.status();
+  const auto hs = c.session.loop().hot().status();
   if (hs.stage != live::HotReload::Status::Stage::Idle) {
     std::snprintf(busy, sizeof busy, "%s  %.1f s", live::HotReload::stageName(hs.stage), hs.elapsedMs * 1e-3);
-  } else if (!c.modeSwitch.empty()) {
-    std::snprintf(busy, sizeof busy, "preparing %s  %.1f s", c.modeSwitch.c_str(), c.modeSwitchSeconds);
-  } else if (const auto last = c.hot.lastEvent(); last && last->ok) {
+  } else if (!c.session.modeSwitch().empty()) {
+    std::snprintf(busy, sizeof busy, "preparing %s  %.1f s", c.session.modeSwitch().c_str(),
+                  c.session.modeSwitchSeconds());
+  } else if (const auto last = c.session.loop().hot().lastEvent(); last && last->ok) {
     active = false;
     const auto& e = *last;
     if (e.pipelinesRebuilt.empty()) {
@@ -392,7 +387,7 @@ void drawOverlays(PanelContext& c, const Rect& view) {
     dl->AddText(bp, IM_COL32(255, 255, 255, 255), busy);
   }
 
-  const std::string err = c.hot.currentError();
+  const std::string err = c.session.loop().hot().currentError();
   if (err.empty()) return;
   std::string text = "shader error (still rendering with the last good pipeline):\n";
   // Paths relative to the shader folder keep the banner readable.

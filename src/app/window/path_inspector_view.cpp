@@ -7,7 +7,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
-#include "app/window/panels.h"
 #include "render/path_tracer.h"
 #include "shared/brdf.h"
 
@@ -133,7 +132,7 @@ void vertexTooltip(const render::InspectedVertex& iv) {
   ImGui::EndTooltip();
 }
 
-void hybridSection(const InspectorView& view) {
+void hybridSection(const live::PixelInspection& view) {
   if (!view.hybrid() || view.hybrid()->frameIndex == WB_HYBRID_NO_INSPECT) {
     ImGui::TextDisabled("waiting for a frame");
     return;
@@ -193,47 +192,6 @@ void drawHybridRays(ImDrawList* dl, const Projector& pr, const gpu::HybridInspec
 
 }  // namespace
 
-void InspectorView::clear() {
-  pixel_.reset();
-  samples_.clear();
-  estimate_ = {};
-  nextSample_ = 0;
-  generation_ = ~0ull;
-}
-
-void InspectorView::update(const render::PathTracer& tracer, uint32_t finished, uint64_t generation) {
-  const auto& request = tracer.inspection();
-  if (!request) {
-    clear();
-    return;
-  }
-  const glm::uvec2 pixel(request->x, request->y);
-  if (generation != generation_ || pixel_ != pixel) {
-    estimate_ = {};
-    nextSample_ = 0;
-    generation_ = generation;
-    pixel_ = pixel;
-  }
-  samples_ = render::inspectedSamples(tracer.readInspection(), finished);
-  for (const auto& s : samples_) {
-    if (s.record.sampleIndex < nextSample_) continue;
-    if (s.record.accumulated) {
-      estimate_.add(glm::dvec3(s.record.radiance));
-    } else {
-      estimate_.addDropped();
-    }
-  }
-  nextSample_ = std::max(nextSample_, finished);
-}
-
-const render::InspectedSample* InspectorView::shown(int shown) const {
-  if (samples_.empty()) return nullptr;
-  if (shown < 0) return &samples_.back();
-  for (const auto& s : samples_)
-    if (s.record.sampleIndex == uint32_t(shown)) return &s;
-  return nullptr;
-}
-
 std::optional<glm::vec2> projectToImage(const render::CameraState& camera, uint32_t width, uint32_t height,
                                         const glm::vec3& p) {
   glm::mat4 proj = glm::perspective(camera.yfov, float(width) / float(height), camera.znear, 1000.0f);
@@ -244,7 +202,7 @@ std::optional<glm::vec2> projectToImage(const render::CameraState& camera, uint3
   return (glm::vec2(clip) / clip.w + 1.0f) * 0.5f * glm::vec2(width, height);
 }
 
-void drawInspectorSection(WorkbenchState& st, const InspectorView& view, bool pathTracing) {
+void drawInspectorSection(live::SessionState& st, const live::PixelInspection& view, bool pathTracing) {
   ImGui::Separator();
   ImGui::TextUnformatted(pathTracing ? "path inspector" : "ray inspector");
   ImGui::Checkbox("click picks the pixel", &st.inspectOnClick);
@@ -338,7 +296,7 @@ void drawInspectorSection(WorkbenchState& st, const InspectorView& view, bool pa
   }
 }
 
-void drawInspectorOverlay(const WorkbenchState& st, const InspectorView& view,
+void drawInspectorOverlay(const live::SessionState& st, const live::PixelInspection& view,
                           const render::CameraState& camera, uint32_t traceWidth, uint32_t traceHeight,
                           const Rect& image, float sceneRadius) {
   if (!st.inspectPixel || (view.samples().empty() && !view.hybrid()) || traceWidth == 0 || traceHeight == 0)

@@ -72,7 +72,7 @@ void WindowCommand::addFlags(CLI::App& cli) {
   cli.add_option("--reference", o.reference,
                  "converged .exr of the same view: the Stats panel shows the running error against it");
   cli.add_option("--script", o.scriptPath, "run scripted commands (see src/app/window/script.h)");
-  cli.add_option("--set", o.sets, "NAME=VALUE setting at start; names: " + settingNamesHelp());
+  cli.add_option("--set", o.sets, "NAME=VALUE setting at start; names: " + live::settingNamesHelp());
   cli.add_option("--imgui-ini", o.imguiIni, "read and write the panel layout in this file (default: none)");
   cli.add_flag("--no-vsync", o.noVsync, "present with MAILBOX/IMMEDIATE instead of FIFO");
   cli.add_option("--out", headlessOut_,

@@ -1,87 +1,72 @@
-// The workbench window: set-up and tear-down, hot reload targets, access to the renderer of the current mode.
 #include "app/window/workbench_window.h"
 
-#include "common/env.h"
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <stdexcept>
 
-#include "common/paths.h"
+#include "app/window/ab_panel.h"
+#include "app/window/window_report.h"
+#include "common/json_text.h"
 
 namespace wb::app {
+namespace {
 
-float sceneRadius(const scene::Scene& s) {
-  return std::max(0.5f * glm::length(s.bounds.max - s.bounds.min), 1e-3f);
+// While converging untouched, the image is presented this often; between presents the loop only traces.
+constexpr double kIdlePresentSeconds = 1.0;
+// Input within this long keeps every frame presented (the user is interacting).
+constexpr double kInteractionSeconds = 0.5;
+// The trace time of one trace-only submission: input that arrives meanwhile waits at most this long.
+constexpr double kTraceOnlyBudgetMs = 50.0;
+
+double secondsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
 }
 
-WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : window_(window), options_(o) {
-  state_.params = o.render.params;
-  state_.params.render.aov = true;  // the debug views read the AOV images
+live::LiveSession::Options sessionOptions(GLFWwindow* window, const WindowOptions& o) {
+  live::LiveSession::Options so;
+  auto& st = so.state;
+  st.params = o.render.params;
   // The target spp: --spp when given, else keep refining.
-  state_.params.render.spp = o.render.flags.given("spp") ? o.render.params.render.spp : 0;
-  state_.resolutionScale = o.scale;
-  state_.fixedSize = o.sizeGiven;
-  state_.fixedWidth = o.render.params.render.width;
-  state_.fixedHeight = o.render.params.render.height;
-  state_.vsync = !o.noVsync;
-  state_.referencePath = o.reference;
-
+  st.params.render.spp = o.render.flags.given("spp") ? o.render.params.render.spp : 0;
+  st.resolutionScale = o.scale;
+  st.fixedSize = o.sizeGiven;
+  st.fixedWidth = o.render.params.render.width;
+  st.fixedHeight = o.render.params.render.height;
+  st.vsync = !o.noVsync;
+  st.referencePath = o.reference;
+  (void)window;
   uint32_t extCount = 0;
   const char** exts = glfwGetRequiredInstanceExtensions(&extCount);
   if (!exts) throw std::runtime_error("GLFW found no Vulkan surface support on this display");
-  render::SessionOptions so;
-  so.scenePath = o.render.scene;
-  so.settings = state_.params.render;
-  so.settings.width = so.settings.height = 64;  // resized to the view once the window is laid out
-  so.context.deviceName = o.render.device;
-  so.context.instanceExtensions.assign(exts, exts + extCount);
-  so.context.presentation = true;
-  so.hybrid = o.render.params.hybrid;  // the mode is applied with the first frame, at the trace size
-  session_ = std::make_unique<render::RenderSession>(so);
-  auto& ctx = session_->context();
+  so.session.scenePath = o.render.scene;
+  so.session.context.deviceName = o.render.device;
+  so.session.context.instanceExtensions.assign(exts, exts + extCount);
+  so.session.context.presentation = true;
+  return so;
+}
 
-  makeSwapchain();
-  display_ =
-      std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass(), swapchain_->format());
-  input_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
-  gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
-  progressive_ = std::make_unique<ProgressiveTracer>(ctx, session_->pathTracer());
-  capture_ = std::make_unique<SwapchainCapture>(ctx);
+}  // namespace
 
-  state_.materials = session_->scene().materials;
-  state_.lights = session_->scene().lights;
-  applied_ = state_;
-  camera_.reset(session_->scene().camera, sceneRadius(session_->scene()));
-
-  live::EditLoopOptions lo;
-  lo.ab = ab_.enabled;
-  loop_ = std::make_unique<live::EditLoop>(*session_, lo);  // every renderer, the modes made later too
-  loop_->addPass(display_->pass());
-  loop_->start([] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
-  applyMode(true);  // the mode the window opens in (--mode) is there from the first frame
-
-  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pi.queueFamilyIndex = ctx.queueFamily();
-  WB_VK(vkCreateCommandPool(ctx.device(), &pi, nullptr, &pool_));
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = pool_;
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 1;
-  WB_VK(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_));
-  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  WB_VK(vkCreateFence(ctx.device(), &fi, nullptr, &fence_));
-  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  WB_VK(vkCreateSemaphore(ctx.device(), &si, nullptr, &imageAvailable_));
-  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = 3;
-  WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &queries_));
-
+WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o)
+    : window_(window), options_(o), vsync_(!o.noVsync) {
+  session_ = std::make_unique<live::LiveSession>(sessionOptions(window, o));
+  events_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
+  presenter_ = std::make_unique<Presenter>(session_->render().context(), session_->render().library(),
+                                           window_, vsync_, o.imguiIni);
+  input_ = std::make_unique<WindowInput>(window_, *events_, *session_);
+  session_->loop().addPass(presenter_->display().pass());
+  session_->start(
+      [] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
   for (const auto& s : o.sets) {
     const auto nameValue = render::splitAssignment(s);
     if (!nameValue) throw std::invalid_argument("--set: expected NAME=VALUE, got '" + s + "'");
-    applySetting(state_, nameValue->first, nameValue->second);
+    live::applySetting(session_->state(), nameValue->first, nameValue->second);
   }
   if (!o.scriptPath.empty()) {
     script_ = Script::fromFile(o.scriptPath);
@@ -89,133 +74,241 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   }
 }
 
-void WorkbenchWindow::makeSwapchain() {
-  auto& ctx = session_->context();
-  const std::string device = " (" + ctx.deviceName() + ")";
-  VkSurfaceKHR surface = VK_NULL_HANDLE;
-  if (glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface) != VK_SUCCESS)
-    throw PresentationUnavailable("cannot create a Vulkan surface for the window" + device);
-  try {
-    swapchain_ = std::make_unique<vk::Swapchain>(ctx, surface);
-  } catch (const std::exception& e) {
-    vkDestroySurfaceKHR(ctx.instance(), surface, nullptr);
-    throw PresentationUnavailable(e.what() + device);
-  }
-  int fbw = 0, fbh = 0;
-  glfwGetFramebufferSize(window_, &fbw, &fbh);
-  try {
-    if (env::enabled("WB_SIMULATE_NO_PRESENT"))
-      throw std::runtime_error("vkCreateSwapchainKHR failed with VK_ERROR_UNKNOWN (WB_SIMULATE_NO_PRESENT)");
-    swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), state_.vsync);
-  } catch (const std::exception& e) {
-    swapchain_.reset();  // destroys the surface too
-    throw PresentationUnavailable(e.what() + device);
-  }
-}
-
 WorkbenchWindow::~WorkbenchWindow() {
-  if (loop_) loop_->hot().stop();
-  if (!session_) return;
-  VkDevice d = session_->context().device();
-  session_->context().waitIdle();
-  if (queries_) vkDestroyQueryPool(d, queries_, nullptr);
-  if (imageAvailable_) vkDestroySemaphore(d, imageAvailable_, nullptr);
-  if (fence_) vkDestroyFence(d, fence_, nullptr);
-  if (pool_) vkDestroyCommandPool(d, pool_, nullptr);
-  capture_.reset();
-  gui_.reset();
-  display_.reset();
-  swapchain_.reset();
-  progressive_.reset();
-  ab_.installed.clear();  // the old pipelines kept for Revert
-  loop_.reset();          // its passes are the session's renderers' and the display's
+  if (session_) session_->loop().hot().stop();
+  input_.reset();
+  presenter_.reset();  // its display pass is one of the loop's passes: the loop stops reloading first
+  events_.reset();
   session_.reset();
 }
 
 void WorkbenchWindow::scriptCommand(const std::string& name) {
-  if (name == "reset_camera") state_.resetCamera = true;
-  if (name == "reset") state_.resetAccumulation = true;
-  if (name == "reload") state_.reloadShaders = true;
-  if (name == "quit") state_.quit = true;
-  if (name == "ab_revert") ab_.revertRequested = true;
-  if (name == "ab_accept") ab_.acceptRequested = true;
+  auto& st = session_->state();
+  if (name == "reset_camera") st.resetCamera = true;
+  if (name == "reset") st.resetAccumulation = true;
+  if (name == "reload") st.reloadShaders = true;
+  if (name == "quit") st.quit = true;
+  if (name == "ab_revert") session_->ab().revertRequested = true;
+  if (name == "ab_accept") session_->ab().acceptRequested = true;
+}
+
+void WorkbenchWindow::scriptResize(int width, int height) {
+  glfwSetWindowSize(window_, width, height);
+}
+
+void WorkbenchWindow::scriptInspect(const std::string& path) {
+  writeInspection(*session_, path);
+}
+
+void WorkbenchWindow::scriptSwitchMode(const std::string& mode) {
+  live::applySetting(session_->state(), "mode", mode);
+  session_->apply();  // starts the switch; the frames that follow complete it
+}
+
+void WorkbenchWindow::writeStats(const std::string& path) {
+  nlohmann::json j = sessionStatsJson(*session_);
+  j["frames"] = frameCount_;
+  j["trace_only_submits"] = traceOnlySubmits_;  // trace submissions between presents while converging
+  j["key_presses"] = input_->keyPresses();      // the window's keys (F5, F12, Tab, Home) acted on
+  j["panel_visible"] = session_->state().showPanel;
+  const auto& sc = presenter_->swapchain();
+  j["window_width"] = sc.extent().width;
+  j["window_height"] = sc.extent().height;
+  j["present_mode"] = vk::presentModeName(sc.presentMode());
+  j["frame_ms"] = {
+      {"last", frames_.last()},           {"mean", frames_.mean()}, {"p50", frames_.percentile(0.5f)},
+      {"p95", frames_.percentile(0.95f)}, {"max", frames_.max()},   {"count", frames_.count()}};
+  j["trace_gpu_ms_last"] = presenter_->traceMs();
+  j["display_gpu_ms_last"] = presenter_->displayMs();
+  j["parameters"] = parametersJson(*session_, input_->camera());
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error("cannot write stats '" + path + "'");
+  f << jsonText(j, 2) << "\n";
 }
 
 Rect WorkbenchWindow::imageRect(const Rect& view) const {
-  const auto& s = session_->pathTracer().settings();
-  const float tw = float(progressive_->targetWidth()), th = float(progressive_->targetHeight());
-  (void)s;
+  const float tw = float(session_->traceWidth()), th = float(session_->traceHeight());
   const float scale = std::min(view.w / tw, view.h / th);
   const float w = std::max(1.0f, std::floor(tw * scale)), h = std::max(1.0f, std::floor(th * scale));
   return {std::floor(view.x + (view.w - w) * 0.5f), std::floor(view.y + (view.h - h) * 0.5f), w, h};
 }
 
-void WorkbenchWindow::applyMode(bool wait) {
-  if (session_->mode() == state_.params.mode) {
-    if (!modeSwitch_.empty()) modeSwitchTimer_.cancelled();  // switched back before the other mode was ready
-    modeSwitch_.clear();
+bool WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
+  if (!presenter_->finish()) return false;
+  session_->traceTimed(presenter_->tracedPixels(), presenter_->traceMs());
+  session_->frameFinished(frameBegin);
+  // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
+  // cores: the panel and the present cost CPU time besides the trace budget.
+  const auto until = session_->loop().restUntil(frameBegin, Clock::now(),
+                                                session_->render().context().policy().windowRestRatio);
+  // Input still wakes the loop's event queue; it is handled with the next frame.
+  for (auto t = Clock::now(); session_->loop().compiling() && t < until; t = Clock::now())
+    glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
+  return true;
+}
+
+bool WorkbenchWindow::traceOnlyAllowed(Clock::time_point now) const {
+  if (!session_->converging() || input_->dragging()) return false;
+  if (!screenshotPath_.empty() || session_->state().saveRequest) return false;
+  if (hasScript_ && !script_.waitingForEvent()) return false;
+  if (secondsBetween(lastInput_, now) < kInteractionSeconds) return false;
+  return secondsBetween(lastPresent_, now) < kIdlePresentSeconds;
+}
+
+bool WorkbenchWindow::traceWhileConverging(int& exitCode) {
+  // Input, a rebuild or a script step ends it at once; the script's waits are checked after each submission.
+  while (!presenter_->frameInFlight() && traceOnlyAllowed(Clock::now()) &&
+         session_->beginTraceOnly(kTraceOnlyBudgetMs) &&
+         presenter_->traceOnly([&](VkCommandBuffer cmd) { return session_->recordTrace(cmd); })) {
+    session_->traceTimed(presenter_->tracedPixels(), presenter_->traceMs());
+    session_->traceOnlyFinished();
+    ++traceOnlySubmits_;
+    glfwPollEvents();
+    if (events_->takeActivity()) {
+      lastInput_ = Clock::now();
+      break;
+    }
+    if (hasScript_) {
+      try {
+        if (!script_.step(*this) || !script_.waitingForEvent()) break;
+      } catch (const std::exception& e) {
+        fatalScriptError_ = e.what();
+        exitCode = 1;
+        return false;
+      }
+    }
+  }
+  return !session_->state().quit;
+}
+
+bool WorkbenchWindow::nothingToDo() const {
+  return !session_->tracing() && !session_->busy() && !input_->dragging() && screenshotPath_.empty() &&
+         !session_->state().saveRequest && (!hasScript_ || script_.waitingForEvent()) && !options_.frames;
+}
+
+bool WorkbenchWindow::stepScript(int& exitCode) {
+  if (!hasScript_ || !screenshotPath_.empty()) return true;  // a requested screenshot is drawn first
+  try {
+    // A finished script still lets a requested screenshot reach the screen.
+    return script_.step(*this) || options_.frames || !screenshotPath_.empty();
+  } catch (const std::exception& e) {
+    fatalScriptError_ = e.what();
+    exitCode = 1;
+    return false;
+  }
+}
+
+void WorkbenchWindow::applyWindowRequests() {
+  auto& st = session_->state();
+  if (st.resetCamera) {
+    input_->resetCamera();
+    st.resetCamera = false;
+  }
+  if (st.vsync != vsync_) {
+    vsync_ = st.vsync;
+    presenter_->setVsync(vsync_);
+  }
+}
+
+void WorkbenchWindow::drawFrame(float dt) {
+  if (!presenter_->beginFrame()) return;
+  auto& st = session_->state();
+  const auto& sc = presenter_->swapchain();
+  PanelContext pc{*session_, input_->camera(), input_->pick(), frames_, vk::presentModeName(sc.presentMode()),
+                  lastSaved_};
+  const float W = float(sc.extent().width), H = float(sc.extent().height);
+  const float panelWidth = drawSidePanel(pc, W, H);
+  const Rect view{panelWidth, 0.0f, std::max(W - panelWidth, 1.0f), H};
+  drawOverlays(pc, imageRect(view));
+  drawABPanel(session_->ab(), W, H);
+  input_->handle(view, imageRect(view), dt);
+
+  // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
+  // fixed it; hiding the panel (Tab) shows the same image larger instead of restarting it.
+  if (st.fixedSize) {
+    session_->setTraceSize(uint32_t(std::lround(st.fixedWidth * st.resolutionScale)),
+                           uint32_t(std::lround(st.fixedHeight * st.resolutionScale)));
+  } else {
+    const float traceViewWidth = std::max(W - sidePanelWidth(W), 1.0f);
+    session_->setTraceSize(uint32_t(std::lround(traceViewWidth * st.resolutionScale)),
+                           uint32_t(std::lround(view.h * st.resolutionScale)));
+  }
+  applyWindowRequests();
+  session_->apply();
+  if (st.saveRequest) {
+    try {
+      lastSaved_ = saveRender(*session_, input_->camera(), *st.saveRequest);
+    } catch (const std::exception& e) {
+      lastSaved_ = std::string("save failed: ") + e.what();
+    }
+    st.saveRequest.reset();
+  }
+  session_->beginFrame();
+  const live::DisplayFrame d = session_->displayFrame();
+  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats});
+
+  const Rect image = imageRect(view);
+  gpu::DisplayPush push{};
+  push.viewRect = {image.x, image.y, image.w, image.h};
+  push.imageSize = d.imageSize;
+  push.previewSize = d.previewSize;
+  push.exposureScale = std::exp2(st.params.display.exposure);
+  push.tonemap = uint32_t(st.params.display.tonemap);
+  push.view = d.debugViews ? st.params.display.view : WB_VIEW_BEAUTY;
+  push.encodeSrgb = sc.formatIsSrgb() ? 0u : 1u;
+  push.tracedRows = d.tracedRows;
+  push.sceneScale = sceneRadius(session_->render().scene());
+  push.maxVertices = d.maxVertices;
+
+  const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
+  std::string screenshot;
+  if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty()))
+    screenshot = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
+  if (!presenter_->present([&](VkCommandBuffer cmd) { return session_->recordTrace(cmd); }, push, screenshot))
     return;
-  }
-  render::RenderSettings s = state_.params.render;
-  s.width = progressive_->targetWidth();
-  s.height = progressive_->targetHeight();
-  // The other mode's renderer is made off the frame loop; the current mode keeps drawing until it is ready.
-  const std::string name = render::renderModeName(state_.params.mode);
-  if (!wait && modeSwitch_ != name) {  // a switch the user waits for: timed for the stats
-    modeSwitch_ = name;
-    modeSwitchTimer_.requested(name, Clock::now());
-  }
-  if (!wait && !session_->modeReady(state_.params.mode)) {
-    session_->prepareMode(state_.params.mode, s);
-    return;
-  }
-  session_->setMode(state_.params.mode, s);
-  // A hybrid mode starts its accumulation with the switch: its frames, elapsed time and noise estimate count
-  // from here, not from its last reset (before an earlier switch away, or at startup).
-  if (auto* h = activeHybrid()) {
-    h->resetAccumulation();
-    ++hybridGeneration_;
-    hybridReset_ = Clock::now();
-  }
-  if (!modeSwitch_.empty()) modeSwitchTimer_.tookEffect(Clock::now());
-  modeSwitch_.clear();
+  screenshotPath_.clear();
+  lastPresent_ = Clock::now();
+  ++frameCount_;
 }
 
-void WorkbenchWindow::scriptSwitchMode(const std::string& mode) {
-  applySetting(state_, "mode", mode);
-  applyState();  // starts the switch; the frames that follow complete it
-}
+int WorkbenchWindow::run() {
+  auto last = Clock::now();
+  auto frameBegin = last;  // when the work of the frame in flight began (after any rest)
+  int exitCode = 0;
+  while (!glfwWindowShouldClose(window_) && !session_->state().quit) {
+    glfwPollEvents();
+    finishFrame(frameBegin);
+    if (events_->takeActivity()) lastInput_ = Clock::now();
+    // Converging untouched: trace without drawing or presenting until the next present is due.
+    if (!traceWhileConverging(exitCode)) break;
+    // Nothing to trace and nothing happening: sleep until input (or a short timeout for the panel's clocks
+    // and the script's waits) instead of redrawing the same frame.
+    if (!presenter_->frameInFlight() && nothingToDo() &&
+        secondsBetween(lastInput_, Clock::now()) > kInteractionSeconds) {
+      glfwWaitEventsTimeout(0.25);
+      if (events_->takeActivity()) lastInput_ = Clock::now();
+    }
+    const auto now = Clock::now();
+    const float dt = std::chrono::duration<float>(now - last).count();
+    if (frameCount_ > 0) {
+      frames_.add(std::chrono::duration<float, std::milli>(now - last).count());
+      session_->frameInterval(last, now);
+    }
+    last = now;
+    frameBegin = now;
 
-void WorkbenchWindow::addFrameTime(Clock::time_point begin, Clock::time_point end) {
-  frames_.add(std::chrono::duration<float, std::milli>(end - begin).count());
-  modeSwitchTimer_.frame(begin, end);
-}
-
-uint32_t WorkbenchWindow::currentSamples() const {
-  if (const auto* h = activeHybrid()) return h->samplesAccumulated();
-  return progressive_->samples();
-}
-
-eval::ImageRGBA WorkbenchWindow::currentImage() {
-  return session_->image();
-}
-
-void WorkbenchWindow::updateLiveError() {
-  // Called when no frame is in flight. Only whole samples count: the path tracer's accumulation is read when
-  // a sample has just finished (the progressive tracer stops at sample ends when a checkpoint is due).
-  auto* h = activeHybrid();
-  if (!h && (progressive_->inPreview() || progressive_->cursorRow() != 0)) return;
-  if (h && h->samplesAccumulated() < hybridFramesSeen_) ++hybridGeneration_;  // reset by a pipeline install
-  if (h) hybridFramesSeen_ = h->samplesAccumulated();
-  const uint64_t generation = h ? hybridGeneration_ * 2 + 1 : progressive_->generation() * 2;
-  if (generation != errorGeneration_) {
-    liveError_.restart();
-    errorGeneration_ = generation;
+    if (options_.frames && frameCount_ >= options_.frames) break;
+    if (!stepScript(exitCode)) break;
+    drawFrame(dt);
   }
-  const uint32_t n = currentSamples();
-  const double seconds = h ? std::chrono::duration<double>(Clock::now() - hybridReset_).count()
-                           : progressive_->secondsSinceReset();
-  if (liveError_.wants(n, seconds)) liveError_.add(currentImage(), n, seconds);
+  if (presenter_->finish()) session_->traceOnlyFinished();
+  if (!options_.statsPath.empty()) writeStats(options_.statsPath);
+  std::printf("workbench: %llu frames, %u samples, frame time mean %.1f ms (p95 %.1f ms)\n",
+              static_cast<unsigned long long>(frameCount_), session_->progressive().samples(), frames_.mean(),
+              frames_.percentile(0.95f));
+  if (!fatalScriptError_.empty())
+    std::fprintf(stderr, "workbench: script error: %s\n", fatalScriptError_.c_str());
+  return exitCode;
 }
 
 }  // namespace wb::app

@@ -11,9 +11,9 @@
 #include "render/parameters.h"
 #include "shared/gpu_types.h"
 
-namespace wb::app {
+namespace wb::live {
 
-struct WorkbenchState {
+struct SessionState {
   // Every parameter (render/parameters.h). params.render's size is the view size x resolutionScale (or
   // --size); params.render.spp is the target (0 = keep refining).
   render::Parameters params;
@@ -60,8 +60,8 @@ struct WorkbenchState {
 // Applies NAME=VALUE (or NAME VALUE) to the state: every parameter under its name or its flag's
 // (render/parameters.h), and the window's own settings. Throws std::invalid_argument with a one-line reason;
 // the state is unchanged then.
-void applySetting(WorkbenchState& state, const std::string& name, const std::string& value);
+void applySetting(SessionState& state, const std::string& name, const std::string& value);
 // The names applySetting knows, for --help.
 std::string settingNamesHelp();
 
-}  // namespace wb::app
+}  // namespace wb::live

@@ -5,21 +5,21 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/window/workbench_state.h"
+#include "live/session_state.h"
 
 namespace {
 
 bool refused(const std::string& name, const std::string& value) {
-  wb::app::WorkbenchState st;
+  wb::live::SessionState st;
   try {
-    wb::app::applySetting(st, name, value);
+    wb::live::applySetting(st, name, value);
   } catch (const std::invalid_argument& e) {
     return std::string(e.what()).find(name) != std::string::npos;
   }
   return false;
 }
 
-TEST(WorkbenchState, NumericSettingsAreFiniteAndInRange) {
+TEST(SessionState, NumericSettingsAreFiniteAndInRange) {
   for (const auto& [name, value] :
        std::vector<std::pair<std::string, std::string>>{{"env_rotation", "nan"},
                                                         {"env_rotation", "inf"},
@@ -35,11 +35,11 @@ TEST(WorkbenchState, NumericSettingsAreFiniteAndInRange) {
                                                         {"rr_min", "0"},
                                                         {"budget_ms", "-5"}})
     EXPECT_TRUE(refused(name, value)) << name << "=" << value;
-  wb::app::WorkbenchState st;
-  wb::app::applySetting(st, "env_rotation", "90");
-  wb::app::applySetting(st, "sun_angle", "2.5");
-  wb::app::applySetting(st, "reflection_roughness", "0.25");
-  wb::app::applySetting(st, "env_intensity", "1e30");
+  wb::live::SessionState st;
+  wb::live::applySetting(st, "env_rotation", "90");
+  wb::live::applySetting(st, "sun_angle", "2.5");
+  wb::live::applySetting(st, "reflection_roughness", "0.25");
+  wb::live::applySetting(st, "env_intensity", "1e30");
   EXPECT_FLOAT_EQ(st.params.render.envRotationDeg, 90.0f);
   EXPECT_FLOAT_EQ(st.params.hybrid.sunAngleDeg, 2.5f);
   EXPECT_FLOAT_EQ(st.params.hybrid.reflectionMaxRoughness, 0.25f);
@@ -47,15 +47,15 @@ TEST(WorkbenchState, NumericSettingsAreFiniteAndInRange) {
 }
 
 // One registry: the flag and the setting name the same parameter, with the same range.
-TEST(WorkbenchState, FlagsAndSettingsShareTheRanges) {
+TEST(SessionState, FlagsAndSettingsShareTheRanges) {
   for (const char* name : {"sun_angle", "reflection_roughness", "env_intensity", "rr_exponent"}) {
     const auto* p = wb::render::findParameter(name).info;
     ASSERT_NE(p, nullptr) << name;
     EXPECT_EQ(wb::render::findParameter(p->flag).info, p) << p->flag;
     EXPECT_TRUE(refused(name, "nan")) << name;
     EXPECT_TRUE(refused(name, std::to_string(p->max * 2 + 1))) << name;
-    wb::app::WorkbenchState st;
-    wb::app::applySetting(st, p->flag.substr(2), std::to_string(p->min));  // by the flag's name
+    wb::live::SessionState st;
+    wb::live::applySetting(st, p->flag.substr(2), std::to_string(p->min));  // by the flag's name
     EXPECT_EQ(p->get(st.params), wb::render::parseParameter(*p, std::to_string(p->min))) << name;
   }
 }

@@ -1,9 +1,9 @@
-// ProgressiveTracer's preview levels, on the path tracer of a headless session: a change is previewed at a
+// render::ProgressiveTracer's preview levels, on the path tracer of a headless session: a change is previewed at a
 // quarter of the resolution, a new pipeline (a reset from outside) first at a coarser level chosen from the
 // measured rate, then at a quarter, and both then go on at full resolution as one restart.
 #include <gtest/gtest.h>
 
-#include "app/window/progressive.h"
+#include "render/progressive.h"
 #include "common/paths.h"
 #include "render/render_session.h"
 
@@ -17,7 +17,7 @@ struct ProgressiveFixture : ::testing::Test {
     o.settings.height = 240;
     o.quiet = true;
     session = std::make_unique<wb::render::RenderSession>(o);
-    progressive = std::make_unique<wb::app::ProgressiveTracer>(session->context(), session->pathTracer());
+    progressive = std::make_unique<wb::render::ProgressiveTracer>(session->context(), session->pathTracer());
     progressive->options().budgetMs = 1e6;     // every level in one frame
     progressive->options().stopAtSamples = 1;  // and one sample at full resolution
   }
@@ -43,7 +43,7 @@ struct ProgressiveFixture : ::testing::Test {
   }
 
   std::unique_ptr<wb::render::RenderSession> session;
-  std::unique_ptr<wb::app::ProgressiveTracer> progressive;
+  std::unique_ptr<wb::render::ProgressiveTracer> progressive;
 };
 
 TEST_F(ProgressiveFixture, AChangePreviewsAtAQuarterThenTracesTheFullImage) {

@@ -1,11 +1,11 @@
 // ModeSwitchTimer on made-up times: what the window's stats report for a mode switch.
 #include <gtest/gtest.h>
 
-#include "app/window/mode_switch_timer.h"
+#include "live/mode_switch_timer.h"
 
 namespace {
 
-using wb::app::ModeSwitchTimer;
+using wb::live::ModeSwitchTimer;
 using Clock = ModeSwitchTimer::Clock;
 
 Clock::time_point at(double ms) {

@@ -1,8 +1,8 @@
-#include "app/window/mode_switch_timer.h"
+#include "live/mode_switch_timer.h"
 
 #include <algorithm>
 
-namespace wb::app {
+namespace wb::live {
 namespace {
 
 double msBetween(ModeSwitchTimer::Clock::time_point a, ModeSwitchTimer::Clock::time_point b) {
@@ -38,4 +38,4 @@ void ModeSwitchTimer::frame(Clock::time_point begin, Clock::time_point end) {
   if (framesLeft_ > 0 && --framesLeft_ == 0) timing_ = false;
 }
 
-}  // namespace wb::app
+}  // namespace wb::live

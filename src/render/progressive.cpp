@@ -1,9 +1,9 @@
-#include "app/window/progressive.h"
+#include "render/progressive.h"
 
 #include <algorithm>
 #include <chrono>
 
-namespace wb::app {
+namespace wb::render {
 namespace {
 
 double nowSeconds() {
@@ -30,7 +30,7 @@ constexpr double kMinCoarsePixels = 256.0;
 
 }  // namespace
 
-ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, render::PathTracer& tracer)
+ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, PathTracer& tracer)
     : ctx_(ctx), tracer_(tracer) {
   targetWidth_ = tracer.settings().width;
   targetHeight_ = tracer.settings().height;
@@ -49,7 +49,7 @@ void ProgressiveTracer::setTargetSize(uint32_t width, uint32_t height) {
   invalidate();
 }
 
-void ProgressiveTracer::setSettings(render::RenderSettings settings) {
+void ProgressiveTracer::setSettings(RenderSettings settings) {
   settings.width = tracer_.settings().width;
   settings.height = tracer_.settings().height;
   tracer_.setSettings(settings);
@@ -62,7 +62,7 @@ void ProgressiveTracer::invalidate() {
 
 void ProgressiveTracer::resize(uint32_t width, uint32_t height) {
   if (tracer_.settings().width == width && tracer_.settings().height == height) return;
-  render::RenderSettings s = tracer_.settings();
+  RenderSettings s = tracer_.settings();
   s.width = width;
   s.height = height;
   tracer_.setSettings(s);
@@ -164,7 +164,7 @@ uint64_t ProgressiveTracer::record(VkCommandBuffer cmd) {
   while (traced + w <= pixelBudget || traced == 0) {
     const uint32_t rows =
         std::min<uint32_t>(h - cursor_, std::max<uint32_t>(1u, uint32_t((pixelBudget - traced) / w)));
-    tracer_.recordRegion(cmd, render::PixelRegion{0, cursor_, w, rows});
+    tracer_.recordRegion(cmd, PixelRegion{0, cursor_, w, rows});
     traced += uint64_t(rows) * w;
     cursor_ += rows;
     if (cursor_ >= h) {
@@ -185,4 +185,4 @@ void ProgressiveTracer::reportTraceTime(uint64_t pixels, double ms) {
   pixelsPerMs_ = std::clamp(0.7 * pixelsPerMs_ + 0.3 * measured, 1.0, 1.0e9);
 }
 
-}  // namespace wb::app
+}  // namespace wb::render

@@ -10,7 +10,7 @@
 #include "render/path_tracer.h"
 #include "vk/resources.h"
 
-namespace wb::app {
+namespace wb::render {
 
 struct ProgressiveOptions {
   double budgetMs = 30.0;  // tracing time per frame
@@ -24,7 +24,7 @@ struct ProgressiveOptions {
 
 class ProgressiveTracer {
  public:
-  ProgressiveTracer(vk::Context& ctx, render::PathTracer& tracer);
+  ProgressiveTracer(vk::Context& ctx, PathTracer& tracer);
 
   ProgressiveOptions& options() { return options_; }
   // The full trace resolution (view size x resolution scale, or --size). A change restarts accumulation.
@@ -32,7 +32,7 @@ class ProgressiveTracer {
   uint32_t targetWidth() const { return targetWidth_; }
   uint32_t targetHeight() const { return targetHeight_; }
   // Settings that alter the image (the size in them is ignored: this class owns it). Restarts.
-  void setSettings(render::RenderSettings settings);
+  void setSettings(RenderSettings settings);
   // Something that alters the image changed (camera, materials, lights): restart, with a preview first.
   void invalidate();
 
@@ -64,7 +64,7 @@ class ProgressiveTracer {
   void restart();
 
   vk::Context& ctx_;
-  render::PathTracer& tracer_;
+  PathTracer& tracer_;
   ProgressiveOptions options_;
   uint32_t targetWidth_ = 0, targetHeight_ = 0;
   bool inPreview_ = false;
@@ -80,4 +80,4 @@ class ProgressiveTracer {
   double resetTime_ = 0;
 };
 
-}  // namespace wb::app
+}  // namespace wb::render

@@ -1,11 +1,11 @@
-#include "app/window/workbench_state.h"
+#include "live/session_state.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-namespace wb::app {
+namespace wb::live {
 namespace {
 
 float toFloat(const std::string& name, const std::string& v) {
@@ -55,7 +55,7 @@ const char* kWindowSettings =
     "inspect_pixel X,Y|off, inspect_samples N, inspect_on_click, inspect_all";
 
 // The window's own settings (not render parameters). False when `name` is none of them.
-bool applyWindowSetting(WorkbenchState& st, const std::string& name, const std::string& value) {
+bool applyWindowSetting(SessionState& st, const std::string& name, const std::string& value) {
   if (name == "scale") {
     const float f = toFloat(name, value);
     if (f <= 0.0f || f > 2.0f) throw std::invalid_argument("scale: expected 0 < scale <= 2");
@@ -143,7 +143,7 @@ std::string settingNamesHelp() {
   return render::parameterNames() + " (as their flags too: no_rr, no_nee, ...); " + kWindowSettings;
 }
 
-void applySetting(WorkbenchState& st, const std::string& name, const std::string& value) {
+void applySetting(SessionState& st, const std::string& name, const std::string& value) {
   if (render::findParameter(name).info) {
     render::setParameter(st.params, name, value);
     return;
@@ -152,4 +152,4 @@ void applySetting(WorkbenchState& st, const std::string& name, const std::string
     throw std::invalid_argument("unknown setting '" + name + "' (known: " + settingNamesHelp() + ")");
 }
 
-}  // namespace wb::app
+}  // namespace wb::live

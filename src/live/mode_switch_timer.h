@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace wb::app {
+namespace wb::live {
 
 class ModeSwitchTimer {
  public:
@@ -41,4 +41,4 @@ class ModeSwitchTimer {
   int framesLeft_ = 0;  // frames still timed after the switch took effect (-1: not yet in effect)
 };
 
-}  // namespace wb::app
+}  // namespace wb::live

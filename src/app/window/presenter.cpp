@@ -1,0 +1,212 @@
+#include "app/window/presenter.h"
+
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <cstdio>
+
+#include "common/env.h"
+#include "vk/check.h"
+
+namespace wb::app {
+
+Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindow* window, bool vsync,
+                     const std::string& imguiIni)
+    : ctx_(ctx), window_(window), vsync_(vsync) {
+  const std::string device = " (" + ctx.deviceName() + ")";
+  VkSurfaceKHR surface = VK_NULL_HANDLE;
+  if (glfwCreateWindowSurface(ctx.instance(), window_, nullptr, &surface) != VK_SUCCESS)
+    throw PresentationUnavailable("cannot create a Vulkan surface for the window" + device);
+  try {
+    swapchain_ = std::make_unique<vk::Swapchain>(ctx, surface);
+  } catch (const std::exception& e) {
+    vkDestroySurfaceKHR(ctx.instance(), surface, nullptr);
+    throw PresentationUnavailable(e.what() + device);
+  }
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  try {
+    if (env::enabled("WB_SIMULATE_NO_PRESENT"))
+      throw std::runtime_error("vkCreateSwapchainKHR failed with VK_ERROR_UNKNOWN (WB_SIMULATE_NO_PRESENT)");
+    swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), vsync_);
+  } catch (const std::exception& e) {
+    swapchain_.reset();  // destroys the surface too
+    throw PresentationUnavailable(e.what() + device);
+  }
+  display_ = std::make_unique<DisplayPass>(ctx, library, swapchain_->renderPass(), swapchain_->format());
+  gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, imguiIni);
+  capture_ = std::make_unique<SwapchainCapture>(ctx);
+
+  VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pi.queueFamilyIndex = ctx.queueFamily();
+  WB_VK(vkCreateCommandPool(ctx.device(), &pi, nullptr, &pool_));
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  WB_VK(vkAllocateCommandBuffers(ctx.device(), &ai, &cmd_));
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  WB_VK(vkCreateFence(ctx.device(), &fi, nullptr, &fence_));
+  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  WB_VK(vkCreateSemaphore(ctx.device(), &si, nullptr, &imageAvailable_));
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = 3;
+  WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &queries_));
+}
+
+Presenter::~Presenter() {
+  finish();
+  ctx_.waitIdle();
+  VkDevice d = ctx_.device();
+  if (queries_) vkDestroyQueryPool(d, queries_, nullptr);
+  if (imageAvailable_) vkDestroySemaphore(d, imageAvailable_, nullptr);
+  if (fence_) vkDestroyFence(d, fence_, nullptr);
+  if (pool_) vkDestroyCommandPool(d, pool_, nullptr);
+  capture_.reset();
+  gui_.reset();
+  display_.reset();
+  swapchain_.reset();
+}
+
+void Presenter::setVsync(bool vsync) {
+  if (vsync == vsync_) return;
+  vsync_ = vsync;
+  recreate();
+}
+
+void Presenter::recreate() {
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  // The frame in flight may use the old swapchain; it stays in flight for finish() to account for.
+  if (inFlight_) WB_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  if (swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), vsync_)) gui_->swapchainRecreated(*swapchain_);
+}
+
+bool Presenter::beginFrame() {
+  int fbw = 0, fbh = 0;
+  glfwGetFramebufferSize(window_, &fbw, &fbh);
+  if (fbw == 0 || fbh == 0) {  // minimised: nothing to draw into
+    glfwWaitEventsTimeout(0.1);
+    return false;
+  }
+  if (uint32_t(fbw) != swapchain_->extent().width || uint32_t(fbh) != swapchain_->extent().height) {
+    if (!swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), vsync_)) return false;
+    gui_->swapchainRecreated(*swapchain_);
+  }
+  gui_->beginFrame();
+  return true;
+}
+
+void Presenter::readTimestamps(bool withDisplay) {
+  uint64_t ts[3] = {};
+  const uint32_t count = withDisplay ? 3 : 2;
+  if (vkGetQueryPoolResults(ctx_.device(), queries_, 0, count, sizeof(uint64_t) * count, ts, sizeof(uint64_t),
+                            VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) {
+    return;
+  }
+  const double period = ctx_.timestampPeriodNs() * 1e-6;
+  traceMs_ = double(ts[1] - ts[0]) * period;
+  if (withDisplay) displayMs_ = double(ts[2] - ts[1]) * period;
+}
+
+bool Presenter::finish() {
+  if (!inFlight_) return false;
+  WB_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  inFlight_ = false;
+  readTimestamps(inFlightDisplayed_);
+  if (!captureTarget_.empty()) {
+    capture_->write(captureTarget_);
+    std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
+    std::fflush(stdout);
+    captureTarget_.clear();
+  }
+  return true;
+}
+
+bool Presenter::traceOnly(const TraceRecorder& trace) {
+  finish();
+  WB_VK(vkResetCommandBuffer(cmd_, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  WB_VK(vkBeginCommandBuffer(cmd_, &bi));
+  vkCmdResetQueryPool(cmd_, queries_, 0, 3);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+  tracedPixels_ = trace(cmd_);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+  WB_VK(vkEndCommandBuffer(cmd_));
+  if (tracedPixels_ == 0) return false;
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  WB_VK(vkResetFences(ctx_.device(), 1, &fence_));
+  {
+    std::lock_guard lock(ctx_.queueMutex());
+    WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
+  }
+  inFlight_ = true;
+  inFlightDisplayed_ = false;
+  finish();
+  return true;
+}
+
+bool Presenter::present(const TraceRecorder& trace, const gpu::DisplayPush& push,
+                        const std::string& screenshot) {
+  auto index = swapchain_->acquire(imageAvailable_);
+  if (!index) {
+    ImGui::EndFrame();
+    recreate();
+    return false;
+  }
+  WB_VK(vkResetCommandBuffer(cmd_, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  WB_VK(vkBeginCommandBuffer(cmd_, &bi));
+  vkCmdResetQueryPool(cmd_, queries_, 0, 3);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
+  tracedPixels_ = trace(cmd_);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+
+  VkClearValue clear{};
+  clear.color = {{0.06f, 0.06f, 0.07f, 1.0f}};
+  VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rp.renderPass = swapchain_->renderPass();
+  rp.framebuffer = swapchain_->framebuffer(*index);
+  rp.renderArea = {{0, 0}, swapchain_->extent()};
+  rp.clearValueCount = 1;
+  rp.pClearValues = &clear;
+  vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
+  if (push.viewRect.z >= 1 && push.viewRect.w >= 1) display_->record(cmd_, push);
+  gui_->render(cmd_);
+  vkCmdEndRenderPass(cmd_);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+  if (!screenshot.empty()) {
+    capture_->record(cmd_, *swapchain_, *index);
+    captureTarget_ = screenshot;
+  }
+  WB_VK(vkEndCommandBuffer(cmd_));
+
+  VkPipelineStageFlags wait = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSemaphore done = swapchain_->renderFinished(*index);
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.waitSemaphoreCount = 1;
+  si.pWaitSemaphores = &imageAvailable_;
+  si.pWaitDstStageMask = &wait;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  si.signalSemaphoreCount = 1;
+  si.pSignalSemaphores = &done;
+  WB_VK(vkResetFences(ctx_.device(), 1, &fence_));
+  {
+    std::lock_guard lock(ctx_.queueMutex());
+    WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
+  }
+  inFlight_ = true;
+  inFlightDisplayed_ = true;
+  if (!swapchain_->present(*index, done)) recreate();
+  return true;
+}
+
+}  // namespace wb::app

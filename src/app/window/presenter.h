@@ -1,0 +1,85 @@
+// What the window puts on screen and how: the swapchain of the window's surface, the display pass, the ImGui
+// layer, screenshots, and one command buffer in flight at a time with GPU timestamps around its trace and its
+// display. A frame records the session's trace (a callback), then the display pass and the panel into the
+// swapchain's render pass, submits and presents; a trace-only submission records the trace alone.
+#pragma once
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "app/window/capture.h"
+#include "app/window/display_pass.h"
+#include "app/window/gui_layer.h"
+#include "vk/swapchain.h"
+
+struct GLFWwindow;
+
+namespace wb::app {
+
+// The device cannot present to the window (no surface, no queue that presents, or the swapchain cannot be
+// made, as with NVIDIA's driver on an X server without its display support): the command renders headless
+// instead, saying why.
+struct PresentationUnavailable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Presenter {
+ public:
+  // Throws PresentationUnavailable when the device cannot present to `window`.
+  Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindow* window, bool vsync,
+            const std::string& imguiIni);
+  ~Presenter();
+  Presenter(const Presenter&) = delete;
+  Presenter& operator=(const Presenter&) = delete;
+
+  DisplayPass& display() { return *display_; }
+  const vk::Swapchain& swapchain() const { return *swapchain_; }
+  GuiLayer& gui() { return *gui_; }
+  void setVsync(bool vsync);
+
+  // Records the trace into the command buffer (returns the pixels it traced).
+  using TraceRecorder = std::function<uint64_t(VkCommandBuffer)>;
+  // A frame: the trace, the display pass with `push` (when the image rectangle is not empty) and the ImGui
+  // panel, submitted and presented. `screenshot`: the presented image is written there once the frame
+  // finished. False when nothing was presented (minimised, or the swapchain had to be made anew).
+  bool present(const TraceRecorder& trace, const gpu::DisplayPush& push, const std::string& screenshot);
+  // A submission of the trace alone, waited for. False when it traced nothing.
+  bool traceOnly(const TraceRecorder& trace);
+  // The ImGui frame begins (before the panels are drawn); a resized framebuffer remakes the swapchain first.
+  // False when there is nothing to draw into (minimised).
+  bool beginFrame();
+  // Waits for the frame in flight, if any; reads its timestamps and writes its screenshot. Returns whether
+  // one was in flight.
+  bool finish();
+  bool frameInFlight() const { return inFlight_; }
+
+  // The last finished submission: pixels traced, trace and display GPU time (ms).
+  uint64_t tracedPixels() const { return tracedPixels_; }
+  double traceMs() const { return traceMs_; }
+  double displayMs() const { return displayMs_; }
+
+ private:
+  void recreate();
+  void readTimestamps(bool withDisplay);
+
+  vk::Context& ctx_;
+  GLFWwindow* window_;
+  bool vsync_;
+  std::unique_ptr<vk::Swapchain> swapchain_;
+  std::unique_ptr<DisplayPass> display_;
+  std::unique_ptr<GuiLayer> gui_;
+  std::unique_ptr<SwapchainCapture> capture_;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkSemaphore imageAvailable_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  bool inFlight_ = false;
+  bool inFlightDisplayed_ = false;  // the submission in flight has the display's timestamps
+  std::string captureTarget_;
+  uint64_t tracedPixels_ = 0;
+  double traceMs_ = 0, displayMs_ = 0;
+};
+
+}  // namespace wb::app
