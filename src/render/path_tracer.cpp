@@ -51,6 +51,11 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   resetCounters();
   blueNoise_ = vk::makeBuffer(ctx_, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  lights_ = r.scene.lights;
+  lightBuffer_ = vk::Buffer(ctx_, std::max<size_t>(1, lights_.size()) * sizeof(gpu::DirectionalLight),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  const auto shaded = scene::withSunAngle(lights_, settings_.sunAngleDeg);
+  std::memcpy(lightBuffer_.mapped(), shaded.data(), shaded.size() * sizeof(gpu::DirectionalLight));
   createImages();
   createInspectBuffers();
   {
@@ -196,7 +201,7 @@ void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
   s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
   s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
   s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
-  s.writeBuffer(0, WB_BIND_LIGHTS, gpuScene_.lights().handle());
+  s.writeBuffer(0, WB_BIND_LIGHTS, lightBuffer_.handle());
   s.writeSampledImages(0, WB_BIND_TEXTURES, gpuScene_.textureDescriptors());
   s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_->descriptor()});
   s.writeBuffer(0, WB_BIND_ENV_ALIAS, env_->aliasTable().handle());
@@ -270,7 +275,9 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   // The inspector's vertex records follow max bounces unless the request sized them.
   const bool inspectResized =
       inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
+  const bool sunChanged = settings.sunAngleDeg != settings_.sunAngleDeg;
   settings_ = settings;
+  if (sunChanged) uploadLights();
   if (resized || inspectResized) {
     ctx_.waitIdle();
     if (resized) createImages();
@@ -288,8 +295,18 @@ void PathTracer::setEnvironment(const GpuEnvironment& env) {
 }
 
 void PathTracer::setLights(const std::vector<gpu::DirectionalLight>& lights) {
-  (void)lights;  // the scene's light buffer, which the shaders read, holds them already
+  // The count stays the scene's (the specialised shaders' WB_LIGHT_COUNT): the first ones are replaced.
+  std::copy_n(lights.begin(), std::min(lights.size(), lights_.size()), lights_.begin());
+  uploadLights();
   sampleIndex_ = 0;
+}
+
+void PathTracer::uploadLights() {
+  const auto shaded = scene::withSunAngle(lights_, settings_.sunAngleDeg);
+  const size_t bytes = shaded.size() * sizeof(gpu::DirectionalLight);
+  if (bytes == 0 || std::memcmp(lightBuffer_.mapped(), shaded.data(), bytes) == 0) return;
+  ctx_.waitIdle();  // a trace in flight may read the buffer
+  std::memcpy(lightBuffer_.mapped(), shaded.data(), bytes);
 }
 
 void PathTracer::updateFrameUniforms() {

@@ -209,7 +209,7 @@ void requireProvided(const shader::ShaderLibrary::ProgramBuild& build,
     message +=
         match ? std::string("is bound by ") + renderer + " to " + kindName(match->kind) + ", not to this type"
               : std::string("is not bound by ") + renderer +
-                    ": declare only the resources it provides (shaders/shared/gpu_types.h)";
+                    ": declare only the resources it provides (shaders/shared/bindings.h)";
     // Every stage that uses it: the declaration in that stage's files.
     bool located = false;
     for (const auto& stage : build.stages) {

@@ -56,7 +56,7 @@ render::SessionOptions hybridOptions(const scene::Scene& sc, render::RenderMode 
   o.settings.height = size;
   o.mode = mode;
   o.hybrid.aoRays = 0;
-  o.hybrid.sunAngleDeg = 0.0f;  // hard shadows, like the path tracer's delta sun
+  o.settings.sunAngleDeg = 0.0f;  // a delta sun: hard shadows
   return o;
 }
 
@@ -130,7 +130,7 @@ TEST(Hybrid, SoftSunShadowsAreGreyOnlyNearTheEdges) {
   ShadowScene s = makeShadowScene();
   auto o = hybridOptions(s.scene, render::RenderMode::Hybrid, 64);
   o.settings.envColor = glm::vec3(0.0f);
-  o.hybrid.sunAngleDeg = 10.0f;
+  o.settings.sunAngleDeg = 10.0f;
   auto session = makeSession(o);
   session->render(16);  // temporal accumulation: averaged visibility
   const auto mask = session->hybrid()->readShadowMask();
@@ -351,7 +351,8 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
                                 render::RenderMode::Reflections, hs, shaders.root);
   hybrid.render(1);
 
-  // The include graph: common.glsl reaches every hybrid program, raster.glsl only the raster one.
+  // The include graph: common.glsl reaches every hybrid program, raster.glsl only the raster one; of the
+  // shared types, the scene's and the hybrid modes' reach them all, the path tracer's none.
   auto ids = [&](const std::string& rel) {
     auto v = library.programsDependingOn(std::filesystem::canonical(shaders.root / rel));
     std::sort(v.begin(), v.end());
@@ -362,7 +363,10 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
       hybrid.program(Pass::Composite)};
   std::sort(all.begin(), all.end());
   EXPECT_EQ(ids("hybrid/common.glsl"), all);
-  EXPECT_EQ(ids("shared/gpu_types.h"), all);
+  EXPECT_EQ(ids("shared/scene_types.h"), all);
+  EXPECT_EQ(ids("shared/hybrid_types.h"), all);
+  EXPECT_TRUE(ids("shared/pathtracer_types.h").empty());
+  EXPECT_TRUE(ids("shared/inspect_types.h").empty());
   EXPECT_EQ(ids("hybrid/raster.glsl"),
             std::vector<shader::ShaderLibrary::ProgramId>{hybrid.program(Pass::GBuffer)});
   EXPECT_EQ(ids("hybrid/occlusion.glsl"),
