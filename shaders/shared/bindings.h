@@ -40,7 +40,7 @@
 #define WB_BIND_GBUF_EMISSIVE 44     // sampler2D rgba16f: rgb emitted radiance, a unused
 #define WB_BIND_SHADOW_MASK 45       // r8 storage image: sun visibility (temporally averaged when enabled)
 #define WB_BIND_AO_MASK 46           // r8 storage image: ambient occlusion (1 = open)
-#define WB_BIND_HYBRID_HISTORY 47    // rgba16f storage image: r shadow, g AO running averages
+#define WB_BIND_HYBRID_HISTORY 47    // rgba32f storage image: r shadow, g AO running averages (exact over frames)
 #define WB_BIND_REFLECTION 48        // rgba16f storage image: rgb reflected radiance, a 1 where traced
 #define WB_BIND_HYBRID_OUTPUT 49     // rgba32f storage image: composited linear radiance
 #define WB_BIND_HYBRID_INSPECT 50    // storage buffer HybridInspectRecord: the rays of the inspected pixel

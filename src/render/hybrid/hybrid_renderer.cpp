@@ -142,7 +142,9 @@ void HybridRenderer::createImages() {
                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
   shadowMask_ = vk::Image(ctx_, w, h, VK_FORMAT_R8_UNORM, storage);
   aoMask_ = vk::Image(ctx_, w, h, VK_FORMAT_R8_UNORM, storage);
-  history_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
+  // 32-bit floats: the running average over many frames stays unbiased whatever the driver's rounding to 16
+  // bits.
+  history_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
   reflection_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
   output_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage | VK_IMAGE_USAGE_SAMPLED_BIT);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
