@@ -76,13 +76,13 @@ speed() {
         "${!bin}" render --mode "$m" --size "$size" --spp "$spp" --seed 1 --out "$out/speed.exr" \
           --stats "$out/speed.json" >/dev/null 2>&1
         local v
-        v=$(json "$out/speed.json" "j['seconds_per_frame_after_first']")
+        v=$(json "$out/speed.json" "f\"{j['seconds_per_frame_after_first']:.4f}\"")
         if [[ $bin == old ]]; then oldFrames+=("$v"); else newFrames+=("$v"); fi
         ((r > 3)) && continue
         rm -rf "$out/mesa"
         LP_NATIVE_VECTOR_WIDTH=128 MESA_SHADER_CACHE_DIR=$out/mesa "${!bin}" render --mode "$m" --size 32x32 --spp 2 --seed 1 \
           --out "$out/speed.exr" --stats "$out/speed.json" >/dev/null 2>&1
-        v=$(json "$out/speed.json" "j['frame_seconds'][0]")
+        v=$(json "$out/speed.json" "f\"{j['frame_seconds'][0]:.3f}\"")
         if [[ $bin == old ]]; then oldFirst+=("$v"); else newFirst+=("$v"); fi
       done
     done

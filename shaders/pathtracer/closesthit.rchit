@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // All surface shading: material evaluation, next-event estimation (directional lights, with MIS when they have an
-// angular size; environment and area lights with MIS), BRDF sampling of the continuation ray, handed back to raygen through the payload together with the
-// shadow rays that decide the light samples (raygen traces them: see ShadowRequest in payload.glsl).
+// angular size; environment and area lights with MIS), BRDF sampling of the continuation ray, handed back to
+// raygen through the payload together with the shadow rays that decide the light samples (raygen traces them: see
+// ShadowRequest in payload.glsl).
 #include "common.glsl"
 #include "payload.glsl"
 #include "hit_data.glsl"
@@ -160,8 +161,8 @@ void main() {
     // sampling, whose rays into the cone the miss shader weighs), then one sample of the environment or the area
     // lights together: pick which with the environment's selection probability; that one is MIS-weighted (power
     // heuristic) against BRDF sampling with the pdf of this combined strategy. Each light's estimate is unbiased
-    // on its own, so lights may share sample dimensions. Every sample goes through the same loop body (one BRDF evaluation: lavapipe's JIT time grows with
-    // every inlined copy) and becomes a shadow request for raygen.
+    // on its own, so lights may share sample dimensions. Every sample goes through the same loop body (one BRDF
+    // evaluation: lavapipe's JIT time grows with every inlined copy) and becomes a shadow request for raygen.
     const float uChoice = VERTEX_SAMPLE(WB_DIM_LIGHT_CHOICE);
     const vec3 ul =
         vec3(VERTEX_SAMPLE(WB_DIM_LIGHT), VERTEX_SAMPLE(WB_DIM_LIGHT + 1u), VERTEX_SAMPLE(WB_DIM_LIGHT + 2u));
