@@ -55,7 +55,8 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   lightBuffer_ = vk::Buffer(ctx_, std::max<size_t>(1, lights_.size()) * sizeof(gpu::DirectionalLight),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   const auto shaded = scene::withSunAngle(lights_, settings_.sunAngleDeg);
-  std::memcpy(lightBuffer_.mapped(), shaded.data(), shaded.size() * sizeof(gpu::DirectionalLight));
+  if (!shaded.empty())
+    std::memcpy(lightBuffer_.mapped(), shaded.data(), shaded.size() * sizeof(gpu::DirectionalLight));
   createImages();
   createInspectBuffers();
   {
