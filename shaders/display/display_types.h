@@ -9,7 +9,7 @@
 #define WB_DISPLAY_BIND_NORMAL 2   // rgba16f AOV: shading normal, a = first-hit distance (-1 = miss)
 #define WB_DISPLAY_BIND_INFO 3     // rgba16f AOV: geometric normal, a = path vertices
 #define WB_DISPLAY_BIND_PREVIEW 4  // rgba32f low-resolution preview shown under rows not yet traced
-#define WB_DISPLAY_BIND_STATS 5    // rgba32f AOV: the heat maps' data (WB_BIND_AOV_STATS in shared/gpu_types.h)
+#define WB_DISPLAY_BIND_STATS 5    // rgba32f AOV: the heat maps' data (WB_BIND_AOV_STATS in shared/bindings.h)
 
 // What the display shows (the Inspect panel's debug view). Switching never resets accumulation.
 #define WB_VIEW_BEAUTY 0u

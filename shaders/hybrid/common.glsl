@@ -8,6 +8,8 @@
 // Geometries, materials, textures, the environment map; vertex fetch, material inputs (shared with the path
 // tracer).
 #include "../shared/scene.glsl"
+#include "../shared/hybrid_types.h"
+#include "../shared/sun.h"
 
 layout(set = 0, binding = WB_BIND_HYBRID_FRAME, scalar) uniform HybridFrameBlock { HybridUniforms frame; };
 
@@ -33,16 +35,14 @@ HybridSurface evalSurface(Material m, vec2 uv) {
   return s;
 }
 
-// Alpha test: MASK below its cutoff; BLEND is treated as a mask at 0.5 (the hybrid modes are not stochastic).
-bool alphaRejected(Material m, float alpha) {
-  if (m.alphaMode == WB_ALPHA_OPAQUE) return false;
-  return alpha < (m.alphaMode == WB_ALPHA_MASK ? m.alphaCutoff : 0.5);
-}
+// The alpha test (shared/scene.glsl's rule): MASK below its cutoff; BLEND as a mask at 0.5 (the hybrid modes are
+// not stochastic).
+bool alphaRejected(Material m, float alpha) { return alphaRejected(m, alpha, WB_ALPHA_BLEND_AS_MASK); }
 
-// Environment radiance along a direction (the constant colour when there is no map).
-vec3 envLookup(vec3 dir) {
-  if (frame.envMapPresent != 0u) return envMapRadiance(dir, frame.envRotation, frame.envIntensity);
-  return frame.ambient;
+// The environment's radiance along a direction (shared/scene.glsl): the map, or the constant colour.
+vec3 envRadiance(vec3 dir) {
+  return environmentRadiance(frame.envMapPresent != 0u ? WB_ENV_MAP : WB_ENV_CONSTANT, dir, frame.ambient,
+                             frame.envRotation, frame.envIntensity);
 }
 
 #endif

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Composite: direct sun (BRDF of the path tracer) times the ray traced shadow mask, ambient from the environment
-// times ambient occlusion, ray traced reflections on smooth surfaces, emission; the environment behind.
+// times ambient occlusion, ray traced reflections on smooth surfaces, emission; the environment behind, and the
+// sun's disc there when it has an angular size (as the path tracer's camera rays see it).
 // Output: linear radiance (the PNG writer tonemaps, EXR keeps it linear).
 #include "common.glsl"
 #include "gbuffer.glsl"
@@ -19,7 +20,11 @@ void main() {
   if (p.x >= int(frame.width) || p.y >= int(frame.height)) return;
   const float depth = texelFetch(gbufDepth, p, 0).r;
   if (depth <= 0.0) {
-    imageStore(outputImage, p, vec4(envLookup(gbufViewDirection(p)), 1.0));
+    const vec3 dir = gbufViewDirection(p);
+    vec3 background = envRadiance(dir);
+    if (frame.hasSun != 0u)
+      background += sunRadianceAlong(dir, frame.sunDirection, frame.sunCosAngle, frame.sunRadiance);
+    imageStore(outputImage, p, vec4(background, 1.0));
     return;
   }
   const vec4 albedo = texelFetch(gbufAlbedo, p, 0);
@@ -32,14 +37,14 @@ void main() {
   const float shadow = imageLoad(shadowMask, p).r;
   const float ao = (frame.flags & WB_HYBRID_FLAG_AO) != 0u ? imageLoad(aoMask, p).r : 1.0;
 
-  vec3 color = emissive.rgb + sunDirect(m, n, wo, shadow) + ao * envLookup(n) * diffuseAlbedo(m, n, wo);
+  vec3 color = emissive.rgb + sunDirect(m, n, wo, shadow) + ao * envRadiance(n) * diffuseAlbedo(m, n, wo);
   const vec3 spec = specularAlbedo(m, n, wo);
   const vec4 reflection = (frame.flags & WB_HYBRID_FLAG_REFLECTIONS) != 0u ? imageLoad(reflectionImage, p)
                                                                            : vec4(0.0);
   if (reflection.a > 0.0) {
     color += spec * reflection.rgb;
   } else {
-    color += ao * spec * envLookup(reflect(-wo, n));
+    color += ao * spec * envRadiance(reflect(-wo, n));
   }
   imageStore(outputImage, p, vec4(color, 1.0));
 }

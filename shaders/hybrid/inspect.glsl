@@ -1,5 +1,5 @@
 // The hybrid modes' inspector: the shadow/AO and reflection raygens record the rays of one pixel
-// (frame.inspectX/Y; HybridInspectRecord in shared/gpu_types.h). Every other pixel pays one comparison.
+// (frame.inspectX/Y; HybridInspectRecord in shared/hybrid_types.h). Every other pixel pays one comparison.
 #ifndef WB_HYBRID_INSPECT_GLSL
 #define WB_HYBRID_INSPECT_GLSL
 

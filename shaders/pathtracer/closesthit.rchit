@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// All surface shading: material evaluation, next-event estimation (directional lights; environment and area lights
-// with MIS), BRDF sampling of the continuation ray, handed back to raygen through the payload together with the
-// shadow rays that decide the light samples (raygen traces them: see ShadowRequest in payload.glsl).
+// All surface shading: material evaluation, next-event estimation (directional lights, with MIS when they have an
+// angular size; environment and area lights with MIS), BRDF sampling of the continuation ray, handed back to
+// raygen through the payload together with the shadow rays that decide the light samples (raygen traces them: see
+// ShadowRequest in payload.glsl).
 #include "common.glsl"
 #include "payload.glsl"
 #include "hit_data.glsl"
@@ -10,6 +11,7 @@
 #include "environment.glsl"
 #include "emitters.glsl"
 #include "../shared/brdf.h"
+#include "../shared/sun.h"
 
 layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
 
@@ -154,11 +156,13 @@ void main() {
   payload.origin = originOut;
   uint shadowRequests = 0u;
   if ((pc.flags & WB_FLAG_NO_NEE) == 0u) {
-    // Light samples: one per directional light (delta distributions: plain light sampling, no MIS), then one
-    // sample of the environment or the area lights together: pick which with the environment's selection
-    // probability; that one is MIS-weighted (power heuristic) against BRDF sampling with the pdf of this combined
-    // strategy. Every sample goes through the same loop body (one BRDF evaluation: lavapipe's JIT time grows with
-    // every inlined copy) and becomes a shadow request for raygen.
+    // Light samples: one per directional light (a delta light: plain light sampling, no MIS; a sun of angular
+    // size: a direction uniform in its cone, from the light sample's point dimensions, MIS-weighted against BRDF
+    // sampling, whose rays into the cone the miss shader weighs), then one sample of the environment or the area
+    // lights together: pick which with the environment's selection probability; that one is MIS-weighted (power
+    // heuristic) against BRDF sampling with the pdf of this combined strategy. Each light's estimate is unbiased
+    // on its own, so lights may share sample dimensions. Every sample goes through the same loop body (one BRDF
+    // evaluation: lavapipe's JIT time grows with every inlined copy) and becomes a shadow request for raygen.
     const float uChoice = VERTEX_SAMPLE(WB_DIM_LIGHT_CHOICE);
     const vec3 ul =
         vec3(VERTEX_SAMPLE(WB_DIM_LIGHT), VERTEX_SAMPLE(WB_DIM_LIGHT + 1u), VERTEX_SAMPLE(WB_DIM_LIGHT + 2u));
@@ -176,10 +180,16 @@ void main() {
       int lightIndex = i < WB_LIGHT_COUNT ? int(i) : -1;
 #endif
       if (i < WB_LIGHT_COUNT) {
-        wi = -lights[i].direction;
-        shadowDir = wi;
-        le = lights[i].radiance;
+        const DirectionalLight light = lights[i];
+        wi = -light.direction;
+        le = light.radiance;
         lightPdf = 0.0;
+        if (!sunIsDelta(light.cosAngularRadius)) {  // the sun's disc (shared/sun.h)
+          wi = sampleCone(wi, light.cosAngularRadius, vec2(ul.y, ul.z));
+          le = sunDiscRadiance(light.radiance, light.cosAngularRadius);
+          lightPdf = sunConePdf(light.cosAngularRadius);
+        }
+        shadowDir = wi;
       } else if (uChoice < frame.envSelectProbability) {
 #if WB_ENV_MODE != WB_ENV_NONE
         // Environment: importance sampled by its alias table.

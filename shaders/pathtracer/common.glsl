@@ -1,11 +1,12 @@
-// Resources and helpers shared by every stage of the path tracer (bindings come from shared/gpu_types.h).
+// Resources and helpers shared by every stage of the path tracer (bindings come from shared/bindings.h).
 #ifndef WB_PT_COMMON_GLSL
 #define WB_PT_COMMON_GLSL
 
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 
-#include "../shared/gpu_types.h"
+#include "../shared/bindings.h"
+#include "../shared/pathtracer_types.h"
 
 // Scene-driven specialisation (src/scene/features.h): the host defines WB_SPECIALIZED and the WB_HAS_* / WB_LIGHT_COUNT
 // / WB_ENV_MODE values for what the scene uses; without them (or with WB_GENERIC) every feature is compiled in.
@@ -17,10 +18,7 @@
 #define WB_HAS_TEXTURES 1
 #define WB_HAS_SPECULAR 1
 #define WB_LIGHT_COUNT min(frame.lightCount, WB_GENERIC_MAX_LIGHTS)
-#define WB_ENV_MODE 2
-#endif
-#ifndef WB_GENERIC_MAX_LIGHTS
-#define WB_GENERIC_MAX_LIGHTS 8u  // directional lights the generic build shades (src/scene/features.h)
+#define WB_ENV_MODE WB_ENV_MAP
 #endif
 // WB_CPU_DEVICE=1 (the host sets it for CPU devices, lavapipe): code shaped for a driver that JIT-compiles the
 // whole pipeline at its first trace after every change, every inlined copy of a function included: repeated calls
@@ -28,10 +26,6 @@
 #ifndef WB_CPU_DEVICE
 #define WB_CPU_DEVICE 0
 #endif
-#define WB_ENV_NONE 0
-#define WB_ENV_CONSTANT 1
-#define WB_ENV_MAP 2
-
 // Geometries, materials, textures, the environment map; vertex fetch, material inputs (shared with the hybrid
 // modes).
 #include "../shared/scene.glsl"

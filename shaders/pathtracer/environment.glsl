@@ -4,14 +4,10 @@
 #define WB_PT_ENVIRONMENT_GLSL
 #include "../shared/env_sampling.h"
 
+// The environment's radiance along dir (shared/scene.glsl), the scene's kind of environment compiled in.
 vec3 envRadiance(vec3 dir) {
-#if WB_ENV_MODE == WB_ENV_NONE
-  return vec3(0.0);
-#elif WB_ENV_MODE == WB_ENV_CONSTANT
-  return frame.envColor.rgb * frame.envIntensity;
-#else
-  return envMapRadiance(dir, frame.envRotation, frame.envIntensity);
-#endif
+  return environmentRadiance(WB_ENV_MODE, dir, frame.envColor.rgb * frame.envIntensity, frame.envRotation,
+                             frame.envIntensity);
 }
 
 float envPdf(vec3 dir) { return envPdf(dir, frame.envWidth, frame.envHeight, frame.envRotation); }

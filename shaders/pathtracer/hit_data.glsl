@@ -2,7 +2,7 @@
 // inputs are shaders/shared/scene.glsl's.
 #ifndef WB_PT_HIT_DATA_GLSL
 #define WB_PT_HIT_DATA_GLSL
-#include "../shared/hash.h"
+#include "../shared/random.h"
 
 GeometryInfo hitGeometry() { return geometries[gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT]; }
 
@@ -13,7 +13,7 @@ float alphaHash(uint primitive, uint geometry) {
   h = hashCombine(h, pc.sampleIndex ^ (pc.seed * 0x68bc21ebu));
   h = hashCombine(h, primitive);
   h = hashCombine(h, geometry);
-  return float(h >> 8) * (1.0 / 16777216.0);
+  return uintToUnitFloat(h);
 }
 
 #endif

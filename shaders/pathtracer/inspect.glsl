@@ -1,10 +1,12 @@
 // The path inspector's records, in the WB_INSPECT build only: the host compiles that variant while a pixel is
 // inspected, and normal rendering never includes this file. Every stage writes what it alone knows about the
 // inspected pixel's current sample (closest-hit: the vertex, its light samples and BRDF sample; the miss shader:
-// the environment and its MIS weight; raygen: throughput, Russian roulette, shadow visibility and the sample's
-// total), each field by exactly one stage. The records are a side effect: no value of the path is changed.
+// the environment and its MIS weight, the suns' discs; raygen: throughput, Russian roulette, shadow visibility
+// and the sample's total), each field by exactly one stage. The records are a side effect: no value of the path
+// is changed.
 #ifndef WB_PT_INSPECT_GLSL
 #define WB_PT_INSPECT_GLSL
+#include "../shared/inspect_types.h"
 
 layout(set = 0, binding = WB_BIND_INSPECT_HEADER, scalar) readonly buffer InspectHeaderBlock {
   InspectHeader inspectHeader;

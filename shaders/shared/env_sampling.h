@@ -11,7 +11,7 @@
 // In C++ the default reads the thread-local pointer wb::gpu::gEnvAlias (set it to EnvironmentMap::alias.data()).
 #ifndef WB_ENV_SAMPLING_H
 #define WB_ENV_SAMPLING_H
-#include "gpu_types.h"
+#include "scene_types.h"
 #include "sampling_math.h"
 
 WB_NAMESPACE_BEGIN

@@ -10,11 +10,15 @@
 //           pair (Sobol dimensions 0 and 1) is stratified into 2^m elementary intervals of every shape at every
 //           power of two, progressively. Every pixel and seed is an independent randomisation.
 //
+// One source of random numbers for every renderer: the path tracer's samplers below, and hashStreamNext, a
+// sequential stream that needs no tables (the hybrid modes' shadow and AO rays). Both end in uintToUnitFloat.
+//
 // Table access (GLSL cannot pass buffers to functions): before including this header a shader defines
 //   #define WB_SOBOL_DIR(dim, bit)  sobolBuffer.dirs[(dim) * 32u + (bit)]          // uint, binding WB_BIND_SOBOL
 //   #define WB_BLUE_NOISE(x, y)     wbUnpackBlueNoise(blueNoiseBuffer.texels[(y) * 128u + (x)])
 //                                                                      // vec2 in [0,1), binding WB_BIND_BLUE_NOISE
-// (wbUnpackBlueNoise is defined below, so the macro may use it). In C++ the defaults read the thread-local pointers
+// (wbUnpackBlueNoise is defined below, so the macro may use it), or defines WB_RANDOM_NO_TABLES for the table-free
+// part alone (uintToUnitFloat, pcgNext, hashStreamNext). In C++ the defaults read the thread-local pointers
 // wb::gpu::gSobolDirections / gBlueNoise (set them, e.g. with the vectors from sobolDirectionNumbers() and
 // blueNoise128(), before calling the sampler).
 //
@@ -83,6 +87,13 @@ WB_FN uint pcgNext(INOUT(uint) state) {
 }
 WB_FN float pcgNextFloat(INOUT(uint) state) { return uintToUnitFloat(pcgNext(state)); }
 
+// A sequential stream of uniform numbers in [0,1) by hash chaining (state = pcgHash(state)): seed the state with a
+// hash of what the numbers should be independent over (pixel, frame, seed).
+WB_FN float hashStreamNext(INOUT(uint) state) {
+  state = pcgHash(state);
+  return uintToUnitFloat(state);
+}
+
 // Packed blue-noise texel (low 16 bits: channel 0, high 16 bits: channel 1) -> two values in [0,1).
 WB_FN vec2 wbUnpackBlueNoise(uint v) {
   return vec2(float(v & 0xffffu) * (1.0f / 65536.0f), float(v >> 16u) * (1.0f / 65536.0f));
@@ -90,6 +101,7 @@ WB_FN vec2 wbUnpackBlueNoise(uint v) {
 
 WB_NAMESPACE_END
 
+#if defined(__cplusplus) || !defined(WB_RANDOM_NO_TABLES)
 #ifdef __cplusplus
 #ifndef WB_SOBOL_DIR
 #define WB_SOBOL_DIR(dim, bit) (::wb::gpu::gSobolDirections[(dim) * 32u + (bit)])
@@ -227,5 +239,7 @@ WB_FN vec3 samplerGet3D(SamplerState s, uint dim) {
 }
 
 WB_NAMESPACE_END
+
+#endif  // the samplers (tables)
 
 #endif

@@ -1,7 +1,8 @@
 // Scene access for every renderer's shaders (GLSL only): the scene's bindings (geometries, materials,
 // textures, environment map), vertices pulled through buffer device addresses, triangle attributes at a hit,
-// textures and the environment map sampled. The renderers' common files include it; a renderer that
-// specialises per scene defines WB_HAS_TEXTURES / WB_HAS_EMISSIVE first (0: compiled out).
+// textures sampled, and the rules every renderer shares: the alpha test and the environment's radiance. The
+// renderers' common files include it; a renderer that specialises per scene defines WB_HAS_TEXTURES /
+// WB_HAS_EMISSIVE first (0: compiled out).
 #ifndef WB_SHARED_SCENE_GLSL
 #define WB_SHARED_SCENE_GLSL
 
@@ -11,7 +12,8 @@
 #extension GL_EXT_buffer_reference2 : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 
-#include "gpu_types.h"
+#include "bindings.h"
+#include "scene_types.h"
 #include "sampling_math.h"
 
 #ifndef WB_HAS_TEXTURES
@@ -107,9 +109,27 @@ float materialAlpha(Material m, vec2 uv) {
   return a;
 }
 
+// The alpha rule of every renderer: whether a hit on material m, whose base colour alpha there is `alpha`, is let
+// through. OPAQUE: never; MASK: below alphaCutoff (glTF); BLEND: below blendThreshold, a uniform random number in
+// [0, 1) for stochastic transparency (the path tracer: opaque with probability alpha), or WB_ALPHA_BLEND_AS_MASK
+// for a renderer that is not stochastic (the hybrid modes' raster and rays).
+#define WB_ALPHA_BLEND_AS_MASK 0.5
+bool alphaRejected(Material m, float alpha, float blendThreshold) {
+  if (m.alphaMode == WB_ALPHA_OPAQUE) return false;
+  return alpha < (m.alphaMode == WB_ALPHA_MASK ? m.alphaCutoff : blendThreshold);
+}
+
 // The environment map's radiance along a direction (equirectangular, rotated about +Y, times intensity).
 vec3 envMapRadiance(vec3 dir, float rotation, float intensity) {
   return textureLod(envMap, directionToEquirect(dir, rotation), 0.0).rgb * intensity;
+}
+
+// The environment's radiance along a direction, for every renderer: kind WB_ENV_MAP reads the map (rotated about
+// +Y, times intensity), WB_ENV_CONSTANT is `constantRadiance` (the colour times the intensity), WB_ENV_NONE black.
+vec3 environmentRadiance(int kind, vec3 dir, vec3 constantRadiance, float rotation, float intensity) {
+  if (kind == WB_ENV_MAP) return envMapRadiance(dir, rotation, intensity);
+  if (kind == WB_ENV_CONSTANT) return constantRadiance;
+  return vec3(0.0);
 }
 
 #endif

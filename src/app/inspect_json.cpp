@@ -28,7 +28,7 @@ json lightJson(const gpu::InspectLightSample& l) {
           {"direction", vec(l.direction)},
           {"radiance", vec(l.radiance)},
           {"light_pdf", number(l.lightPdf)},
-          {"delta", l.kind == WB_INSPECT_LIGHT_DIRECTIONAL},
+          {"delta", l.kind == WB_INSPECT_LIGHT_DIRECTIONAL && l.lightPdf == 0.0f},
           {"brdf_cos", vec(l.brdfCos)},
           {"brdf_pdf", number(l.brdfPdf)},
           {"mis_weight", number(l.misWeight)},
@@ -81,11 +81,9 @@ json inspectSampleJson(const render::InspectedSample& s) {
   for (size_t k = 0; k < s.vertices.size(); ++k) vertices.push_back(vertexJson(s.vertices[k], k));
   json escape = nullptr;
   if (r.escaped) {
-    escape = {{"direction", vec(r.escapeDirection)},
-              {"environment", vec(r.escapeEnvironment)},
-              {"mis_weight", number(r.escapeMis)},
-              {"throughput", vec(r.escapeThroughput)},
-              {"added", vec(s.escapeAdded)}};
+    escape = {{"direction", vec(r.escapeDirection)},   {"environment", vec(r.escapeEnvironment)},
+              {"mis_weight", number(r.escapeMis)},     {"sun", vec(r.escapeSun)},
+              {"throughput", vec(r.escapeThroughput)}, {"added", vec(s.escapeAdded)}};
   }
   json nonFinite = nullptr;
   if (s.firstNonFinite) {

@@ -67,7 +67,6 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx), sou
   }
   geometries_ = vk::makeBuffer(ctx, geometryInfos, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   materials_ = vk::makeBuffer(ctx, scene.materials, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  lights_ = vk::makeBuffer(ctx, scene.lights, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   lightCount_ = static_cast<uint32_t>(scene.lights.size());
 
   buildEmitters(scene.materials);
@@ -149,13 +148,8 @@ void GpuScene::updateMaterials(const std::vector<gpu::Material>& materials) {
   buildEmitters(materials);
 }
 
-void GpuScene::updateLights(const std::vector<gpu::DirectionalLight>& lights) {
-  const size_t count = std::min<size_t>(lights.size(), lightCount_);
-  if (count > 0) lights_.upload(lights.data(), count * sizeof(gpu::DirectionalLight));
-}
-
 uint64_t GpuScene::deviceBytes() const {
-  uint64_t total = accel_->memoryBytes() + geometries_.size() + materials_.size() + lights_.size();
+  uint64_t total = accel_->memoryBytes() + geometries_.size() + materials_.size();
   for (const auto& b : vertexBuffers_) total += b.size();
   for (const auto& b : indexBuffers_) total += b.size();
   for (const auto& i : images_) total += VkDeviceSize(i.width()) * i.height() * 4;
@@ -166,7 +160,6 @@ void bindSceneResources(Pass& pass, const GpuScene& scene, const GpuEnvironment&
   pass.setAccelerationStructure("tlas", scene.tlas());
   pass.setBuffer("GeometryBlock", scene.geometries());
   pass.setBuffer("MaterialBlock", scene.materials());
-  pass.setBuffer("LightBlock", scene.lights());
   pass.setSampledImages("textures", scene.textureDescriptors());
   pass.setBuffer("EmitterBlock", scene.emitters());
   pass.setBuffer("EmitterAliasBlock", scene.emitterAlias());

@@ -1,5 +1,6 @@
-// A scene on the device: vertex/index buffers, per-geometry records, materials, lights, textures, and the
-// acceleration structures over them. Built once per loaded scene; the passes only read it.
+// A scene on the device: vertex/index buffers, per-geometry records, materials, textures, and the
+// acceleration structures over them. Built once per loaded scene; the passes only read it. The directional
+// lights are each renderer's (the sun's size is a render setting).
 #pragma once
 #include <memory>
 #include <vector>
@@ -20,8 +21,7 @@ class GpuScene {
   VkAccelerationStructureKHR tlas() const { return accel_->tlas(); }
   const vk::Buffer& geometries() const { return geometries_; }
   const vk::Buffer& materials() const { return materials_; }
-  const vk::Buffer& lights() const { return lights_; }
-  uint32_t lightCount() const { return lightCount_; }
+  uint32_t lightCount() const { return lightCount_; }  // the scene's directional lights (fixed at load)
   // Emissive triangles (area lights) and the alias table that picks one proportionally to its power.
   const vk::Buffer& emitters() const { return emitters_; }
   const vk::Buffer& emitterAlias() const { return emitterAlias_; }
@@ -39,8 +39,6 @@ class GpuScene {
   // table (an edited emission changes what next-event estimation samples; MIS needs the two to agree). Call
   // it at a frame boundary: it waits for the device.
   void updateMaterials(const std::vector<gpu::Material>& materials);
-  // Light directions and radiance can be edited live too (the light count is fixed at load).
-  void updateLights(const std::vector<gpu::DirectionalLight>& lights);
 
  private:
   void buildEmitters(const std::vector<gpu::Material>& materials);
@@ -49,7 +47,7 @@ class GpuScene {
   const scene::Scene& source_;
   uint64_t emitterVersion_ = 0;
   std::vector<vk::Buffer> vertexBuffers_, indexBuffers_;
-  vk::Buffer geometries_, materials_, lights_, emitters_, emitterAlias_;
+  vk::Buffer geometries_, materials_, emitters_, emitterAlias_;
   uint32_t emitterCount_ = 0;
   float emitterTotalPower_ = 0.0f;
   uint32_t lightCount_ = 0;

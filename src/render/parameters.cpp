@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "display/display_types.h"
+#include "shared/hybrid_types.h"
 
 namespace wb::render {
 namespace {
@@ -167,21 +168,21 @@ std::vector<ParameterInfo> makeList() {
   l.push_back(real("env_intensity", "Environment", "intensity", "environment intensity multiplier", 0,
                    kFloatMax, 0, 10, kAllModes, [](P& p) -> float& { return p.render.envIntensity; }));
 
-  l.push_back(
-      real("sun_angle", "Hybrid", "sun angle (deg)",
-           "hybrid: sun angular diameter in degrees for soft shadows (default: the light's, else 0.53)", 0,
-           90, 0, 10, kHybridModes, [](P& p) -> float& { return p.hybrid.sunAngleDeg; }));
+  l.push_back(real("sun_angle", "Environment", "sun angle (deg)",
+                   "the directional lights' angular diameter in degrees, every mode (0: delta lights, hard "
+                   "shadows; default: the scene's, glTF lights are delta lights; the real sun: 0.53)",
+                   0, 90, 0, 10, kAllModes, [](P& p) -> float& { return p.render.sunAngleDeg; }));
   l.push_back(real("ao_radius", "Hybrid", "AO radius",
                    "hybrid: ambient occlusion ray length (0: 15% of the camera distance)", 0, kFloatMax, 0, 0,
                    kHybridModes, [](P& p) -> float& { return p.hybrid.aoRadius; }));
-  l.push_back(unsignedInt("ao_rays", "Hybrid", "AO rays",
-                          "hybrid: ambient occlusion rays per pixel and frame (0 = off)", 0, 64, 0, 16,
-                          kHybridModes, [](P& p) -> uint32_t& { return p.hybrid.aoRays; }));
+  l.push_back(unsignedInt(
+      "ao_rays", "Hybrid", "AO rays", "hybrid: ambient occlusion rays per pixel and frame (0 = off)", 0,
+      WB_HYBRID_INSPECT_MAX_AO, 0, 16, kHybridModes, [](P& p) -> uint32_t& { return p.hybrid.aoRays; }));
   l.push_back(boolean("temporal", "--no-temporal", false, "Hybrid", "temporal accumulation",
                       "hybrid: accumulate shadows/AO over frames (--no-temporal: do not)", kHybridModes,
                       [](P& p) -> bool& { return p.hybrid.temporal; }));
   l.push_back(unsignedInt("reflection_depth", "Hybrid", "reflection depth", "reflections: mirror bounces", 0,
-                          16, 0, 8, kReflectionsMode,
+                          WB_HYBRID_INSPECT_MAX_REFLECTIONS, 0, 8, kReflectionsMode,
                           [](P& p) -> uint32_t& { return p.hybrid.reflectionDepth; }));
   l.push_back(real("reflection_roughness", "Hybrid", "reflect below roughness",
                    "reflections: trace reflections below this roughness", 0, 1, 0, 1, kReflectionsMode,

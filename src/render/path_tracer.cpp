@@ -62,6 +62,12 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   resetCounters();
   blueNoise_ = vk::makeBuffer(ctx_, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  lights_ = r.scene.lights;
+  lightBuffer_ = vk::Buffer(ctx_, std::max<size_t>(1, lights_.size()) * sizeof(gpu::DirectionalLight),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  const auto shaded = scene::withSunAngle(lights_, settings_.sunAngleDeg);
+  if (!shaded.empty())
+    std::memcpy(lightBuffer_.mapped(), shaded.data(), shaded.size() * sizeof(gpu::DirectionalLight));
   createImages();
   createInspectBuffers();
   bindResources();
@@ -185,6 +191,7 @@ void PathTracer::bindResources() {
   Pass& p = *pass_;
   emitterVersion_ = gpuScene_.emitterVersion();
   bindSceneResources(p, gpuScene_, *env_);
+  p.setBuffer("LightBlock", lightBuffer_);  // the scene's lights with the sun's angle applied
   p.setStorageImage("accumImage", accum_.view());
   p.setStorageImage("albedoImage", albedo_.view());
   p.setStorageImage("normalImage", normal_.view());
@@ -215,7 +222,9 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   // The inspector's vertex records follow max bounces unless the request sized them.
   const bool inspectResized =
       inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
+  const bool sunChanged = settings.sunAngleDeg != settings_.sunAngleDeg;
   settings_ = settings;
+  if (sunChanged) uploadLights();
   if (resized || inspectResized) {
     ctx_.waitIdle();
     if (resized) createImages();
@@ -233,8 +242,18 @@ void PathTracer::setEnvironment(const GpuEnvironment& env) {
 }
 
 void PathTracer::setLights(const std::vector<gpu::DirectionalLight>& lights) {
-  (void)lights;  // the scene's light buffer, which the shaders read, holds them already
+  // The count stays the scene's (the specialised shaders' WB_LIGHT_COUNT): the first ones are replaced.
+  std::copy_n(lights.begin(), std::min(lights.size(), lights_.size()), lights_.begin());
+  uploadLights();
   sampleIndex_ = 0;
+}
+
+void PathTracer::uploadLights() {
+  const auto shaded = scene::withSunAngle(lights_, settings_.sunAngleDeg);
+  const size_t bytes = shaded.size() * sizeof(gpu::DirectionalLight);
+  if (bytes == 0 || std::memcmp(lightBuffer_.mapped(), shaded.data(), bytes) == 0) return;
+  ctx_.waitIdle();  // a trace in flight may read the buffer
+  std::memcpy(lightBuffer_.mapped(), shaded.data(), bytes);
 }
 
 void PathTracer::updateFrameUniforms() {

@@ -12,8 +12,8 @@
 
 namespace wb::render {
 
-// The AOV images the path tracer keeps when settings.aov is on (see gpu_types.h for their channels); Stats
-// holds the heat maps' data (rgba32f).
+// The AOV images the path tracer keeps when settings.aov is on (see shared/bindings.h for their channels);
+// Stats holds the heat maps' data (rgba32f).
 enum class Aov { Albedo, Normal, Info, Stats };
 
 struct PixelRegion {
@@ -121,6 +121,8 @@ class PathTracer final : public Renderer {
   // Makes the program for (features, inspect) current, registering it on first use; rebuilds the pipeline.
   void useVariant(const scene::SceneFeatures& features, bool inspect);
   void createInspectBuffers();
+  // Writes the lights as the shaders shade them (the sun angle of the settings applied) when they changed.
+  void uploadLights();
 
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
@@ -148,6 +150,8 @@ class PathTracer final : public Renderer {
   std::vector<ImageSet> spareImages_;
   uint32_t imageSetsAllocated_ = 0;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
+  std::vector<gpu::DirectionalLight> lights_;  // the scene's lights, or the session's edits of them
+  vk::Buffer lightBuffer_;                     // lights_ with settings_.sunAngleDeg (scene::withSunAngle)
   vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_;
   uint32_t sampleIndex_ = 0;
 };

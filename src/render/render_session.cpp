@@ -204,9 +204,8 @@ void RenderSession::setEnvironment(const RenderSettings& settings) {
 }
 
 void RenderSession::setLights(const std::vector<gpu::DirectionalLight>& lights) {
-  finishPreparing();  // a renderer being made reads the scene's light buffer
+  finishPreparing();  // a renderer being made gets the lights when it is taken
   lights_ = lights;
-  gpuScene_->updateLights(lights);
   forEachRenderer([&](Renderer& r) { r.setLights(lights); });
 }
 

@@ -51,6 +51,9 @@ struct RenderSettings {
   glm::vec3 envColor{0.4f, 0.45f, 0.5f};
   float envRotationDeg = 0.0f;
   float envIntensity = 1.0f;
+  // The directional lights' angular diameter in degrees, in every mode (`--sun-angle`, scene::withSunAngle):
+  // 0 makes them delta lights, a negative value keeps the scene's (glTF lights are delta lights).
+  float sunAngleDeg = -1.0f;
 };
 
 }  // namespace wb::render

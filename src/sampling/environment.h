@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "shared/gpu_types.h"
+#include "shared/scene_types.h"
 
 namespace wb {
 

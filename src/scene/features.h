@@ -5,10 +5,13 @@
 
 #include "scene/scene.h"
 #include "shader/types.h"
+#include "shared/pathtracer_types.h"
+#include "shared/scene_types.h"
 
 namespace wb::scene {
 
-enum class EnvironmentKind { None, Constant, Map };
+// Its values are the shaders' (WB_ENV_MODE of the specialised path tracer, the environment lookup's kind).
+enum class EnvironmentKind { None = WB_ENV_NONE, Constant = WB_ENV_CONSTANT, Map = WB_ENV_MAP };
 
 struct SceneFeatures {
   bool alphaMask = true;
@@ -32,8 +35,8 @@ struct SceneFeatures {
   bool operator==(const SceneFeatures&) const = default;
 };
 
-// Directional lights the generic build shades without a define (WB_GENERIC_MAX_LIGHTS in the shaders).
-inline constexpr uint32_t kGenericMaxLights = 8;
+// Directional lights the generic build shades without a define (the shaders' WB_GENERIC_MAX_LIGHTS).
+inline constexpr uint32_t kGenericMaxLights = WB_GENERIC_MAX_LIGHTS;
 
 // The all-features build (`--generic`), for comparison and as a fallback; pass the scene's directional light
 // count so a scene with more than kGenericMaxLights gets room for all of them.

@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include <cmath>
+
 namespace wb::scene {
 
 size_t Scene::triangleCount() const {
@@ -11,6 +13,16 @@ size_t Scene::triangleCount() const {
     }
   }
   return count;
+}
+
+float sunCosAngularRadius(float lightCosAngularRadius, float sunAngleDeg) {
+  return sunAngleDeg >= 0.0f ? std::cos(glm::radians(sunAngleDeg * 0.5f)) : lightCosAngularRadius;
+}
+
+std::vector<gpu::DirectionalLight> withSunAngle(std::vector<gpu::DirectionalLight> lights,
+                                                float sunAngleDeg) {
+  for (auto& l : lights) l.cosAngularRadius = sunCosAngularRadius(l.cosAngularRadius, sunAngleDeg);
+  return lights;
 }
 
 }  // namespace wb::scene

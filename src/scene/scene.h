@@ -11,7 +11,7 @@
 
 #include <glm/glm.hpp>
 
-#include "shared/gpu_types.h"
+#include "shared/scene_types.h"
 
 namespace wb::scene {
 
@@ -82,6 +82,8 @@ struct Scene {
   std::vector<Image> images;        // one per glTF image, same indices
   std::vector<Sampler> samplers;    // one per glTF sampler, same indices
   std::vector<bool> textureIsSrgb;  // per texture: true if used as baseColor or emissive
+  // Directional lights; glTF's are delta lights (cosAngularRadius 1) until `--sun-angle` gives them a size
+  // (withSunAngle).
   std::vector<gpu::DirectionalLight> lights;
   Camera camera;  // the first perspective camera of the default scene, else frameBounds(bounds, 0.7)
   Bounds bounds;
@@ -91,6 +93,13 @@ struct Scene {
 
   size_t triangleCount() const;  // over all instances (a mesh placed twice counts twice)
 };
+
+// The sun's size, the same in every mode: `--sun-angle` is the angular diameter in degrees (0: a delta
+// light); DirectionalLight::cosAngularRadius is the cosine of half of it. A negative angle keeps the light's
+// own size.
+float sunCosAngularRadius(float lightCosAngularRadius, float sunAngleDeg);
+// The lights as the renderers shade them: each with sunCosAngularRadius applied.
+std::vector<gpu::DirectionalLight> withSunAngle(std::vector<gpu::DirectionalLight> lights, float sunAngleDeg);
 
 // Loads a .gltf (external or data-URI buffers) or .glb file. Throws SceneError with a one-line reason.
 Scene loadGltf(const std::filesystem::path& path);

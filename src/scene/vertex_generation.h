@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "shared/gpu_types.h"
+#include "shared/scene_types.h"
 
 namespace wb::scene {
 

@@ -242,9 +242,11 @@ TEST(ABWatch, HybridPipelinesAndASharedIncludeAreCompared) {
   WatchChild w("--size 32x32 --ab --mode hybrid");
   ASSERT_TRUE(w.running()) << readFile(w.out);
   const fs::path common = w.root / "shaders/hybrid/common.glsl";
-  writeFile(common, replaced(readFile(common),
-                             "  return alpha < (m.alphaMode == WB_ALPHA_MASK ? m.alphaCutoff : 0.5);",
-                             "  return (m.alphaMode == WB_ALPHA_MASK ? m.alphaCutoff : 0.5) > alpha;"));
+  writeFile(
+      common,
+      replaced(readFile(common), "{ return alphaRejected(m, alpha, WB_ALPHA_BLEND_AS_MASK); }",
+               "{\n  return m.alphaMode != WB_ALPHA_OPAQUE &&\n         (m.alphaMode == WB_ALPHA_MASK ? "
+               "m.alphaCutoff : WB_ALPHA_BLEND_AS_MASK) > alpha;\n}"));
   auto lines = waitForLog(w.log, 1);
   ASSERT_EQ(lines.size(), 1u) << readFile(w.out);
   ASSERT_TRUE(lines[0]["ok"].get<bool>()) << lines[0].dump();
@@ -258,8 +260,8 @@ TEST(ABWatch, HybridPipelinesAndASharedIncludeAreCompared) {
   }
 
   const fs::path composite = w.root / "shaders/hybrid/composite.comp";
-  writeFile(composite, replaced(readFile(composite), "vec4(envLookup(gbufViewDirection(p)), 1.0)",
-                                "vec4(envLookup(gbufViewDirection(p)) * 1.02, 1.0)"));
+  writeFile(composite, replaced(readFile(composite), "vec3 background = envRadiance(dir);",
+                                "vec3 background = envRadiance(dir) * 1.02;"));
   lines = waitForLog(w.log, 2);
   ASSERT_EQ(lines.size(), 2u) << readFile(w.out);
   expectAbShape(lines[1]);

@@ -192,7 +192,7 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
   s->render(1);  // every pass compiled at its first use (the path tracer's pipeline exists too: more groups)
 
   const fs::path rgen = fs::canonical(root_ / "shaders/hybrid/shadow_ao.rgen");
-  const std::string original = "const float phi = 2.0 * kPi * u.y;";
+  const std::string original = "const float w = 1.0 / float(frame.frameIndex + 1u);";
   wb::live::HotReload::WarmupStats warmup;
   {
     wb::live::HotReload hot(s->library(), {wb::shaderDir()});
@@ -200,7 +200,7 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
     hot.addRenderer(*hybrid);
     EXPECT_TRUE(hot.jitWarmup(*hybrid).present) << "made ahead of the first edit, not by it";
     hot.start();  // the watches are in place when start() returns
-    edit(rgen, original, "const float phi = 2.0 * kPi * u.y * 0.9999;");
+    edit(rgen, original, "const float w = 0.9999 / float(frame.frameIndex + 1u);");
     reload(hot);
     hot.stop();
     warmup = hot.jitWarmup(*hybrid);
@@ -211,7 +211,7 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
   s->render(1);
   const uint64_t warmedFrame = settledCacheBytes() - beforeWarmed;
 
-  edit(rgen, "u.y * 0.9999;", "u.y * 0.9998;");
+  edit(rgen, "0.9999 / float(", "0.9998 / float(");
   s->library().invalidateFiles({rgen});
   hybrid->pass(wb::render::HybridPass::ShadowAo).rebuild();
   const uint64_t beforeCold = settledCacheBytes();
@@ -259,8 +259,8 @@ TEST_F(JitWarmup, AModePreparedOffTheLoopIsCompiledAhead) {
     s->setRendererHooks({});
   }
   // New shadow/AO code, and a mode made without a hot reload attached.
-  edit(root_ / "shaders/hybrid/shadow_ao.rgen", "const float phi = 2.0 * kPi * u.y;",
-       "const float phi = 2.0 * kPi * u.y * 0.9999;");
+  edit(root_ / "shaders/hybrid/shadow_ao.rgen", "const float w = 1.0 / float(frame.frameIndex + 1u);",
+       "const float w = 0.9999 / float(frame.frameIndex + 1u);");
   auto s = session(RenderMode::PathTrace);
   s->render(1);
   prepareHybrid(*s);

@@ -41,7 +41,7 @@ TEST(SessionState, NumericSettingsAreFiniteAndInRange) {
   wb::live::applySetting(st, "reflection_roughness", "0.25");
   wb::live::applySetting(st, "env_intensity", "1e30");
   EXPECT_FLOAT_EQ(st.params.render.envRotationDeg, 90.0f);
-  EXPECT_FLOAT_EQ(st.params.hybrid.sunAngleDeg, 2.5f);
+  EXPECT_FLOAT_EQ(st.params.render.sunAngleDeg, 2.5f);
   EXPECT_FLOAT_EQ(st.params.hybrid.reflectionMaxRoughness, 0.25f);
   EXPECT_FLOAT_EQ(st.params.render.envIntensity, 1e30f);
 }

@@ -19,8 +19,8 @@ TEST(HybridInspector, ShadowAndAoRaysAreWhatTheMasksHold) {
   o.settings.envColor = glm::vec3(0.0f);
   o.mode = render::RenderMode::Hybrid;
   o.hybrid.aoRays = 6;
-  o.hybrid.aoRadius = 3.0f;     // long enough to reach the floating box from the ground around it
-  o.hybrid.sunAngleDeg = 0.0f;  // hard shadows: visibility is the geometry's
+  o.hybrid.aoRadius = 3.0f;       // long enough to reach the floating box from the ground around it
+  o.settings.sunAngleDeg = 0.0f;  // hard shadows: visibility is the geometry's
   o.hybrid.temporal = false;
   auto session = makeSession(o);
   auto* hybrid = session->hybrid();

@@ -8,6 +8,7 @@
 #include "gpu_fixture.h"
 #include "render/path_inspector.h"
 #include "shared/brdf.h"
+#include "shared/sun.h"
 #include "test_scenes.h"
 
 using namespace wb;
@@ -213,6 +214,49 @@ TEST(PathInspector, SunOnGroundIsPlainLightSamplingWithMisWeightOne) {
   }
   EXPECT_GT(lit, 20u);
   EXPECT_GT(shadowed, 0u) << "the pixels should include the box's shadow";
+  expectNoValidationErrors(*session);
+}
+
+// A sun of angular size (`--sun-angle`, 60 degrees across so that BRDF sampling meets its disc often): its
+// light samples carry the cone's pdf and an MIS weight below one, escaping rays that meet the disc record its
+// radiance with the complementary weight (escapeSun, in the escape's radiance), and every sample's records
+// still add up to its value.
+TEST(PathInspector, SunOfAngularSizeIsSampledWithMisAndMetByEscapingRays) {
+  ShadowScene s = makeShadowScene();
+  render::SessionOptions o;
+  o.sceneData = s.scene;
+  o.settings.width = o.settings.height = 24;
+  o.settings.envColor = glm::vec3(0.0f);
+  o.settings.sunAngleDeg = 60.0f;
+  auto session = makeSession(o);
+  const float cosMax = std::cos(glm::radians(30.0f));
+  const float disc = gpu::sunDiscRadiance(glm::vec3(s.sunRadiance), cosMax).x;
+  size_t sunSamples = 0, discHits = 0;
+  for (auto [x, y] : {std::pair{12u, 14u}, std::pair{5u, 20u}, std::pair{19u, 8u}}) {
+    for (const auto& sample : inspect(*session, x, y, 16)) {
+      const auto& r = sample.record;
+      expectClose(sample.sum, r.radiance, 1e-5f, "sample " + std::to_string(r.sampleIndex));
+      for (const auto& v : sample.vertices) {
+        for (const auto& l : v.lights) {
+          if (l.kind != WB_INSPECT_LIGHT_DIRECTIONAL) continue;
+          EXPECT_NEAR(l.lightPdf, gpu::sunConePdf(cosMax), 1e-5f * gpu::sunConePdf(cosMax));
+          if (l.status != WB_INSPECT_NEE_TRACED) continue;
+          EXPECT_GT(l.misWeight, 0.0f);
+          EXPECT_LT(l.misWeight, 1.0f);
+          EXPECT_NEAR(l.radiance.x, disc, 1e-5f * disc);
+          ++sunSamples;
+        }
+      }
+      if (!r.escaped) continue;
+      expectClose(r.escapeRadiance, r.escapeEnvironment * r.escapeMis + r.escapeSun, 1e-5f, "escape");
+      if (r.escapeSun.x > 0.0f) {
+        EXPECT_LT(r.escapeSun.x, disc) << "a BRDF-sampled ray: weighed against the cone sample";
+        ++discHits;
+      }
+    }
+  }
+  EXPECT_GT(sunSamples, 20u);
+  EXPECT_GT(discHits, 0u) << "some escaping ray should meet the disc";
   expectNoValidationErrors(*session);
 }
 

@@ -32,7 +32,7 @@ TEST(PathTracerLayout, ReflectedBindingsMatchTheSharedHeader) {
       {WB_BIND_FRAME, {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, rgen | chit | miss, false}},
       {WB_BIND_GEOMETRIES, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | ahit, false}},
       {WB_BIND_MATERIALS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | ahit, false}},
-      {WB_BIND_LIGHTS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},
+      {WB_BIND_LIGHTS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | miss, false}},  // miss: the suns' discs
       {WB_BIND_TEXTURES, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, chit | ahit, true}},
       {WB_BIND_ENV_MAP, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, chit | miss, false}},
       {WB_BIND_ENV_ALIAS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit | miss, false}},

@@ -38,7 +38,7 @@ void main() {
   SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, WB_SAMPLER_OWEN);
   uint st = 5u;
   outBuf.v[0] = vec4(samplerGet3D(s, sampleDimension(1u, WB_DIM_LOBE)),
-                     samplerGet2D(s, WB_DIM_PIXEL).x + float(owenBits(2u, 3u, 4u, 1u)) + float(nestedUniformScramble(5u, 6u)) + pcgNextFloat(st));
+                     samplerGet2D(s, WB_DIM_PIXEL).x + float(owenBits(2u, 3u, 4u, 1u)) + float(nestedUniformScramble(5u, 6u)) + pcgNextFloat(st) + hashStreamNext(st));
 }
 #elif defined(WB_CHECK_env_sampling)
 #include "shared/env_sampling.h"
@@ -57,10 +57,18 @@ void main() {
   outBuf.v[1] = vec4(s.wi + sphericalTriangleSample(sphericalTriangleSetup(p, p0, p1, p2), vec2(0.2, 0.7)),
                      s.pdf + triangleLightPdf(p, p0, p1, p2, s.dist, s.cosLight, 1.0));
 }
+#elif defined(WB_CHECK_sun)
+#include "shared/sun.h"
+void main() {
+  vec3 d = sampleCone(normalize(vec3(0.1, -1.0, 0.2)), 0.99, vec2(0.3, 0.6));
+  outBuf.v[0] = vec4(sunRadianceAlong(d, vec3(0.0, -1.0, 0.0), 0.99, sunDiscRadiance(vec3(2.0), 0.99)),
+                     sunConePdf(0.99) + (sunIsDelta(1.0) ? 1.0 : 0.0));
+}
 #else
 #include "shared/brdf.h"
 #include "shared/random.h"
 #include "shared/env_sampling.h"
+#include "shared/sun.h"
 #include "shared/sampling_math.h"
 void main() {
   SamplerState s = samplerInit(gl_GlobalInvocationID.xy, 3u, 7u, WB_SAMPLER_OWEN);

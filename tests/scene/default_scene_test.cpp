@@ -141,6 +141,8 @@ TEST_F(DefaultScene, SunShinesThroughTheOpeningAndSpheresShadowTheFloor) {
   EXPECT_LT(d.y, 0.0f);  // downwards
   EXPECT_LT(d.z, 0.0f);  // into the room through the open z = +1 side
   EXPECT_GT(scene.lights[0].radiance.x, 0.0f);
+  // A glTF light: a delta light in every mode unless `--sun-angle` gives it a size.
+  EXPECT_EQ(scene.lights[0].cosAngularRadius, 1.0f);
   for (const Instance& instance : scene.instances) {
     if (instance.nodeName.rfind("sphere_", 0) != 0) continue;
     const glm::vec3 centre(instance.transform[3]);

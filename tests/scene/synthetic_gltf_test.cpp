@@ -499,3 +499,22 @@ TEST(SyntheticGltf, MissingPositionSkipsPrimitiveWithWarning) {
 
 }  // namespace
 }  // namespace wb::scene
+
+// `--sun-angle` is the lights' angular diameter in degrees, in every mode; DirectionalLight::cosAngularRadius
+// is the cosine of half of it. 0 makes delta lights (cosine exactly 1), a negative angle keeps each light's
+// own.
+TEST(SceneLights, SunAngleIsTheAngularDiameter) {
+  EXPECT_EQ(wb::scene::sunCosAngularRadius(0.9f, 0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(wb::scene::sunCosAngularRadius(1.0f, 0.53f), std::cos(glm::radians(0.265f)));
+  EXPECT_FLOAT_EQ(wb::scene::sunCosAngularRadius(1.0f, 90.0f), std::sqrt(0.5f));
+  EXPECT_EQ(wb::scene::sunCosAngularRadius(0.99f, -1.0f), 0.99f);
+  std::vector<wb::gpu::DirectionalLight> lights(2);
+  lights[0].cosAngularRadius = 1.0f;
+  lights[1].cosAngularRadius = 0.9f;
+  const auto sized = wb::scene::withSunAngle(lights, 10.0f);
+  EXPECT_FLOAT_EQ(sized[0].cosAngularRadius, std::cos(glm::radians(5.0f)));
+  EXPECT_FLOAT_EQ(sized[1].cosAngularRadius, std::cos(glm::radians(5.0f)));
+  const auto kept = wb::scene::withSunAngle(lights, -1.0f);
+  EXPECT_EQ(kept[0].cosAngularRadius, 1.0f);
+  EXPECT_EQ(kept[1].cosAngularRadius, 0.9f);
+}

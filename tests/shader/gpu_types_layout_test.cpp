@@ -1,4 +1,4 @@
-// One definition of every host/shader struct (shaders/shared/gpu_types.h) only holds if the shaders lay the
+// One definition of every host/shader struct (shaders/shared/*_types.h) only holds if the shaders lay the
 // structs out as C++ does: the block and element sizes that SPIRV-Cross reflects from the real shaders equal
 // sizeof(gpu::...) on the host. A member added on one side only, or a layout qualifier changed, fails here.
 #include <gtest/gtest.h>
@@ -11,7 +11,10 @@
 #include "common/paths.h"
 #include "display/display_types.h"
 #include "shader/library.h"
-#include "shared/gpu_types.h"
+#include "shared/hybrid_types.h"
+#include "shared/inspect_types.h"
+#include "shared/pathtracer_types.h"
+#include "shared/scene_types.h"
 
 namespace {
 

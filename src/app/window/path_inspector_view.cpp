@@ -125,7 +125,8 @@ void vertexTooltip(const render::InspectedVertex& iv) {
                 render::inspectLightStatusName(l.status),
                 l.status == WB_INSPECT_NEE_TRACED ? (l.visible ? ", visible" : ", blocked") : "");
     ImGui::Text("  light pdf %.4g%s  BRDF pdf %.4g  MIS %.4g", l.lightPdf,
-                l.kind == WB_INSPECT_LIGHT_DIRECTIONAL ? " (delta)" : "", l.brdfPdf, l.misWeight);
+                l.kind == WB_INSPECT_LIGHT_DIRECTIONAL && l.lightPdf == 0.0f ? " (delta)" : "", l.brdfPdf,
+                l.misWeight);
     ImGui::Text("  Le %s  contribution %s", vec3Text(l.radiance).c_str(), vec3Text(l.contribution).c_str());
   }
   ImGui::Text("added to the sample %s", vec3Text(iv.added).c_str());
@@ -292,7 +293,8 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
     ImGui::EndTable();
   }
   if (r.escaped) {
-    ImGui::Text("escaped: environment %s, MIS %.3g", vec3Text(r.escapeEnvironment).c_str(), r.escapeMis);
+    ImGui::Text("escaped: environment %s, MIS %.3g, sun %s", vec3Text(r.escapeEnvironment).c_str(),
+                r.escapeMis, vec3Text(r.escapeSun).c_str());
   }
 }
 

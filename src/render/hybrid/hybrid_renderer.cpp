@@ -16,7 +16,6 @@ constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
 constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
-constexpr float kDefaultSunAngleDeg = 0.53f;
 
 // Reversed-Z infinite perspective (depth = znear / distance), y flipped like the path tracer's projection so
 // both put image row 0 at the top and agree on every pixel's ray.
@@ -94,7 +93,6 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
   if (!scene.lights.empty()) {
     sun_ = scene.lights.front();
     hasSun_ = true;
-    sceneSunCos_ = sun_.cosAngularRadius;
   }
   cameraDistance_ = std::max(glm::length(scene.camera.eye - scene.camera.target), 1e-3f);
   camera_ = cameraFromScene(scene.camera);
@@ -176,7 +174,9 @@ void HybridRenderer::createImages() {
                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
   shadowMask_ = vk::Image(ctx_, w, h, VK_FORMAT_R8_UNORM, storage);
   aoMask_ = vk::Image(ctx_, w, h, VK_FORMAT_R8_UNORM, storage);
-  history_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
+  // 32-bit floats: the running average over many frames stays unbiased whatever the driver's rounding to 16
+  // bits.
+  history_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage);
   reflection_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, storage);
   output_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage | VK_IMAGE_USAGE_SAMPLED_BIT);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
@@ -299,9 +299,7 @@ float HybridRenderer::aoRadius() const {
 }
 
 float HybridRenderer::sunCosAngle() const {
-  if (hybrid_.sunAngleDeg >= 0.0f) return std::cos(glm::radians(hybrid_.sunAngleDeg * 0.5f));
-  if (sceneSunCos_ < 1.0f) return sceneSunCos_;
-  return std::cos(glm::radians(kDefaultSunAngleDeg * 0.5f));
+  return scene::sunCosAngularRadius(hasSun_ ? sun_.cosAngularRadius : 1.0f, settings_.sunAngleDeg);
 }
 
 void HybridRenderer::updateUniforms() {

@@ -77,7 +77,7 @@ class HybridRenderer final : public Renderer {
   std::vector<float> readReflection() const;    // RGBA (from half floats): reflected radiance, a = traced
 
   float aoRadius() const;
-  float sunCosAngle() const;
+  float sunCosAngle() const;  // the sun's cone, as the path tracer's (scene::sunCosAngularRadius)
 
   // The inspector: records the shadow, AO and reflection rays of one pixel each frame (nullopt: none). Clears
   // the record.
@@ -108,7 +108,6 @@ class HybridRenderer final : public Renderer {
   std::filesystem::path shaderRoot_;
   CameraState camera_;
   float cameraDistance_ = 1.0f;
-  float sceneSunCos_ = 1.0f;
   gpu::DirectionalLight sun_{};
   bool hasSun_ = false;
   std::vector<Draw> draws_;

@@ -5,9 +5,6 @@
 namespace wb::render {
 
 struct HybridSettings {
-  // Angular diameter of the sun in degrees for the cone jitter of shadow rays (0 = hard shadows); negative =
-  // from the scene light's cosAngularRadius.
-  float sunAngleDeg = -1.0f;
   float aoRadius = 0.0f;         // world units; 0 = 15% of the camera-to-target distance
   uint32_t aoRays = 2;           // per pixel and frame; 0 disables ambient occlusion
   bool temporal = true;          // average shadow and AO over frames while the camera is still
