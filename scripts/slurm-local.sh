@@ -7,6 +7,10 @@
 #   scripts/slurm-local.sh stop     stop the daemons this script started
 #   scripts/slurm-local.sh status   say whether they run, and sinfo
 #
+# With `--holder NAME` (the tests pass their build folder) start registers NAME as a user of the cluster and
+# stop unregisters it, stopping the daemons only when no holder is left: test runs of several build folders
+# share one cluster without stopping it under each other. A plain `stop` stops it whatever holds it.
+#
 # Containers have no systemd and often no writable cgroups: the daemons are started directly, and the
 # configuration tracks processes by their parent (proctrack/linuxproc), binds nothing (task/none) and keeps
 # no accounting. The node is this machine with its cores and memory as `slurmd -C` reports them.
@@ -175,12 +179,29 @@ status() {
   sinfo 2>/dev/null || true
 }
 
+holder=""
+if [ "${2:-}" = "--holder" ] && [ -n "${3:-}" ]; then holder=$(echo "$3" | sha256sum | cut -c1-16); fi
+holders="$state/holders"
+
 case "${1:-}" in
-start) start ;;
-stop) stop ;;
+start)
+  # The holder is registered before the start: a concurrent `stop --holder` of another build sees it.
+  if [ -n "$holder" ]; then mkdir -p "$holders" && echo "$3" >"$holders/$holder"; fi
+  start
+  ;;
+stop)
+  if [ -n "$holder" ]; then
+    rm -f "$holders/$holder"
+    if [ -n "$(ls -A "$holders" 2>/dev/null)" ]; then
+      say "still held by $(cat "$holders"/* | tr '\n' ' '): left running"
+      exit 0
+    fi
+  fi
+  stop
+  ;;
 status) status ;;
 *)
-  echo "usage: $0 start|stop|status" >&2
+  echo "usage: $0 start|stop|status [--holder NAME]" >&2
   exit 2
   ;;
 esac

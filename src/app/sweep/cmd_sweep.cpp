@@ -239,8 +239,9 @@ int waitForMerge(const fs::path& dir, const Sweep& s, const std::string& mergeJo
 }
 
 int submit(const fs::path& dir, const Sweep& s, const std::vector<size_t>& todo, const Executor& e, bool wait,
-           const std::vector<std::string>& alsoWaitFor) {
-  const Submission sub = submitToSlurm(dir, s, todo, e, alsoWaitFor);
+           const std::vector<std::string>& referenceJobs = {},
+           const std::vector<std::string>& activeJobs = {}) {
+  const Submission sub = submitToSlurm(dir, s, todo, e, referenceJobs, activeJobs);
   auto list = [](const std::vector<std::string>& ids) {
     std::string out;
     for (const auto& id : ids) out += (out.empty() ? "" : ",") + id;
@@ -368,7 +369,7 @@ int SweepCommand::create() {
   std::vector<size_t> all(s.tasks.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   if (e.kind == "local") return finishLocal(dir, s, all, e.jobs);
-  return submit(dir, s, all, e, create_.wait, {});
+  return submit(dir, s, all, e, create_.wait);
 }
 
 int SweepCommand::status() {
@@ -445,7 +446,7 @@ int SweepCommand::resume() {
   const auto states = taskStates(dir, s, q, 0);
   std::vector<size_t> todo;
   std::vector<std::string> stuck, activeJobs;
-  std::set<std::string> activeArrays;
+  std::set<std::string> activeArrays, activeReferences;
   for (size_t i = 0; i < states.size(); ++i) {
     if (states[i].state == State::Failed) {
       todo.push_back(i);
@@ -453,8 +454,11 @@ int SweepCommand::resume() {
       if (queued != q.tasks.end()) stuck.push_back(queued->second.job);  // queued, but can never start
     } else if (states[i].state != State::Done) {
       const auto queued = q.tasks.find(i);
-      if (queued != q.tasks.end())
-        activeArrays.insert(queued->second.job.substr(0, queued->second.job.find('_')));
+      if (queued != q.tasks.end()) {
+        const std::string array = queued->second.job.substr(0, queued->second.job.find('_'));
+        activeArrays.insert(array);
+        if (s.tasks[i].kind == TaskKind::Reference) activeReferences.insert(array);
+      }
       if (queued == q.tasks.end() && states[i].state == State::Running && e.kind == "local")
         throw std::runtime_error("task " + s.tasks[i].id + " is running (" + states[i].detail + ")");
     }
@@ -479,7 +483,7 @@ int SweepCommand::resume() {
               activeJobs.empty() ? "" : " (others still queued or running in Slurm)");
   std::fflush(stdout);
   if (e.kind == "local") return finishLocal(dir, s, todo, e.jobs);
-  return submit(dir, s, todo, e, again_.wait, activeJobs);
+  return submit(dir, s, todo, e, again_.wait, {activeReferences.begin(), activeReferences.end()}, activeJobs);
 }
 
 }  // namespace wb::app

@@ -56,6 +56,25 @@ double num(const json& j, const char* key) {
   return j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
 }
 
+// A run's result holds a measurement at each of the sweep's checkpoints; throws std::runtime_error naming the
+// file otherwise (a result of another sweep or version: it must be made again).
+void checkRunResult(const json& r, const Sweep& s, const fs::path& file) {
+  const json cps = r.value("checkpoints", json());
+  bool ok = cps.is_array() && cps.size() == s.checkpoints.size();
+  for (size_t i = 0; ok && i < cps.size(); ++i) {
+    const json& c = cps[i];
+    ok = c.is_object() && c.value("spp", 0u) == s.checkpoints[i] && c.contains("mean_rgb") &&
+         c["mean_rgb"].is_array() && c["mean_rgb"].size() == 3;
+    for (size_t k = 0; ok && k < 3; ++k) ok = c["mean_rgb"][k].is_number();
+  }
+  if (!ok) {
+    throw std::runtime_error(
+        file.string() +
+        " does not hold a measurement at each of this sweep's checkpoints: remove it and run "
+        "the task again (`workbench sweep resume DIR`)");
+  }
+}
+
 // One configuration on one scene: its seeds' results combined as converge combines the runs of a
 // configuration (errors per checkpoint over the runs, the variance between runs, the first run's final
 // image).
@@ -86,9 +105,9 @@ ConfigResult combineSeeds(const fs::path& dir, const Sweep& s, const std::string
   std::vector<double> setup;
   for (const auto& [task, result] : seeds) {
     r.dropped += (*result).value("nan_inf_dropped", uint64_t{0});
-    setup.push_back(num((*result)["startup"], "session_setup_seconds"));
+    setup.push_back(num(result->value("startup", json::object()), "session_setup_seconds"));
   }
-  const json& ff = (*seeds.front().second)["fireflies"];
+  const json ff = seeds.front().second->value("fireflies", json::object());
   r.fireflies.maxOverMean = num(ff, "max_over_mean");
   r.fireflies.fractionAbove10x = num(ff, "fraction_above_10x");
   r.fireflies.meanLuminance = num(ff, "mean_luminance");
@@ -110,7 +129,7 @@ void writeStartup(std::ostream& md, json& summary, const std::vector<std::option
   std::vector<std::pair<double, std::string>> slowest;
   for (size_t i = 0; i < s.tasks.size(); ++i) {
     if (!results[i] || s.tasks[i].kind != TaskKind::Run) continue;
-    const json& st = (*results[i])["startup"];
+    const json st = results[i]->value("startup", json::object());
     load.push_back(num(st, "scene_load_seconds"));
     setup.push_back(num(st, "session_setup_seconds"));
     toSession.push_back(num(st, "to_session_seconds"));
@@ -191,7 +210,11 @@ MergeResult mergeSweep(const fs::path& dir, const Sweep& s, bool partial) {
   std::vector<std::optional<json>> results(s.tasks.size());
   for (size_t i = 0; i < s.tasks.size(); ++i) {
     results[i] = readResult(dir, s.tasks[i]);
-    if (!results[i]) out.missing.push_back(s.tasks[i].id);
+    if (!results[i]) {
+      out.missing.push_back(s.tasks[i].id);
+    } else if (s.tasks[i].kind == TaskKind::Run) {
+      checkRunResult(*results[i], s, resultFile(dir, s.tasks[i]));
+    }
   }
   if (!out.missing.empty() && !partial) {
     out.message = std::to_string(out.missing.size()) + " of " + std::to_string(s.tasks.size()) +

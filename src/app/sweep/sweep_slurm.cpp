@@ -239,7 +239,8 @@ CommandOutput runProgram(const std::string& program, const std::vector<std::stri
 }
 
 Submission submitToSlurm(const fs::path& dirIn, const Sweep& s, const std::vector<size_t>& tasks,
-                         const Executor& e, const std::vector<std::string>& alsoWaitFor) {
+                         const Executor& e, const std::vector<std::string>& referenceJobs,
+                         const std::vector<std::string>& activeJobs) {
   std::error_code ec;
   const fs::path dir = fs::absolute(dirIn, ec).lexically_normal();
   requirePlainPath(dir);
@@ -256,11 +257,11 @@ Submission submitToSlurm(const fs::path& dirIn, const Sweep& s, const std::vecto
   const size_t chunk = maxArraySize();
   Submitter sub(dir, s, e);
   Submission out;
-  out.referenceJobs = sub.arrays(refs, "ref", dependency({}, alsoWaitFor), chunk);
-  out.runJobs = sub.arrays(runs, "run", dependency(out.referenceJobs, alsoWaitFor), chunk);
+  out.referenceJobs = sub.arrays(refs, "ref", "", chunk);
+  out.runJobs = sub.arrays(runs, "run", dependency(out.referenceJobs, referenceJobs), chunk);
   std::vector<std::string> all = out.referenceJobs;
   all.insert(all.end(), out.runJobs.begin(), out.runJobs.end());
-  out.mergeJob = sub.merge(dependency(all, alsoWaitFor));
+  out.mergeJob = sub.merge(dependency(all, activeJobs));
   return out;
 }
 

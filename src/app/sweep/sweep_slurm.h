@@ -17,11 +17,13 @@ struct Submission {
   std::string mergeJob;
 };
 
-// Submits `tasks` (task numbers; references among them go first) and a merge job. The merge also waits for
-// `alsoWaitFor` (jobs of an earlier submission still queued or running: afterany, the merge itself refuses a
-// sweep with a task missing). Throws std::runtime_error with sbatch's message when a submission fails.
+// Submits `tasks` (task numbers; references among them go first) and a merge job. Jobs of an earlier
+// submission still queued or running are waited for (afterany; a task that needs a missing reference, and the
+// merge, refuse clearly): `referenceJobs` (arrays holding reference renders) by the new runs, `activeJobs`
+// (all of them) by the merge. Throws std::runtime_error with sbatch's message when a submission fails.
 Submission submitToSlurm(const fs::path& dir, const Sweep& s, const std::vector<size_t>& tasks,
-                         const Executor& e, const std::vector<std::string>& alsoWaitFor);
+                         const Executor& e, const std::vector<std::string>& referenceJobs,
+                         const std::vector<std::string>& activeJobs);
 
 // Which of the sweep's jobs Slurm still has (squeue), per task and for the merge jobs. Queries nothing when
 // the sweep has no Slurm jobs recorded.
