@@ -249,7 +249,7 @@ TEST(SweepState, LoadingAFolderWithoutASweepSaysSo) {
   }
 }
 
-TEST(SweepSlurm, ScriptWordsAreQuotedWhenTheyNeedIt) {
+TEST(SweepScripts, WordsAreQuotedWhenTheyNeedIt) {
   EXPECT_EQ(shellQuote("/a/b-c_d.txt"), "/a/b-c_d.txt");
   EXPECT_EQ(shellQuote("a b"), "'a b'");
   EXPECT_EQ(shellQuote("it's"), "'it'\\''s'");
