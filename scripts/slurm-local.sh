@@ -94,6 +94,8 @@ InactiveLimit=0
 $node State=UNKNOWN NodeAddr=127.0.0.1
 PartitionName=local Nodes=$name Default=YES MaxTime=INFINITE State=UP OverSubscribe=NO
 EOF
+  config_changed=0
+  if ! cmp -s "$conf.tmp" "$conf"; then config_changed=1; fi
   mv "$conf.tmp" "$conf"
   echo "$name" >"$state/node"
 }
@@ -127,6 +129,8 @@ start() {
   fi
   if ! alive "$state/run/slurmd.pid"; then
     /usr/sbin/slurmd -N "$(cat "$state/node")" || die "slurmd did not start; see $state/log/slurmd.log"
+  elif [ "$config_changed" = 1 ]; then
+    scontrol reconfigure || die "scontrol reconfigure failed on the new $conf"
   fi
   local node t=0
   node=$(cat "$state/node")
