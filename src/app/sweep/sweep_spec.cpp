@@ -257,25 +257,28 @@ json flagsJson(const std::vector<std::string>& flags) {
 
 }  // namespace
 
-RenderOptions Sweep::sceneOptions(size_t scene) const {
-  const SceneSpec& sc = scenes.at(scene);
+namespace {
+
+// The command line of a scene's renders: its file, the size, the sweep's flags and the scene's.
+std::vector<std::string> sceneArgs(const Sweep& s, size_t scene) {
+  const SceneSpec& sc = s.scenes.at(scene);
   std::vector<std::string> args;
   if (!sc.path.empty()) args.push_back(sc.path);
   args.push_back("--size");
-  args.push_back(size);
-  args.insert(args.end(), flags.begin(), flags.end());
+  args.push_back(s.size);
+  args.insert(args.end(), s.flags.begin(), s.flags.end());
   args.insert(args.end(), sc.flags.begin(), sc.flags.end());
-  return parseRenderFlags(args);
+  return args;
+}
+
+}  // namespace
+
+RenderOptions Sweep::sceneOptions(size_t scene) const {
+  return parseRenderFlags(sceneArgs(*this, scene));
 }
 
 RenderOptions Sweep::configOptions(size_t scene, size_t config) const {
-  const SceneSpec& sc = scenes.at(scene);
-  std::vector<std::string> args;
-  if (!sc.path.empty()) args.push_back(sc.path);
-  args.push_back("--size");
-  args.push_back(size);
-  args.insert(args.end(), flags.begin(), flags.end());
-  args.insert(args.end(), sc.flags.begin(), sc.flags.end());
+  std::vector<std::string> args = sceneArgs(*this, scene);
   const auto& cf = configs.at(config).flags;
   args.insert(args.end(), cf.begin(), cf.end());
   return parseRenderFlags(args);
