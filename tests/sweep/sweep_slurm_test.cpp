@@ -79,14 +79,28 @@ TEST(SweepSlurm, SameImagesAndReportAsLocalAfterCancelStatusAndResume) {
   ASSERT_TRUE(fs::exists(local / "report" / "summary.md")) << l.output;
 
   // Submitted without waiting: the runs wait for the reference render, so two of them are cancelled before
-  // they start (or, on a slow cluster, while they run: either way they end without a result).
-  const CommandResult s = sweep(spec.string() + " --slurm --throttle 2 --out " + slurm.string());
+  // they start (or, on a slow cluster, while they run: either way they end without a result). An scontrol
+  // that reports a MaxArraySize of 8 makes the sweep split its 12 runs into arrays of 8 and 4, as on a
+  // cluster whose limit is below a sweep's size.
+  const fs::path bin = root / "bin";
+  fs::create_directories(bin);
+  std::ofstream(bin / "scontrol")
+      << "#!/bin/sh\nif [ \"$1 $2\" = \"show config\" ]; then\n"
+         "  scontrol_real=$(PATH=${PATH#*:} command -v scontrol)\n"
+         "  \"$scontrol_real\" show config | sed 's/^MaxArraySize .*/MaxArraySize = 8/'\n"
+         "else PATH=${PATH#*:} exec scontrol \"$@\"; fi\n";
+  fs::permissions(bin / "scontrol", fs::perms::owner_all);
+  const CommandResult s = runCommand("PATH=" + bin.string() + ":$PATH " + WB_WORKBENCH_BIN + " sweep " +
+                                     spec.string() + " --slurm --throttle 2 --out " + slurm.string());
   ASSERT_EQ(s.code, 0) << s.output;
   const json jobs = json::parse(fileText(slurm / "slurm" / "jobs.json"));
   const json& arrays = jobs["submissions"][0]["arrays"];
-  ASSERT_EQ(arrays.size(), 2u) << jobs.dump();
+  ASSERT_EQ(arrays.size(), 3u) << jobs.dump();
   EXPECT_EQ(arrays[0]["kind"], "ref");
   EXPECT_EQ(arrays[1]["kind"], "run");
+  EXPECT_EQ(arrays[1]["tasks"].size(), 8u);
+  EXPECT_EQ(arrays[2]["kind"], "run");
+  EXPECT_EQ(arrays[2]["tasks"].size(), 4u);
   const std::string runs = arrays[1]["job"];
   // Elements 1 and 4 of the runs array: default.sobol.s1 and default.hybrid.s0.
   const CommandResult cancel = runCommand("scancel " + runs + "_1 " + runs + "_4");
@@ -100,7 +114,8 @@ TEST(SweepSlurm, SameImagesAndReportAsLocalAfterCancelStatusAndResume) {
   ASSERT_TRUE(waitFor([&] {
     status = sweepStatus(slurm);
     return countState(status, "pending") + countState(status, "running") == 0 &&
-           status["merge_jobs"].size() == 1 && status["merge_jobs"][0]["reason"] == "DependencyNeverSatisfied";
+           status["merge_jobs"].size() == 1 &&
+           status["merge_jobs"][0]["reason"] == "DependencyNeverSatisfied";
   })) << status.dump(1);
   EXPECT_EQ(countState(status, "done"), 11u) << status.dump(1);
   EXPECT_EQ(countState(status, "failed"), 2u) << status.dump(1);
