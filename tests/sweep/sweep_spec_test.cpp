@@ -233,6 +233,15 @@ TEST(SweepState, TasksAreDoneFailedWithTheirLogOrNeverStarted) {
   EXPECT_NE(queued[3].detail.find("can never start"), std::string::npos);
   EXPECT_EQ(queued[4].state, State::Running);
 
+  // When squeue cannot answer, a task that never started is not called failed: Slurm may still hold it.
+  QueueView unknown;
+  unknown.queried = true;
+  unknown.error = "squeue failed (exit 1): cannot connect";
+  const auto guessed = taskStates(f.dir, f.sweep, unknown, 2);
+  EXPECT_EQ(guessed[2].state, State::Pending);
+  EXPECT_NE(guessed[2].detail.find("not known"), std::string::npos);
+  EXPECT_EQ(guessed[1].state, State::Failed) << "it started and ended without a result";
+
   // A task holding its lock runs.
   const FileLock lock(taskDir(f.dir, started) / "lock");
   ASSERT_TRUE(lock.held());

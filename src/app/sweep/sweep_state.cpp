@@ -176,6 +176,11 @@ std::vector<TaskState> taskStates(const fs::path& dir, const Sweep& s, const Que
       st.detail = "job " + st.job + " in Slurm: " + queued->second.state + " (" + queued->second.reason + ")";
       continue;
     }
+    if (!queue.error.empty() && !attempt) {
+      st.state = State::Pending;  // Slurm may still hold it: what the queue says is not known
+      st.detail = "not started yet; whether Slurm still holds it is not known (squeue failed)";
+      continue;
+    }
     if (queued != queue.tasks.end()) {
       st.state = State::Failed;
       st.detail =
