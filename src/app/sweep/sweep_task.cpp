@@ -55,7 +55,7 @@ json shaderCacheJson(render::RenderSession& session) {
       {"hits", st.hits}, {"misses", st.misses}, {"compiles", st.compiles}, {"compile_ms", st.compileMs}};
 }
 
-json referenceTask(const fs::path& dir, const Sweep& s, const Task& t) {
+json renderReferenceTask(const fs::path& dir, const Sweep& s, const Task& t) {
   const SceneSpec& scene = s.scenes[t.scene];
   ProgressLine progress("sweep " + t.id);
   const ReferenceRender ref = renderReference(s.sceneOptions(t.scene), scene.referenceSpp, progress);
@@ -70,7 +70,7 @@ json referenceTask(const fs::path& dir, const Sweep& s, const Task& t) {
               {"startup", {{"session_setup_seconds", ref.setupSeconds}}}};
 }
 
-json runTask(const fs::path& dir, const Sweep& s, const Task& t, Clock::time_point start) {
+json renderRunTask(const fs::path& dir, const Sweep& s, const Task& t, Clock::time_point start) {
   RenderOptions ro = s.configOptions(t.scene, t.config);
   ro.params.render.seed = s.taskSeed(t);
   // The reference: a file, or the output of the scene's reference task.
@@ -187,7 +187,8 @@ int runTask(const fs::path& dir, const std::string& name, bool force) {
                 attempt["host"].get<std::string>().c_str(), attempt["started"].get<std::string>().c_str());
     std::fflush(stdout);
 
-    json result = t.kind == TaskKind::Reference ? referenceTask(dir, s, t) : runTask(dir, s, t, start);
+    json result =
+        t.kind == TaskKind::Reference ? renderReferenceTask(dir, s, t) : renderRunTask(dir, s, t, start);
     result["task"] = t.id;
     result["number"] = s.findTask(t.id);
     result["kind"] = t.kind == TaskKind::Reference ? "reference" : "run";
