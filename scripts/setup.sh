@@ -2,6 +2,7 @@
 # Installs every system package the workbench needs, from scratch, idempotently. Run as root.
 # Vulkan ray tracing on lavapipe needs Mesa >= 24.1; Debian 12 ships 22.3, so mesa-vulkan-drivers
 # comes from bookworm-backports on the same mirror as the machine's existing Debian sources.
+# slurm-wlm and munge: the single-node cluster of the sweep tests (scripts/slurm-local.sh).
 set -euo pipefail
 
 if [ "$(id -u)" -ne 0 ]; then
@@ -42,7 +43,8 @@ apt-get install -y -q --no-install-recommends \
   libglfw3-dev libglm-dev libimgui-dev libtinygltf-dev libstb-dev libtinyexr-dev \
   nlohmann-json3-dev libxxhash-dev libcli11-dev \
   libgtest-dev libgmock-dev googletest libbenchmark-dev \
-  xvfb xauth xdotool clang-format gnuplot-nox
+  xvfb xauth xdotool clang-format gnuplot-nox \
+  slurm-wlm slurm-client munge
 
 # Ray tracing capable lavapipe (Mesa 25.x) from backports.
 apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "app/converge_report.h"
+#include "app/converge_run.h"
 #include "app/render_options.h"
 #include "render/render_session.h"
 #include "shader/hash.h"
@@ -24,36 +25,6 @@ namespace fs = std::filesystem;
 
 namespace wb::app {
 namespace {
-
-constexpr uint32_t kReferenceSeed = 0x5eed0000u;  // never one of the runs' seeds
-
-std::vector<std::string> splitFlags(const std::string& text) {
-  std::vector<std::string> out;
-  std::string cur;
-  char quote = 0;
-  bool any = false;
-  for (char c : text) {
-    if (quote) {
-      if (c == quote) {
-        quote = 0;
-      } else {
-        cur += c;
-      }
-    } else if (c == '"' || c == '\'') {
-      quote = c;
-      any = true;
-    } else if (c == ' ' || c == '\t') {
-      if (!cur.empty() || any) out.push_back(cur);
-      cur.clear();
-      any = false;
-    } else {
-      cur += c;
-    }
-  }
-  if (quote) throw std::invalid_argument("--config: unbalanced quote in '" + text + "'");
-  if (!cur.empty() || any) out.push_back(cur);
-  return out;
-}
 
 void addConvergeOptions(CLI::App& cli, ConvergeOptions& c) {
   cli.add_option("--reference", c.reference,
@@ -73,19 +44,12 @@ void addConvergeOptions(CLI::App& cli, ConvergeOptions& c) {
 }
 
 // Parses the command's arguments (plus a configuration's flags, which win) into render options.
-RenderOptions parseRenderFlags(const std::vector<std::string>& args, const std::vector<std::string>& extra) {
-  CLI::App cli;
-  cli.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  RenderOptions ro;
-  ConvergeOptions ignored;
-  addRenderOptions(cli, ro);
-  addConvergeOptions(cli, ignored);
+RenderOptions parseConvergeRenderFlags(const std::vector<std::string>& args,
+                                       const std::vector<std::string>& extra) {
   std::vector<std::string> all = args;
   all.insert(all.end(), extra.begin(), extra.end());
-  std::vector<std::string> reversed(all.rbegin(), all.rend());
-  cli.parse(reversed);
-  finishRenderOptions(ro);
-  return ro;
+  ConvergeOptions ignored;
+  return parseRenderFlags(all, [&](CLI::App& cli) { addConvergeOptions(cli, ignored); });
 }
 
 std::string mtimeOf(const fs::path& p) {
@@ -95,47 +59,17 @@ std::string mtimeOf(const fs::path& p) {
   return std::to_string(t.time_since_epoch().count());
 }
 
-// Adds `samples` samples (hybrid modes: frames, which keep accumulating shadows and AO) to the current image.
-double timedRender(render::RenderSession& session, uint32_t samples) {
-  const auto t0 = std::chrono::steady_clock::now();
-  session.renderer().render(samples);
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-render::SessionOptions sessionOptions(const RenderOptions& ro) {
-  render::SessionOptions so;
-  so.scenePath = ro.scene;
-  so.settings = ro.params.render;
-  so.context.deviceName = ro.device;
-  so.quiet = true;
-  so.mode = ro.params.mode;
-  so.hybrid = ro.params.hybrid;
-  return so;
-}
-
 // The reference: a file (downsampled to the render size when needed), or a cached long render.
 eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base,
                                       ProgressLine& progress, std::string& description) {
   const auto& s = base.params.render;
-  if (!c.reference.empty()) {
-    eval::ImageRGBA ref = eval::readExr(c.reference);
-    if (ref.width != s.width || ref.height != s.height) {
-      ref = eval::downsampleTo(ref, s.width, s.height);
-      description = "file `" + c.reference + "` (box-downsampled to " + std::to_string(s.width) + "x" +
-                    std::to_string(s.height) + ")";
-    } else {
-      description = "file `" + c.reference + "`";
-    }
-    return ref;
-  }
+  if (!c.reference.empty()) return loadReferenceFile(c.reference, s.width, s.height, description);
   const uint32_t spp = c.referenceSpp ? c.referenceSpp : 1024;
   const fs::path scene = base.scene.empty() ? defaultScenePath() : fs::path(base.scene);
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(scene, ec);
   // The reference renders the path tracer with its own seed: the key holds what it renders with.
-  render::Parameters refParams = base.params;
-  refParams.render.seed = kReferenceSeed;
-  refParams.mode = render::RenderMode::PathTrace;
+  const render::Parameters refParams = referenceParameters(base.params);
   std::string key = "scene " + canonical.string() + " mtime " + mtimeOf(scene) + " " +
                     std::to_string(s.width) + "x" + std::to_string(s.height) + " " +
                     render::imageKey(refParams) + " spp " + std::to_string(spp) + " shaders " +
@@ -149,21 +83,9 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
                   file.string() + "`)";
     return eval::readExr(file);
   }
-  RenderOptions ro = base;
-  ro.params = refParams;
-  render::RenderSession session(sessionOptions(ro));
-  session.renderer().resetAccumulation();
-  double t = 0;
-  for (uint32_t done = 0; done < spp;) {
-    const uint32_t n = std::min<uint32_t>(8, spp - done);
-    t += timedRender(session, n);
-    done += n;
-    char detail[96];
-    std::snprintf(detail, sizeof detail, "%u/%u spp", done, spp);
-    progress.update("reference", double(done) / spp, detail, done == spp);
-  }
-  progress.finish();
-  eval::ImageRGBA ref = session.image();
+  const ReferenceRender rendered = renderReference(base, spp, progress);
+  const double t = rendered.seconds;
+  const eval::ImageRGBA& ref = rendered.image;
   fs::create_directories(dir);
   eval::writeExr(file, ref);
   std::ofstream(dir / (hex + ".txt")) << key << "\n";
@@ -183,7 +105,7 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
   std::vector<uint32_t> schedule;  // spp of the checkpoints, set by run 0
   for (uint32_t run = 0; run < c.runs; ++run) {
     render::RenderSettings s = cfg.options.params.render;
-    s.seed = cfg.options.params.render.seed + 1 + run * 7919u;
+    s.seed = runSeed(cfg.options.params.render.seed, run);
     session.forEachRenderer([&](render::Renderer& r) {
       r.setSettings(s);
       r.resetAccumulation();
@@ -200,12 +122,7 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
       if (result.checkpoints.size() <= next) result.checkpoints.emplace_back();
       Checkpoint& cp = result.checkpoints[next];
       cp.spp = spp;
-      eval::ImageRGBA img = session.image();
-      cp.seconds.push_back(t);
-      cp.mse.push_back(eval::mse(img, reference));
-      cp.relMse.push_back(eval::relMse(img, reference, 0.01));
-      cp.mean.push_back(eval::meanRgb(img));
-      cp.images.push_back(std::move(img));
+      addMeasurement(cp, session.image(), reference, t);
       ++next;
     };
     while (true) {
@@ -272,7 +189,7 @@ int runConvergeCommand(const std::vector<std::string>& args) {
 void ConvergeCommand::finish() {
   auto& c = converge;
   {
-    base = parseRenderFlags(args, {});
+    base = parseConvergeRenderFlags(args, {});
     if (!c.reference.empty() && c.referenceSpp) {
       throw std::invalid_argument("give --reference or --reference-spp, not both");
     }
@@ -287,7 +204,7 @@ void ConvergeCommand::finish() {
       cfg.name = text.substr(0, colon);
       cfg.flags = splitFlags(text.substr(colon + 1));
       try {
-        cfg.options = parseRenderFlags(args, cfg.flags);
+        cfg.options = parseConvergeRenderFlags(args, cfg.flags);
       } catch (const CLI::ParseError& e) {
         throw std::invalid_argument("--config '" + cfg.name + "': " + e.what());
       }
@@ -327,7 +244,20 @@ int ConvergeCommand::run() {
         fs::path(base.scene.empty() ? defaultScenePath() : fs::path(base.scene)).filename().string();
     const std::string plotNote = writePlot(dir, results, sceneName);
     if (!plotNote.empty()) std::fprintf(stderr, "workbench converge: warning: %s\n", plotNote.c_str());
-    writeSummary(dir, results, c, base, refDescription, refMean, device, plotNote, reference);
+    ReportSetup setup;
+    setup.scene = base.scene.empty() ? defaultScenePath().string() : base.scene;
+    setup.width = base.params.render.width;
+    setup.height = base.params.render.height;
+    std::ostringstream budget;
+    budget << c.seconds << " s per run";
+    setup.budget = budget.str();
+    setup.runs = c.runs;
+    setup.device = device;
+    setup.reference = refDescription;
+    setup.referenceMean = refMean;
+    setup.targetRelMse = c.targetRelMse;
+    setup.plotNote = plotNote;
+    writeSummary(dir, results, setup, reference);
     std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)\n", results.size(),
                 dir.string().c_str(), plotNote.empty() ? ", converge.png" : "");
   } catch (const std::exception& e) {
@@ -367,7 +297,7 @@ int ConvergeCommand::runHardCases() {
   for (size_t i = 0; i < cases.size(); ++i) {
     const auto& hc = cases[i];
     for (const auto& variant : hc.variants) {
-      RenderOptions ro = parseRenderFlags(args, splitFlags(variant));
+      RenderOptions ro = parseConvergeRenderFlags(args, splitFlags(variant));
       applyHardCase(hc, ro.params);
       const render::RenderSettings& s = ro.params.render;
       render::SessionOptions so = sessionOptions(ro);

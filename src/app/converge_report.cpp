@@ -126,15 +126,14 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
   return "";
 }
 
-void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results, const ConvergeOptions& c,
-                  const RenderOptions& base, const std::string& refDescription, const eval::Rgb& refMean,
-                  const std::string& device, const std::string& plotNote, const eval::ImageRGBA& reference) {
+void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results, const ReportSetup& setup,
+                  const eval::ImageRGBA& reference) {
+  const eval::Rgb& refMean = setup.referenceMean;
   std::ofstream md(dir / "converge.md");
-  md << "# Convergence: " << (base.scene.empty() ? defaultScenePath().string() : base.scene) << "\n\n";
-  md << "- Size " << base.params.render.width << "x" << base.params.render.height << ", " << c.seconds
-     << " s per run, " << c.runs << " independent run(s) (seeds) per configuration, device " << device
-     << ".\n";
-  md << "- Reference: " << refDescription << "; mean RGB " << fmt("%.5f", refMean[0]) << " "
+  md << "# Convergence: " << setup.scene << "\n\n";
+  md << "- Size " << setup.width << "x" << setup.height << ", " << setup.budget << ", " << setup.runs
+     << " independent run(s) (seeds) per configuration, device " << setup.device << ".\n";
+  md << "- Reference: " << setup.reference << "; mean RGB " << fmt("%.5f", refMean[0]) << " "
      << fmt("%.5f", refMean[1]) << " " << fmt("%.5f", refMean[2]) << ".\n";
   md << "- Errors are averaged over the runs; variance is the mean per-pixel variance between runs (the "
         "noise "
@@ -144,19 +143,20 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
         "its own Owen scrambles; sobol: every dimension its own random shift; pcg: its own hashes). Hybrid "
         "modes (`--mode hybrid|reflections`) count frames as spp; their bias^2 is what the approximation "
         "costs against the path-traced reference. Efficiency = 1 / (MSE x time).\n";
+  for (const auto& note : setup.notes) md << "- " << note << "\n";
   std::vector<double> finals;
   for (const auto& r : results)
     if (!r.checkpoints.empty()) finals.push_back(mean(r.checkpoints.back().relMse));
-  double target = c.targetRelMse;
+  double target = setup.targetRelMse;
   if (target <= 0 && !finals.empty()) {
     std::sort(finals.begin(), finals.end());
     target = finals[finals.size() / 2];
   }
   md << "- Time to error: seconds to reach relMSE " << fmt("%.3g", target)
-     << (c.targetRelMse > 0 ? "" : " (the median of the final relMSEs)")
+     << (setup.targetRelMse > 0 ? "" : " (the median of the final relMSEs)")
      << ", log-log interpolated between checkpoints.\n";
-  if (!plotNote.empty()) {
-    md << "- **Plot missing:** " << plotNote << "\n";
+  if (!setup.plotNote.empty()) {
+    md << "- **Plot missing:** " << setup.plotNote << "\n";
   } else {
     md << "- Plot: `converge.png` (log relMSE and log RMSE against log time). Data: `converge.csv`.\n";
   }

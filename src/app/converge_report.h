@@ -58,10 +58,21 @@ void writeCsv(const std::filesystem::path& path, const std::vector<ConfigResult>
 // Writes the gnuplot script and runs gnuplot; returns an empty string or the reason the plot is missing.
 std::string writePlot(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
                       const std::string& title);
+// What converge.md says about how its results were made.
+struct ReportSetup {
+  std::string scene;  // as the user named it
+  uint32_t width = 0, height = 0;
+  std::string budget;  // what one run renders: "10 s per run", "checkpoints at 1, 2, 4 spp"
+  uint32_t runs = 0;   // independent runs (seeds) per configuration
+  std::string device;
+  std::string reference;  // where the reference comes from
+  eval::Rgb referenceMean{0, 0, 0};
+  double targetRelMse = 0;         // the time-to-error target; 0: the median of the final relMSEs
+  std::string plotNote;            // why the plot is missing; empty when it is there
+  std::vector<std::string> notes;  // further lines of the set-up list
+};
 // converge.md: the set-up, the table of final errors and time to error, and the error images.
 void writeSummary(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
-                  const ConvergeOptions& c, const RenderOptions& base, const std::string& refDescription,
-                  const eval::Rgb& refMean, const std::string& device, const std::string& plotNote,
-                  const eval::ImageRGBA& reference);
+                  const ReportSetup& setup, const eval::ImageRGBA& reference);
 
 }  // namespace wb::app

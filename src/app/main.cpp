@@ -1,5 +1,5 @@
 // workbench: the Vulkan ray tracing shader workbench. One command line: the live window without a
-// subcommand; render, shaders, watch, converge and bench as subcommands (app/command.h).
+// subcommand; render, shaders, watch, converge, bench and sweep as subcommands (app/command.h).
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +14,7 @@
 #include "app/cmd_render.h"
 #include "app/cmd_shaders.h"
 #include "app/cmd_watch.h"
+#include "app/sweep/cmd_sweep.h"
 #include "app/window/window_command.h"
 #include "vk/context.h"
 
@@ -50,7 +51,8 @@ int main(int argc, char** argv) {
   wb::app::WatchCommand watch;
   wb::app::ConvergeCommand converge;
   wb::app::BenchCommand bench;
-  const std::vector<wb::app::Command*> subcommands = {&render, &shaders, &watch, &converge, &bench};
+  wb::app::SweepCommand sweep;
+  const std::vector<wb::app::Command*> subcommands = {&render, &shaders, &watch, &converge, &bench, &sweep};
   CLI::App app(window.description(), "workbench");
   window.addFlags(app);
   for (auto* c : subcommands) c->addFlags(*app.add_subcommand(c->name(), c->description()));

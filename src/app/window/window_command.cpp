@@ -82,15 +82,16 @@ void WindowCommand::addFlags(CLI::App& cli) {
 
 void WindowCommand::checkFirstWord(const std::string& word) {
   // A first word that is neither a flag, a command nor a file: a mistyped command, not a scene.
-  static const char* const kCommands[] = {"render", "shaders", "watch", "converge", "bench"};
+  static const char* const kCommands[] = {"render", "shaders", "watch", "converge", "bench", "sweep"};
   if (word.empty() || word[0] == '-') return;
   for (const char* c : kCommands)
     if (word == c) return;
   std::error_code ec;
   if (!std::filesystem::exists(word, ec) && word.find('/') == std::string::npos &&
       word.find('.') == std::string::npos) {
-    throw std::invalid_argument("unknown command '" + word +
-                                "' (commands: render, shaders, watch, converge, bench; or a scene file)");
+    throw std::invalid_argument(
+        "unknown command '" + word +
+        "' (commands: render, shaders, watch, converge, bench, sweep; or a scene file)");
   }
 }
 
