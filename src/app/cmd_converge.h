@@ -4,6 +4,7 @@
 // images to DIR. `--hard-cases` renders the built-in numerical hard-case scenes instead and writes
 // hard_cases.md.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,14 @@ class ConvergeCommand : public Command {
 
  private:
   int runHardCases();
+  CLI::Option* referenceSppOption_ = nullptr;
+  std::optional<eval::ImageRGBA> referenceImage_;  // --reference, read by finish()
 };
+
+// A reference image file for a render of width x height: an OpenEXR file of that size or of the same integer
+// multiple on both axes. Throws std::invalid_argument starting "--reference" with a plain reason (no such
+// file, not an OpenEXR image, the sizes).
+eval::ImageRGBA readReferenceFile(const std::string& path, uint32_t width, uint32_t height);
 
 int runConvergeCommand(const std::vector<std::string>& args);
 

@@ -5,9 +5,9 @@
 #include <deque>
 #include <csignal>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -15,6 +15,7 @@
 #include "eval/image.h"
 #include "render/ab_comparison.h"
 #include "app/render_options.h"
+#include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"
 #include "render/hot_reload.h"
@@ -30,22 +31,47 @@ std::atomic<bool> gInterrupted{false};
 void WatchCommand::addFlags(CLI::App& cli) {
   addRenderOptions(cli, options);
   cli.add_flag("--headless", headless, "render offscreen (no window)");
-  auto* framesOpt = cli.add_option("--frames", frames, "stop after N frames");
-  cli.add_option("--seconds", seconds, "stop after S seconds")->excludes(framesOpt);
+  framesOption_ = cli.add_option("--frames", frames, "stop after N frames (at least 1)");
+  secondsOption_ =
+      cli.add_option("--seconds", seconds, "stop after S seconds (more than 0)")->excludes(framesOption_);
   cli.add_option("--log", logPath, "append one JSON line per reload to this file");
   cli.add_flag(
       "--ab", ab,
       "after each reload, compare the old and the new pipeline (same seeds): image and speed verdicts in "
       "the log's \"ab\"");
-  cli.add_option("--ab-size", abSize, "A/B trace size WxH")->capture_default_str();
-  cli.add_option("--ab-spp", abSpp, "A/B samples per side (one seed each)")
-      ->check(CLI::Range(1u, 1024u))
-      ->capture_default_str();
-  cli.add_option("--ab-rounds", abRounds, "A/B timing rounds (alternating old and new)")
-      ->check(CLI::Range(1u, 1000u))
-      ->capture_default_str();
-  cli.add_option("--ab-diff-dir", abDiffDir,
-                 "write each A/B comparison's old, new and difference images (EXR)");
+  abOptions_ = {cli.add_option("--ab-size", abSize, "A/B trace size WxH")->capture_default_str(),
+                cli.add_option("--ab-spp", abSpp, "A/B samples per side (one seed each)")
+                    ->check(CLI::Range(1u, 1024u))
+                    ->capture_default_str(),
+                cli.add_option("--ab-rounds", abRounds, "A/B timing rounds (alternating old and new)")
+                    ->check(CLI::Range(1u, 1000u))
+                    ->capture_default_str(),
+                cli.add_option("--ab-diff-dir", abDiffDir,
+                               "write each A/B comparison's old, new and difference images (EXR)")};
+}
+
+void WatchCommand::finish() {
+  finishRenderOptions(options);
+  if (framesOption_->count() && frames == 0) throw std::invalid_argument("--frames: at least 1");
+  if (secondsOption_->count() && !(seconds > 0 && std::isfinite(seconds)))
+    throw std::invalid_argument("--seconds: a finite number of seconds above 0");
+  if (!options.aov.empty()) throw std::invalid_argument("--aov: watch writes no images (render --aov does)");
+  for (const CLI::Option* o : abOptions_) {
+    if (o->count() && !ab) throw std::invalid_argument(o->get_name() + ": needs --ab");
+  }
+  uint32_t w = 0, h = 0;
+  char x = 0;
+  std::string extra;
+  std::istringstream in(abSize);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w == 0 || h == 0 || w > 4096 ||
+      h > 4096) {
+    throw std::invalid_argument("--ab-size: expected WxH with 1..4096, got '" + abSize + "'");
+  }
+  abWidth = w;
+  abHeight = h;
+  // The outputs, before any work: the diff folder must take files (it is written at each reload).
+  if (!abDiffDir.empty()) requireWritableDirectory(abDiffDir, "--ab-diff-dir");
+  if (!logPath.empty()) log_ = AppendLog(logPath, "--log");
 }
 
 int runWatchCommand(const std::vector<std::string>& args) {
@@ -61,36 +87,8 @@ int WatchCommand::run() {
   render::ABBudget budget;
   budget.spp = abSpp;
   budget.rounds = abRounds;
-  {
-    uint32_t w = 0, h = 0;
-    char x = 0;
-    std::string extra;
-    std::istringstream in(abSize);
-    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w == 0 || h == 0 || w > 4096 ||
-        h > 4096) {
-      std::fprintf(stderr, "workbench watch: error: --ab-size: expected WxH with 1..4096, got '%s'\n",
-                   abSize.c_str());
-      return 1;
-    }
-    budget.width = w;
-    budget.height = h;
-  }
-  if (!abDiffDir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(abDiffDir, ec);
-    if (!std::filesystem::is_directory(abDiffDir)) {
-      std::fprintf(stderr, "workbench watch: error: cannot create --ab-diff-dir '%s'\n", abDiffDir.c_str());
-      return 1;
-    }
-  }
-  std::ofstream log;
-  if (!logPath.empty()) {
-    log.open(logPath, std::ios::app);
-    if (!log) {
-      std::fprintf(stderr, "workbench watch: error: cannot open --log file '%s'\n", logPath.c_str());
-      return 1;
-    }
-  }
+  budget.width = abWidth;
+  budget.height = abHeight;
   try {
     render::SessionOptions so;
     so.scenePath = ro.scene;
@@ -120,10 +118,7 @@ int WatchCommand::run() {
       const std::string line = jsonText(reloadEventJson(e));
       std::printf("%s\n", line.c_str());
       std::fflush(stdout);
-      if (log) {
-        log << line << "\n";
-        log.flush();
-      }
+      if (log_.isOpen()) log_.writeLine(line);  // a failure is said once on stderr and in the exit status
     };
     // While a rebuild compiles, rest after each frame where the device's policy says so (the compile then
     // gets the cores of a CPU device).
@@ -186,6 +181,7 @@ int WatchCommand::run() {
     session.attachHotReload(nullptr);
     std::printf("watch: %llu frames, %zu reloads\n", static_cast<unsigned long long>(frame),
                 hot.history().size());
+    if (log_.failed()) return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench watch: error: %s\n", e.what());
     return 1;

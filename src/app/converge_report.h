@@ -1,6 +1,6 @@
 // `workbench converge`'s results and how they are written: per configuration and checkpoint the errors of its
 // independent runs, then converge.csv, the gnuplot plot, converge.md (with time to error) and the error
-// images.
+// images, each file written whole or not at all (common/atomic_file.h; failures throw naming the file).
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -58,10 +58,11 @@ void writeCsv(const std::filesystem::path& path, const std::vector<ConfigResult>
 // Writes the gnuplot script and runs gnuplot; returns an empty string or the reason the plot is missing.
 std::string writePlot(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
                       const std::string& title);
-// converge.md: the set-up, the table of final errors and time to error, and the error images.
+// converge.md: the set-up, the table of final errors and time to error, and the error images; a non-empty
+// `partialNote` heads it ("**Partial:** ...": the run was interrupted).
 void writeSummary(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
                   const ConvergeOptions& c, const RenderOptions& base, const std::string& refDescription,
                   const eval::Rgb& refMean, const std::string& device, const std::string& plotNote,
-                  const eval::ImageRGBA& reference);
+                  const eval::ImageRGBA& reference, const std::string& partialNote = "");
 
 }  // namespace wb::app

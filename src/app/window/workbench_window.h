@@ -78,7 +78,9 @@ class WorkbenchWindow : public ScriptHost {
     }
   }
   void scriptScreenshot(const std::string& path) override { screenshotPath_ = path; }
-  void scriptSave(const std::string& base) override { state_.saveRequest = base; }
+  // Saved when the line runs (the device is idle at a script step): a `quit` after it cannot lose it, and a
+  // failure ends the script.
+  void scriptSave(const std::string& base) override { saveRender(base); }
   void scriptStats(const std::string& path) override { writeStats(path); }
   void scriptOrbit(float dx, float dy) override {
     CameraInput in;

@@ -1,7 +1,6 @@
 // The workbench window's path inspector: the Inspect tab's pixel to the path tracer (the hybrid modes: to the
 // hybrid renderer, which records the pixel's shadow, AO and reflection rays), the records read after each
 // frame, the pixel picked by a click, and the `inspect FILE.json` script command.
-#include <fstream>
 #include <stdexcept>
 
 #include "app/inspect_json.h"
@@ -70,10 +69,9 @@ void WorkbenchWindow::scriptInspect(const std::string& path) {
     const auto out = hybrid->readOutput();  // the device is idle at a script step
     const size_t i = (size_t(ctx.y) * ctx.width + ctx.x) * 4;
     if (i + 3 < out.size()) ctx.pixelValue = glm::vec4(out[i], out[i + 1], out[i + 2], 1.0f);
-    std::ofstream f(path);
-    f << jsonText(hybridInspectJson(ctx, hybrid->readInspection(), render::renderModeName(hybrid->mode())), 2)
-      << "\n";
-    if (!f.flush()) throw std::runtime_error("inspect: cannot write '" + path + "'");
+    writeJsonFile(path,
+                  hybridInspectJson(ctx, hybrid->readInspection(), render::renderModeName(hybrid->mode())),
+                  "inspect");
     return;
   }
   const auto& tracer = session_->pathTracer();
@@ -98,9 +96,7 @@ void WorkbenchWindow::scriptInspect(const std::string& path) {
                            {"dropped", e.dropped()},
                            {"mean", {e.mean().x, e.mean().y, e.mean().z}},
                            {"variance", {e.variance().x, e.variance().y, e.variance().z}}};
-  std::ofstream f(path);
-  f << jsonText(j, 2) << "\n";
-  if (!f.flush()) throw std::runtime_error("inspect: cannot write '" + path + "'");
+  writeJsonFile(path, j, "inspect");
 }
 
 }  // namespace wb::app

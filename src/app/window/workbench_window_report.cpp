@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 
 #include "app/hybrid_json.h"
 #include "app/parameter_json.h"
@@ -136,9 +135,7 @@ nlohmann::json WorkbenchWindow::statsJson() {
 }
 
 void WorkbenchWindow::writeStats(const std::string& path) {
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write stats '" + path + "'");
-  f << jsonText(statsJson(), 2) << "\n";
+  writeJsonFile(path, statsJson(), "stats");
 }
 
 void WorkbenchWindow::saveRender(std::string base) {
@@ -149,8 +146,7 @@ void WorkbenchWindow::saveRender(std::string base) {
   auto image = currentImage();
   eval::writePng(base + ".png", image, state_.params.display.exposure, state_.params.display.tonemap);
   eval::writeExr(base + ".exr", image);
-  std::ofstream f(base + ".json");
-  f << jsonText(parametersJson(), 2) << "\n";
+  writeJsonFile(base + ".json", parametersJson(), "save");
   lastSaved_ = std::filesystem::path(base).filename().string() + ".png/.exr/.json";
   std::printf("workbench: saved %s.png (tonemapped), %s.exr (linear), %s.json\n", base.c_str(), base.c_str(),
               base.c_str());
