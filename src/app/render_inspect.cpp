@@ -12,10 +12,10 @@
 namespace wb::app {
 namespace {
 
-// The vertex records one `render --inspect-out` keeps, and what they cost at most (measured: one vertex is
-// about 4 KB of JSON with its light samples).
+// The vertex records one `render --inspect-out` keeps (the JSON document of all of them is built in memory
+// before it is written), and what that costs at most, for the message.
 constexpr uint32_t kMaxInspectVertexRecords = 1u << 15;
-constexpr const char* kVertexRecordsCost = " (up to ~130 MB of JSON)";
+constexpr const char* kVertexRecordsCost = " vertex records: up to ~130 MB of JSON and ~0.7 GB of memory";
 
 }  // namespace
 

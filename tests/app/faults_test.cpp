@@ -385,6 +385,14 @@ TEST(Faults, MessagesNameTheFlagTheVariableOrTheFile) {
     const auto r = run("render --define " + define + kSmall + png);
     EXPECT_EQ(r.code, 2) << define << ": " << r.output;
   }
+  // A define the shaders' preamble cannot take (here: it redefines the scene's specialisation) was reported
+  // at
+  // "-1:11", the preamble's line.
+  const auto redefined = run("render --define WB_LIGHT_COUNT=7u" + kSmall + png);
+  EXPECT_EQ(redefined.code, 1) << redefined.output;
+  EXPECT_NE(redefined.output.find("in the define WB_LIGHT_COUNT=7u (--define"), std::string::npos)
+      << redefined.output;
+  EXPECT_EQ(redefined.output.find("-1:"), std::string::npos) << redefined.output;
   // converge --reference: plain reasons, and no empty --out folder left behind.
   const fs::path report = dir / "report";
   const auto rendered = run("render" + kSmall + "--out " + (dir / "ref16.exr").string());
