@@ -64,10 +64,14 @@ std::string tempNameFor(const fs::path& target) {
                            "': " + reason);
 }
 
-// A target that is not a regular file (a pipe, a device): written where it is, every write checked.
+// A target that is not a regular file (a pipe, a device): written where it is, every write checked. Opened
+// non-blocking (a named pipe without a reader fails at once instead of waiting for one), then written
+// blocking.
 void writeInPlace(const fs::path& path, std::string_view data, const std::string& what) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) fail(what, path, writeErrorText(errno));
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   if (!writeAll(fd, data)) {
     const int err = errno;
     ::close(fd);
@@ -85,7 +89,7 @@ std::string writeErrorText(int err) {
 }
 
 void writeFileAtomically(const fs::path& requested, std::string_view data, const std::string& what,
-                         Sync sync) {
+                         FileKind kind) {
   if (requested.empty()) fail(what, requested, "empty path");
   fs::path path = requested;
   std::error_code ec;
@@ -94,7 +98,7 @@ void writeFileAtomically(const fs::path& requested, std::string_view data, const
   struct stat st {};
   const bool exists = ::stat(path.c_str(), &st) == 0;
   if (exists && S_ISDIR(st.st_mode)) fail(what, requested, "is a directory");
-  if (exists && !S_ISREG(st.st_mode)) return writeInPlace(path, data, what);
+  if (exists && !S_ISREG(st.st_mode) && kind == FileKind::Output) return writeInPlace(path, data, what);
 
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   const fs::path temp = dir / tempNameFor(path);
@@ -108,10 +112,10 @@ void writeFileAtomically(const fs::path& requested, std::string_view data, const
     fail(what, requested, step + writeErrorText(err));
   };
   // The new file keeps the permissions of the one it replaces (a new one gets the umask's).
-  if (exists && ::fchmod(fd, st.st_mode & 07777) != 0) abandon(errno, "");
+  if (exists && S_ISREG(st.st_mode) && ::fchmod(fd, st.st_mode & 07777) != 0) abandon(errno, "");
   if (!writeAll(fd, data)) abandon(errno, "");
   // On the disk before the rename: a crash then leaves the old file or the new one, never an empty one.
-  if (sync == Sync::ToDisk && ::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) abandon(errno, "");
+  if (kind == FileKind::Output && ::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) abandon(errno, "");
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(temp.c_str());

@@ -13,14 +13,16 @@ namespace wb {
 // what failed, naming `what` (the flag or the kind of file, e.g. "--stats") and the path: "--stats: cannot
 // write 'out/x.json': No space left on device (the disk is full)". A missing folder is not created here
 // (requireWritableFile() checks outputs, and makes their folders, before the work).
-// A target that exists and is not a regular file (a named pipe, /dev/stdout, a terminal) is written in place,
-// every write checked: there is nothing to replace atomically there.
 // A symbolic link is followed: the file it points to is replaced, the link stays.
-// Caches, whose entries are checked when read and cost only a recompile when lost, skip the fsync
-// (Sync::No): a compile on the hot-reload path does not wait for the disk.
-enum class Sync { ToDisk, No };
+//
+// An output (FileKind::Output) that exists and is not a regular file (a named pipe, /dev/stdout, a terminal)
+// is written in place, every write checked: there is nothing to replace atomically there; a pipe without a
+// reader is an error, not a wait. A cache file (FileKind::Cache: its entries are checked when read and cost
+// a recompile when lost) is not flushed to the disk, so that a compile on the hot-reload path does not wait
+// for it, and anything but a folder in its place is replaced.
+enum class FileKind { Output, Cache };
 void writeFileAtomically(const std::filesystem::path& path, std::string_view data, const std::string& what,
-                         Sync sync = Sync::ToDisk);
+                         FileKind kind = FileKind::Output);
 
 // An append-only log file (`watch --log`): each line goes out in one write(2) of its own (O_APPEND), checked.
 // The first failure is reported once on stderr, naming `what` and the path, and failed() stays true so that

@@ -153,7 +153,7 @@ bool DiskCache::writeAtomic(const fs::path& p, const char magic[4], const Hash12
   w.u64(hash64(payload));
   w.raw(payload.data(), payload.size());
   try {
-    writeFileAtomically(p, w.out, "shader cache", Sync::No);
+    writeFileAtomically(p, w.out, "shader cache", FileKind::Cache);
   } catch (const std::exception& e) {
     if (warn_) warn_(e.what());
     return false;

@@ -66,7 +66,7 @@ bool PipelineCache::save() {
   std::error_code ec;
   std::filesystem::create_directories(file_.parent_path(), ec);
   try {
-    writeFileAtomically(file_, std::string_view(data.data(), size), "pipeline cache", Sync::No);
+    writeFileAtomically(file_, std::string_view(data.data(), size), "pipeline cache", FileKind::Cache);
   } catch (const std::exception& e) {
     warning_ = e.what();
     return false;

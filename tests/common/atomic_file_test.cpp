@@ -78,6 +78,21 @@ TEST(AtomicFile, AFullDiskSaysSoNamingWhatAndThePath) {
   EXPECT_EQ(why, "--stats: cannot write '/dev/full': No space left on device (the disk is full)");
 }
 
+// A named pipe in an output's place is written in place, and one without a reader is an error, never a wait;
+// in a cache's place it is replaced by the file (a cache folder holds regular files only).
+TEST(AtomicFile, ANamedPipeIsNeverWaitedOn) {
+  const fs::path dir = tempDir("fifo");
+  ASSERT_EQ(::mkfifo((dir / "out.json").c_str(), 0644), 0);
+  EXPECT_NE(failureOf([&] {
+              wb::writeFileAtomically(dir / "out.json", "data", "--stats");
+            }).find("--stats: cannot write"),
+            std::string::npos);
+  ASSERT_EQ(::mkfifo((dir / "entry.wbspv").c_str(), 0644), 0);
+  wb::writeFileAtomically(dir / "entry.wbspv", "spirv", "shader cache", wb::FileKind::Cache);
+  EXPECT_TRUE(fs::is_regular_file(dir / "entry.wbspv"));
+  EXPECT_EQ(read(dir / "entry.wbspv"), "spirv");
+}
+
 TEST(AtomicFile, AMissingFolderIsNamed) {
   const fs::path dir = tempDir("missing");
   const std::string why = failureOf([&] { wb::writeFileAtomically(dir / "no" / "x.png", "data", ""); });
