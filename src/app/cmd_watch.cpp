@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <deque>
 #include <csignal>
 #include <cstdio>
 #include <cmath>
@@ -13,12 +12,11 @@
 
 #include "app/reload_log.h"
 #include "eval/image.h"
-#include "render/ab_comparison.h"
 #include "app/render_options.h"
 #include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"
-#include "render/hot_reload.h"
+#include "live/edit_loop.h"
 #include "render/render_session.h"
 
 namespace wb::app {
@@ -84,7 +82,7 @@ int WatchCommand::run() {
   if (!headless)
     std::printf("workbench watch: rendering headless (the live window is the plain `workbench`)\n");
 
-  render::ABBudget budget;
+  live::ABBudget budget;
   budget.spp = abSpp;
   budget.rounds = abRounds;
   budget.width = abWidth;
@@ -97,14 +95,12 @@ int WatchCommand::run() {
     so.mode = ro.params.mode;
     so.hybrid = ro.params.hybrid;
     render::RenderSession session(so);
-    render::HotReload hot(session.library(), {shaderDir()});
-    session.attachHotReload(&hot);  // every renderer's pipelines, the hybrid modes' raster ones too
-    std::optional<render::ABComparison> comparison;
-    if (ab) {
-      comparison.emplace(session, budget);
-      comparison->prepare();
-    }
-    hot.start();
+    live::EditLoopOptions lo;
+    lo.ab = ab;
+    lo.budget = budget;
+    live::EditLoop loop(session, lo);  // every renderer's passes, the hybrid modes' raster ones too
+    if (ab) loop.prepareAB();
+    loop.start();
     std::signal(SIGINT, [](int) { gInterrupted = true; });
     std::signal(SIGTERM, [](int) { gInterrupted = true; });
     std::printf("watching %s; rendering %s at %ux%u on %s\n", shaderDir().string().c_str(),
@@ -113,16 +109,43 @@ int WatchCommand::run() {
     std::fflush(stdout);
 
     const auto start = std::chrono::steady_clock::now();
-    std::optional<render::ReloadEvent> unlogged;
-    auto writeEvent = [&](const render::ReloadEvent& e) {
-      const std::string line = jsonText(reloadEventJson(e));
-      std::printf("%s\n", line.c_str());
-      std::fflush(stdout);
-      if (log_.isOpen()) log_.writeLine(line);  // a failure is said once on stderr and in the exit status
+    size_t reloads = 0;
+    // An output that fails during the session (a disk that fills up) is said once and in the exit status; the
+    // session goes on.
+    std::string outputError;
+    auto writeDiffImages = [&](const live::CompletedReload& c) {
+      for (size_t i = 0; i < c.ab.size() && !abDiffDir.empty() && outputError.empty(); ++i) {
+        const std::string stem = "reload" + std::to_string(reloads) + "_" + std::to_string(i);
+        const std::filesystem::path dir(abDiffDir);
+        try {
+          eval::writeExr(dir / (stem + "_old.exr"), c.ab[i].oldImage);
+          eval::writeExr(dir / (stem + "_new.exr"), c.ab[i].newImage);
+          eval::writeExr(dir / (stem + "_diff.exr"),
+                         eval::differenceImage(c.ab[i].oldImage, c.ab[i].newImage));
+        } catch (const std::exception& e) {
+          outputError = e.what();
+          std::fprintf(stderr,
+                       "workbench watch: error: --ab-diff-dir: %s; later comparisons are not written\n",
+                       e.what());
+        }
+      }
+    };
+    // Each reload once it is over (a failure at once; an install after its first frame and comparison), with
+    // the comparison's images when asked for.
+    auto writeCompleted = [&] {
+      for (const auto& c : loop.takeCompleted()) {
+        ++reloads;
+        writeDiffImages(c);
+        if (!c.abError.empty()) std::fprintf(stderr, "workbench watch: A/B failed: %s\n", c.abError.c_str());
+        const std::string line = jsonText(reloadEventJson(c.event));
+        std::printf("%s\n", line.c_str());
+        std::fflush(stdout);
+        if (log_.isOpen()) log_.writeLine(line);  // a failure is said once on stderr and in the exit status
+      }
     };
     // While a rebuild compiles, rest after each frame where the device's policy says so (the compile then
     // gets the cores of a CPU device).
-    const double yieldRatio = session.context().policy().watchRestRatio;
+    const double restRatio = session.context().policy().watchRestRatio;
     uint64_t frame = 0;
     while (!gInterrupted) {
       if (frames && frame >= frames) break;
@@ -130,58 +153,24 @@ int WatchCommand::run() {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= seconds) {
         break;
       }
-      if (auto e = hot.poll()) {
-        if (unlogged) writeEvent(*unlogged);
-        unlogged.reset();
-        if (e->pipelinesRebuilt.empty()) {
-          writeEvent(*e);  // nothing to draw with: a failure keeps the old pipeline
-        } else {
-          unlogged = e;
-        }
-      }
+      loop.beginFrame();
+      writeCompleted();
       const auto frameBegin = std::chrono::steady_clock::now();
       auto& renderer = session.renderer();
       session.context().submitAndWait([&](VkCommandBuffer cmd) { renderer.record(cmd); });
       renderer.advance();
-      hot.frameFinished(frameBegin);  // the frame's own time: the yield below is not part of it
       const auto frameEnd = std::chrono::steady_clock::now();
-      if (yieldRatio > 0 && hot.compiling()) {
-        const auto until = frameEnd + (frameEnd - frameBegin) * yieldRatio;
-        while (hot.compiling() && std::chrono::steady_clock::now() < until)
-          std::this_thread::sleep_for(std::chrono::milliseconds(2));
-      }
+      loop.frameFinished(frameBegin);  // the frame's own time: the rest below is not part of it
+      const auto until = loop.restUntil(frameBegin, frameEnd, restRatio);
+      while (loop.compiling() && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
       ++frame;
-      if (unlogged) {
-        // The new image is on screen (its first frame finished): now the A/B comparison, which the log line
-        // carries.
-        if (comparison) {
-          const auto t0 = std::chrono::steady_clock::now();
-          std::vector<render::ReloadAB> results;
-          const auto outcomes = comparison->compare(hot.lastInstalled());
-          const size_t reload = hot.history().size();
-          for (size_t i = 0; i < outcomes.size(); ++i) {
-            results.push_back(outcomes[i].result);
-            if (abDiffDir.empty()) continue;
-            const std::string stem = "reload" + std::to_string(reload) + "_" + std::to_string(i);
-            const std::filesystem::path dir(abDiffDir);
-            eval::writeExr(dir / (stem + "_old.exr"), outcomes[i].oldImage);
-            eval::writeExr(dir / (stem + "_new.exr"), outcomes[i].newImage);
-            eval::writeExr(dir / (stem + "_diff.exr"),
-                           eval::differenceImage(outcomes[i].oldImage, outcomes[i].newImage));
-          }
-          hot.attachAB(
-              std::move(results),
-              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-        }
-        writeEvent(hot.history().back());
-        unlogged.reset();
-      }
+      writeCompleted();
     }
-    hot.stop();
-    session.attachHotReload(nullptr);
+    loop.hot().stop();
     std::printf("watch: %llu frames, %zu reloads\n", static_cast<unsigned long long>(frame),
-                hot.history().size());
-    if (log_.failed()) return 1;
+                loop.hot().history().size());
+    if (log_.failed() || !outputError.empty()) return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench watch: error: %s\n", e.what());
     return 1;

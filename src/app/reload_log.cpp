@@ -4,7 +4,7 @@
 
 namespace wb::app {
 
-nlohmann::json abJson(const render::ReloadAB& ab) {
+nlohmann::json abJson(const live::ReloadAB& ab) {
   // Non-finite numbers (a NaN that appeared) are null in JSON.
   auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
   nlohmann::json j;
@@ -20,7 +20,7 @@ nlohmann::json abJson(const render::ReloadAB& ab) {
   return j;
 }
 
-nlohmann::json reloadEventJson(const render::ReloadEvent& e) {
+nlohmann::json reloadEventJson(const live::ReloadEvent& e) {
   nlohmann::json j;
   j["time"] = std::chrono::duration<double>(e.when.time_since_epoch()).count();
   j["files_changed"] = e.filesChanged;

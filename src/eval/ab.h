@@ -1,6 +1,6 @@
 // A/B comparison of two renders of the same scene with the same seeds and sample sequence (old pipeline A,
 // new pipeline B): did the image change, and is B faster? Pure functions on images and timings (no GPU), used
-// by render::ABComparison after each shader edit.
+// by live::ABComparison after each shader edit.
 #pragma once
 #include <array>
 #include <string>

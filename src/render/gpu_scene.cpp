@@ -1,5 +1,8 @@
 #include "render/gpu_scene.h"
 
+#include "render/environment.h"
+#include "render/pass.h"
+
 #include "sampling/environment.h"
 #include "scene/emitters.h"
 
@@ -157,6 +160,18 @@ uint64_t GpuScene::deviceBytes() const {
   for (const auto& b : indexBuffers_) total += b.size();
   for (const auto& i : images_) total += VkDeviceSize(i.width()) * i.height() * 4;
   return total;
+}
+
+void bindSceneResources(Pass& pass, const GpuScene& scene, const GpuEnvironment& env) {
+  pass.setAccelerationStructure("tlas", scene.tlas());
+  pass.setBuffer("GeometryBlock", scene.geometries());
+  pass.setBuffer("MaterialBlock", scene.materials());
+  pass.setBuffer("LightBlock", scene.lights());
+  pass.setSampledImages("textures", scene.textureDescriptors());
+  pass.setBuffer("EmitterBlock", scene.emitters());
+  pass.setBuffer("EmitterAliasBlock", scene.emitterAlias());
+  pass.setSampledImages("envMap", {env.descriptor()});
+  pass.setBuffer("EnvAliasBlock", env.aliasTable());
 }
 
 }  // namespace wb::render

@@ -60,4 +60,10 @@ class GpuScene {
   bool anyNonOpaque_ = false;
 };
 
+class Pass;
+class GpuEnvironment;
+// Sets the scene's and the environment's resources on `pass` under the names the shaders declare them
+// (shaders/shared/scene.glsl and the path tracer's lights, environment sampling and emitters).
+void bindSceneResources(Pass& pass, const GpuScene& scene, const GpuEnvironment& env);
+
 }  // namespace wb::render

@@ -46,6 +46,17 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
       settings_(settings),
       cpuDeviceCode_(r.ctx.policy().cpuShapedShaderCode) {
   if (ctx_.policy().pipelineLibraries) libraries_ = std::make_unique<vk::RtLibraryCache>(ctx_);
+  RayTracingRecipe recipe;
+  // The any-hit stage is there when some material is not opaque (stageKeys).
+  recipe.table.raygen("raygen.rgen")
+      .miss("miss.rmiss")
+      .miss("shadow.rmiss")
+      .hitGroup({.closestHit = "closesthit.rchit", .anyHit = "anyhit.rahit"});
+  recipe.maxRecursion = kMaxRecursion;
+  recipe.libraries = libraries_.get();
+  pass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer", std::move(recipe));
+  pass_->setPushConstantBytes(sizeof(gpu::PushConstants));
+  pass_->setOnInstall([this] { sampleIndex_ = 0; });
   frameUniforms_ = vk::Buffer(ctx_, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
@@ -53,46 +64,31 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   createImages();
   createInspectBuffers();
-  {
-    vk::DescriptorSets recorder(ctx_);
-    writeDescriptors(recorder);
-    provided_ = recorder.requested();
-  }
+  bindResources();
   setFeatures(features);
 }
 
 bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
-  if (pipeline_ && features == features_) return false;
+  if (featuresSet_ && features == features_) return false;
   useVariant(features, inspectVariant_);
   return true;
 }
 
 void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) {
-  shader::ShaderLibrary::ProgramId id = 0;
-  bool found = false;
-  for (const auto& v : variants_) {
-    if (v.features == features && v.inspect == inspect) {
-      id = v.program;
-      found = true;
-    }
-  }
-  if (!found) {
-    std::string name = features.generic ? "pathtracer" : "pathtracer (specialised)";
-    if (inspect) name += " (inspect)";
-    id = library_.registerProgram(name, stageKeys(features, cpuDeviceCode_, inspect));
-    variants_.push_back({features, inspect, id});
-  }
-  program_ = id;
+  std::string name = features.generic ? "pathtracer" : "pathtracer (specialised)";
+  if (inspect) name += " (inspect)";
+  pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect));
   features_ = features;
+  featuresSet_ = true;
   inspectVariant_ = inspect;
-  installPipeline(id, buildPipeline(id, library_.buildProgram(id)));
+  pass_->rebuild();
 }
 
 bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
   ctx_.waitIdle();  // the buffers and descriptor sets may be in flight
   inspection_ = request;
   createInspectBuffers();
-  writeDescriptors(*sets_);
+  bindResources();
   sampleIndex_ = 0;
   if (request.has_value() == inspectVariant_) return false;
   useVariant(features_, request.has_value());
@@ -185,74 +181,23 @@ void PathTracer::createImages() {
   sampleIndex_ = 0;
 }
 
-void PathTracer::writeDescriptors(vk::DescriptorSets& s) {
+void PathTracer::bindResources() {
+  Pass& p = *pass_;
   emitterVersion_ = gpuScene_.emitterVersion();
-  s.writeAccelerationStructure(0, WB_BIND_TLAS, gpuScene_.tlas());
-  s.writeStorageImage(0, WB_BIND_ACCUM, accum_.view());
-  s.writeStorageImage(0, WB_BIND_AOV_ALBEDO, albedo_.view());
-  s.writeStorageImage(0, WB_BIND_AOV_NORMAL, normal_.view());
-  s.writeStorageImage(0, WB_BIND_AOV_INFO, info_.view());
-  s.writeStorageImage(0, WB_BIND_AOV_STATS, stats_.view());
-  s.writeBuffer(0, WB_BIND_FRAME, frameUniforms_.handle());
-  s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
-  s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
-  s.writeBuffer(0, WB_BIND_LIGHTS, gpuScene_.lights().handle());
-  s.writeSampledImages(0, WB_BIND_TEXTURES, gpuScene_.textureDescriptors());
-  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_->descriptor()});
-  s.writeBuffer(0, WB_BIND_ENV_ALIAS, env_->aliasTable().handle());
-  s.writeBuffer(0, WB_BIND_COUNTERS, counters_.handle());
-  s.writeBuffer(0, WB_BIND_BLUE_NOISE, blueNoise_.handle());
-  s.writeBuffer(0, WB_BIND_SOBOL, sobol_.handle());
-  s.writeBuffer(0, WB_BIND_EMITTERS, gpuScene_.emitters().handle());
-  s.writeBuffer(0, WB_BIND_EMITTER_ALIAS, gpuScene_.emitterAlias().handle());
+  bindSceneResources(p, gpuScene_, *env_);
+  p.setStorageImage("accumImage", accum_.view());
+  p.setStorageImage("albedoImage", albedo_.view());
+  p.setStorageImage("normalImage", normal_.view());
+  p.setStorageImage("infoImage", info_.view());
+  p.setStorageImage("statsImage", stats_.view());
+  p.setBuffer("FrameBlock", frameUniforms_);
+  p.setBuffer("CounterBlock", counters_);
+  p.setBuffer("BlueNoiseBlock", blueNoise_);
+  p.setBuffer("SobolBlock", sobol_);
   // Used by the WB_INSPECT variant only (the others' layouts skip them).
-  s.writeBuffer(0, WB_BIND_INSPECT_HEADER, inspectHeader_.handle());
-  s.writeBuffer(0, WB_BIND_INSPECT_SAMPLES, inspectSamples_.handle());
-  s.writeBuffer(0, WB_BIND_INSPECT_VERTICES, inspectVertices_.handle());
-}
-
-std::vector<RendererProgram> PathTracer::programs() const {
-  return {{program_, "pathtracer"}};
-}
-
-std::unique_ptr<vk::BuiltPipeline> PathTracer::buildPipeline(
-    shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const {
-  (void)program;
-  // A binding the path tracer does not fill would be read unbound (VUID-vkCmdTraceRaysKHR-None-02699): a
-  // compile error at its declaration instead, and the last good pipeline stays.
-  vk::requireProvided(build, provided_, "the path tracer");
-  // The any-hit stage is there when some material is not opaque (stageKeys).
-  vk::RtBindingTable table;
-  table.raygen("raygen.rgen")
-      .miss("miss.rmiss")
-      .miss("shadow.rmiss")
-      .hitGroup({.closestHit = "closesthit.rchit", .anyHit = "anyhit.rahit"});
-  auto built = std::make_unique<vk::BuiltPipeline>();
-  built->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
-  built->rayTracing = std::make_unique<vk::RayTracingPipeline>(
-      ctx_, build.stages, table, built->layout->handle(), kMaxRecursion,
-      std::vector<vk::SpecializationConstant>{}, libraries_.get(), vk::layoutKey(build.layout));
-  return built;
-}
-
-std::shared_ptr<vk::BuiltPipeline> PathTracer::pipeline(shader::ShaderLibrary::ProgramId program) const {
-  return program == program_ ? pipeline_ : nullptr;
-}
-
-std::shared_ptr<vk::BuiltPipeline> PathTracer::exchangePipeline(shader::ShaderLibrary::ProgramId program,
-                                                                std::shared_ptr<vk::BuiltPipeline> pipeline) {
-  if (program != program_) return nullptr;  // a variant this tracer has switched away from
-  ctx_.waitIdle();                          // the old pipeline and descriptor sets may still be in flight
-  sets_.reset();
-  std::swap(pipeline_, pipeline);
-  sets_ = std::make_unique<vk::DescriptorSets>(ctx_, *pipeline_->layout);
-  writeDescriptors(*sets_);
-  pipelineMs_ = pipeline_->rayTracing->createMs();
-  sampleIndex_ = 0;
-  ++installs_;
-  // Libraries of the last few builds stay (variants and an edit in flight); older ones go.
-  if (libraries_) libraries_->trim(24, pipeline_->rayTracing->libraryKeys());
-  return pipeline;
+  p.setBuffer("InspectHeaderBlock", inspectHeader_);
+  p.setBuffer("InspectSampleBlock", inspectSamples_);
+  p.setBuffer("InspectVertexBlock", inspectVertices_);
 }
 
 std::unique_ptr<Renderer> PathTracer::makeLike(const RendererResources& resources,
@@ -275,7 +220,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
     ctx_.waitIdle();
     if (resized) createImages();
     if (inspectResized) createInspectBuffers();
-    writeDescriptors(*sets_);
+    bindResources();
   }
   sampleIndex_ = 0;
 }
@@ -283,7 +228,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
 void PathTracer::setEnvironment(const GpuEnvironment& env) {
   ctx_.waitIdle();
   env_ = &env;
-  writeDescriptors(*sets_);
+  bindResources();
   sampleIndex_ = 0;
 }
 
@@ -318,7 +263,7 @@ void PathTracer::updateFrameUniforms() {
 
 void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
-  if (gpuScene_.emitterVersion() != emitterVersion_) writeDescriptors(*sets_);
+  if (gpuScene_.emitterVersion() != emitterVersion_) bindResources();
   if (sampleIndex_ == 0 && r.x == 0 && r.y == 0) updateFrameUniforms();
   // A restart: the inspector's slots still hold the previous accumulation's samples.
   if (inspection_ && sampleIndex_ == 0 && lastRecordedSample_ != 0) {
@@ -342,18 +287,9 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   pc.tileOffset = glm::uvec2(r.x, r.y);
   pc.imageSize = glm::uvec2(settings_.width, settings_.height);
 
-  const vk::PipelineLayout& layout = *pipeline_->layout;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_->handle());
-  const auto& sets = sets_->sets();
-  if (!sets.empty()) {
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout.handle(), 0,
-                            static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
-  }
-  for (const auto& range : layout.desc().pushConstants) {
-    vkCmdPushConstants(cmd, layout.handle(), range.stageFlags, range.offset, range.size,
-                       reinterpret_cast<const char*>(&pc) + range.offset);
-  }
-  pipeline_->rayTracing->sbt().trace(ctx_, cmd, r.width, r.height);
+  pass_->bind(cmd);
+  pass_->push(cmd, pc);
+  pass_->traceRays(cmd, r.width, r.height);
   vk::memoryBarrier(cmd);
 }
 

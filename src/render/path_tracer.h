@@ -52,15 +52,15 @@ class PathTracer final : public Renderer {
                                                   bool inspect = false);
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
-  shader::ShaderLibrary::ProgramId program() const { return program_; }
+  shader::ShaderLibrary::ProgramId program() const { return pass_->program(); }
   const scene::SceneFeatures& features() const { return features_; }
   // Switches to the variant for `features` (registering it once; compiled variants come from the cache) and
-  // rebuilds the pipeline. Returns true when the program changed (hot reload follows programs()).
+  // rebuilds the pipeline. Returns true when the program changed.
   bool setFeatures(const scene::SceneFeatures& features);
 
   // Path inspector: with a request the tracer switches to its WB_INSPECT variant (registered once, cached
   // like the scene variants; the images it renders are the same) and records the paths of the requested
-  // pixel; nullopt switches back. Returns true when the program changed (hot reload follows programs()).
+  // pixel; nullopt switches back. Returns true when the program changed.
   // Restarts accumulation.
   bool setInspection(const std::optional<InspectRequest>& request);
   const std::optional<InspectRequest>& inspection() const { return inspection_; }
@@ -82,14 +82,7 @@ class PathTracer final : public Renderer {
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
   const vk::Image& outputImage() const override { return accum_; }
   eval::ImageRGBA readImage() const override;
-  std::vector<RendererProgram> programs() const override;
-  std::unique_ptr<vk::BuiltPipeline> buildPipeline(
-      shader::ShaderLibrary::ProgramId program,
-      const shader::ShaderLibrary::ProgramBuild& build) const override;
-  std::shared_ptr<vk::BuiltPipeline> exchangePipeline(shader::ShaderLibrary::ProgramId program,
-                                                      std::shared_ptr<vk::BuiltPipeline> pipeline) override;
-  std::shared_ptr<vk::BuiltPipeline> pipeline(shader::ShaderLibrary::ProgramId program) const override;
-  uint32_t pipelineInstalls() const override { return installs_; }
+  std::vector<Pass*> passes() const override { return {pass_.get()}; }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   gpu::Counters readCounters() const override;
@@ -103,11 +96,11 @@ class PathTracer final : public Renderer {
   // stays as it was. Returns each sample's wall time in seconds.
   std::vector<double> renderPixel(uint32_t x, uint32_t y, uint32_t samples);
 
-  double lastPipelineMs() const { return pipelineMs_; }
+  double lastPipelineMs() const { return pass_->pipeline().rayTracing->createMs(); }
   // On GPUs with VK_KHR_pipeline_library (DevicePolicy::pipelineLibraries) pipelines are linked from
   // per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.
   const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
-  bool pipelineLinked() const { return pipeline_ && pipeline_->rayTracing->linked(); }
+  bool pipelineLinked() const { return pass_->pipeline().rayTracing->linked(); }
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
@@ -118,12 +111,12 @@ class PathTracer final : public Renderer {
   const vk::Image& accumulationImage() const { return accum_; }
   // Image sets allocated so far (one per new size: a size used before reuses its set).
   uint32_t imageSetsAllocated() const { return imageSetsAllocated_; }
-  const vk::PipelineLayout& layout() const { return *pipeline_->layout; }
+  const vk::PipelineLayout& layout() const { return pass_->layout(); }
 
  private:
   void createImages();
-  // Writes every descriptor the path tracer provides into s (a recorder lists them: provided_).
-  void writeDescriptors(vk::DescriptorSets& s);
+  // Sets every resource the path tracer binds on its pass.
+  void bindResources();
   void updateFrameUniforms();
   // Makes the program for (features, inspect) current, registering it on first use; rebuilds the pipeline.
   void useVariant(const scene::SceneFeatures& features, bool inspect);
@@ -135,25 +128,17 @@ class PathTracer final : public Renderer {
   const GpuEnvironment* env_;
   RenderSettings settings_;
   CameraState camera_;
-  shader::ShaderLibrary::ProgramId program_ = 0;
   scene::SceneFeatures features_;
+  bool featuresSet_ = false;
   bool cpuDeviceCode_ = false;
-  struct Variant {
-    scene::SceneFeatures features;
-    bool inspect = false;
-    shader::ShaderLibrary::ProgramId program = 0;
-  };
-  std::vector<Variant> variants_;
   std::optional<InspectRequest> inspection_;
   bool inspectVariant_ = false;  // the current program is the WB_INSPECT build
   // Sample index of the last region recorded: a restart after sample 0 clears the inspector's sample slots.
   uint32_t lastRecordedSample_ = 0;
-  std::unique_ptr<vk::DescriptorSets> sets_;
-  std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
-  uint64_t emitterVersion_ = 0;                // the scene's emitter buffers the descriptors point at
-  // Before pipeline_: destroyed after the pipelines linked from it.
+  uint64_t emitterVersion_ = 0;  // the scene's emitter buffers the pass points at
+  // Before pass_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
-  std::shared_ptr<vk::BuiltPipeline> pipeline_;
+  std::unique_ptr<Pass> pass_;
   vk::Image accum_, albedo_, normal_, info_, stats_;
   // The image sets of the last sizes left (a preview's, the full one's): going back to a size reuses its
   // memory, already touched, instead of allocating anew (lavapipe: ~25 ms at 440x360, the first touch).
@@ -165,8 +150,6 @@ class PathTracer final : public Renderer {
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_;
   uint32_t sampleIndex_ = 0;
-  uint32_t installs_ = 0;
-  double pipelineMs_ = 0;
 };
 
 }  // namespace wb::render

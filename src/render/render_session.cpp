@@ -121,7 +121,7 @@ std::unique_ptr<Renderer> RenderSession::constructRenderer(RenderMode mode, cons
 void RenderSession::adopt(Renderer& r) {
   r.setCamera(camera_);
   r.setLights(lights_);
-  if (hot_) hot_->addRenderer(r);
+  if (hooks_.adopted) hooks_.adopted(r);
 }
 
 std::unique_ptr<Renderer> RenderSession::makeRenderer(RenderMode mode, const RenderSettings& settings) {
@@ -133,19 +133,20 @@ std::unique_ptr<Renderer> RenderSession::makeRenderer(RenderMode mode, const Ren
 void RenderSession::prepareMode(RenderMode mode, const RenderSettings& settings) {
   const size_t m = size_t(mode);
   if (renderers_[m] || preparing_[m].valid()) return;
-  preparing_[m] = std::async(std::launch::async, [this, mode, settings, hybrid = hybrid_, hot = hot_] {
-    auto r = constructRenderer(mode, settings, hybrid);
-    // Where the driver compiles at the first dispatch, that compile happens here too, not on the render loop.
-    if (hot) {
-      try {
-        hot->compileAhead(*r);
-      } catch (const std::exception& e) {
-        if (!quiet_)
-          std::fprintf(stderr, "warning: compile ahead of %s: %s\n", renderModeName(mode), e.what());
-      }
-    }
-    return r;
-  });
+  preparing_[m] =
+      std::async(std::launch::async, [this, mode, settings, hybrid = hybrid_, prepare = hooks_.prepare] {
+        auto r = constructRenderer(mode, settings, hybrid);
+        if (prepare) {
+          try {
+            prepare(*r);
+          } catch (const std::exception& e) {
+            if (!quiet_)
+              std::fprintf(stderr, "warning: preparing %s off the render loop: %s\n", renderModeName(mode),
+                           e.what());
+          }
+        }
+        return r;
+      });
 }
 
 bool RenderSession::modeReady(RenderMode mode) {
@@ -216,10 +217,10 @@ void RenderSession::setHybridSettings(const HybridSettings& hybrid) {
     if (renderers_[m]) static_cast<HybridRenderer&>(*renderers_[m]).setHybridSettings(hybrid);
 }
 
-void RenderSession::attachHotReload(HotReload* hot) {
-  finishPreparing();  // a renderer being made may use the hot reload attached so far
-  hot_ = hot;
-  if (hot_) forEachRenderer([&](Renderer& r) { hot_->addRenderer(r); });
+void RenderSession::setRendererHooks(RendererHooks hooks) {
+  finishPreparing();  // a renderer being made may use the hooks set so far
+  hooks_ = std::move(hooks);
+  if (hooks_.adopted) forEachRenderer([&](Renderer& r) { hooks_.adopted(r); });
 }
 
 double RenderSession::render(uint32_t spp, const Renderer::Progress& progress) {

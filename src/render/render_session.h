@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "eval/image.h"
-#include "render/hot_reload.h"
 #include "render/hybrid/hybrid_renderer.h"
 #include "render/path_tracer.h"
 #include "scene/scene.h"
@@ -39,6 +38,16 @@ scene::SceneFeatures featuresFor(const scene::Scene& scene, const RenderSettings
 // A hash of every file under shaders/ (names and contents): part of the key of anything cached from a render
 // (the references of `converge` and `bench`), so a renderer change never reuses a stale image.
 std::string shaderSourceFingerprint();
+
+// What a session's owner does with each renderer it makes.
+struct RendererHooks {
+  // Render thread: a renderer is made, or taken from the worker that made it (prepareMode).
+  std::function<void(Renderer&)> adopted;
+  // The worker making a renderer off the render loop (prepareMode), before it is handed over: work that
+  // should not happen on the loop (compiling its pipelines ahead where the driver compiles at the first
+  // dispatch). Its failure is a warning; the renderer is used as it is.
+  std::function<void(Renderer&)> prepare;
+};
 
 class RenderSession {
  public:
@@ -67,7 +76,7 @@ class RenderSession {
   Renderer* rendererFor(RenderMode mode) { return renderers_[size_t(mode)].get(); }
   // Starts making `mode`'s renderer on a worker thread (unless it is made or being made), so that a frame
   // loop keeps drawing the current mode while the other one's pipelines are created (and, with a hot reload
-  // attached, compiled ahead: HotReload::compileAhead). Render thread only.
+  // hooks set, prepared by RendererHooks::prepare, e.g. compiled ahead). Render thread only.
   void prepareMode(RenderMode mode, const RenderSettings& settings);
   // Whether `mode`'s renderer is made; one the worker finished is taken here and given the session's camera,
   // lights and hot reload. Rethrows the worker's failure. Render thread only.
@@ -91,9 +100,9 @@ class RenderSession {
   void setHybridSettings(const HybridSettings& hybrid);
   const HybridSettings& hybridSettings() const { return hybrid_; }
 
-  // Registers every renderer (made now or later) with `hot` (nullptr: stop registering; `hot` must outlive
-  // the session's renderers or be detached first).
-  void attachHotReload(HotReload* hot);
+  // What is done with every renderer the session makes, now and later (the live-edit loop registers its
+  // passes); empty hooks detach (whoever set them must outlive the session's renderers or detach first).
+  void setRendererHooks(RendererHooks hooks);
 
   // Renders `spp` samples with the current renderer from scratch (hybrid modes: `spp` frames, shadows/AO
   // averaged over them); returns the wall time in seconds. frameSeconds() has each sample's.
@@ -123,7 +132,7 @@ class RenderSession {
   HybridSettings hybrid_;
   CameraState camera_, sceneCamera_;
   std::vector<gpu::DirectionalLight> lights_;
-  HotReload* hot_ = nullptr;
+  RendererHooks hooks_;
   bool quiet_ = false;
   std::vector<double> frameSeconds_;
   double setupSeconds_ = 0;

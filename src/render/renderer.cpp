@@ -28,4 +28,10 @@ std::vector<double> Renderer::render(uint32_t samples, const Progress& progress)
   return seconds;
 }
 
+uint32_t Renderer::pipelineInstalls() const {
+  uint32_t n = 0;
+  for (const Pass* p : passes()) n += p->installs();
+  return n;
+}
+
 }  // namespace wb::render

@@ -13,11 +13,11 @@
 #include "eval/image.h"
 #include "render/environment.h"
 #include "render/gpu_scene.h"
+#include "render/pass.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 #include "shader/library.h"
 #include "shared/gpu_types.h"
-#include "vk/built_pipeline.h"
 
 namespace wb::render {
 
@@ -36,12 +36,6 @@ struct RendererResources {
   const scene::Scene& scene;
   const GpuScene& gpuScene;
   const GpuEnvironment& environment;
-};
-
-// One program of a renderer, as hot reload and the Shaders panel name it.
-struct RendererProgram {
-  shader::ShaderLibrary::ProgramId id = 0;
-  std::string name;
 };
 
 class Renderer {
@@ -81,32 +75,13 @@ class Renderer {
   // The same read back (waits for the device); alpha = 1.
   virtual eval::ImageRGBA readImage() const = 0;
 
-  // Hot reload: the programs this renderer's pipelines are built from, a pipeline built from one (any
-  // thread; the device's pipeline creation) and installed (render thread, at a frame boundary; restarts
-  // accumulation). A build for a program the renderer no longer uses is dropped by installPipeline.
-  virtual std::vector<RendererProgram> programs() const = 0;
-  virtual std::unique_ptr<vk::BuiltPipeline> buildPipeline(
-      shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const = 0;
-  void installPipeline(shader::ShaderLibrary::ProgramId program,
-                       std::unique_ptr<vk::BuiltPipeline> pipeline) {
-    exchangePipeline(program, std::move(pipeline));
-  }
-  // installPipeline that hands back the pipeline it replaced (nullptr when the program is no longer used and
-  // `pipeline` is dropped). Pipelines are shared: a renderer of the same kind on the same device (the A/B
-  // comparison's stand-in) can render with another's pipeline, which the driver has compiled already.
-  virtual std::shared_ptr<vk::BuiltPipeline> exchangePipeline(
-      shader::ShaderLibrary::ProgramId program, std::shared_ptr<vk::BuiltPipeline> pipeline) = 0;
-  // The pipeline installed for `program` (nullptr when the program is not used).
-  virtual std::shared_ptr<vk::BuiltPipeline> pipeline(shader::ShaderLibrary::ProgramId program) const = 0;
-  // Both at once, on the calling (render) thread.
-  void swapPipeline(shader::ShaderLibrary::ProgramId program,
-                    const shader::ShaderLibrary::ProgramBuild& build) {
-    installPipeline(program, buildPipeline(program, build));
-  }
-  // Pipelines installed since construction (the initial builds count).
-  virtual uint32_t pipelineInstalls() const = 0;
+  // Its passes, in a fixed order: a renderer made with makeLike() lists the same passes in the same order
+  // (the live-edit loop, the JIT warm-up and the A/B comparison address a pass by its index).
+  virtual std::vector<Pass*> passes() const = 0;
+  // Pipelines installed into its passes since construction (the initial builds count).
+  uint32_t pipelineInstalls() const;
   // A renderer of the same kind, mode and shader variant on other resources, with `settings` (the JIT
-  // warm-up's stand-in on a second device). Its programs() come in the same order as this one's.
+  // warm-up's stand-in on a second device, the A/B comparison's at its own size).
   virtual std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                              const RenderSettings& settings) const = 0;
   // Copies from `other` (of the same kind) the parameters that are compiled into pipelines (specialisation

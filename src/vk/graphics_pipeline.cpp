@@ -58,7 +58,11 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx,
   rendering.depthAttachmentFormat = desc.depthFormat;
 
   VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  ci.pNext = &rendering;
+  if (desc.renderPass) {
+    ci.renderPass = desc.renderPass;
+  } else {
+    ci.pNext = &rendering;
+  }
   ci.stageCount = static_cast<uint32_t>(stageInfos.size());
   ci.pStages = stageInfos.data();
   ci.pVertexInputState = &vertexInput;
@@ -75,6 +79,25 @@ GraphicsPipeline::GraphicsPipeline(Context& ctx,
 }
 
 GraphicsPipeline::~GraphicsPipeline() {
+  if (pipeline_) vkDestroyPipeline(ctx_.device(), pipeline_, nullptr);
+}
+
+ComputePipeline::ComputePipeline(Context& ctx, const shader::CompiledShader& stage, VkPipelineLayout layout,
+                                 const std::vector<SpecializationConstant>& constants)
+    : ctx_(ctx) {
+  if (stage.stage != shader::Stage::Compute) {
+    throw VulkanError(std::string("compute pipeline: unexpected stage ") + shader::stageName(stage.stage) +
+                      " (" + stage.key.path.string() + ")");
+  }
+  const Specialization spec(constants);
+  const ShaderModule module(ctx.device(), stage);
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = module.stageInfo(spec.info());
+  ci.layout = layout;
+  WB_VK(vkCreateComputePipelines(ctx.device(), ctx.pipelineCache(), 1, &ci, nullptr, &pipeline_));
+}
+
+ComputePipeline::~ComputePipeline() {
   if (pipeline_) vkDestroyPipeline(ctx_.device(), pipeline_, nullptr);
 }
 

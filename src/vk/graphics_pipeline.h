@@ -1,6 +1,6 @@
-// A graphics pipeline from compiled vertex/fragment stages for dynamic rendering (Vulkan 1.3: no render pass,
-// the attachment formats are part of the pipeline). Built on a vk::PipelineLayout made from the reflected
-// layout.
+// Graphics and compute pipelines from compiled stages, built on a vk::PipelineLayout made from the reflected
+// layout. A graphics pipeline renders with dynamic rendering (Vulkan 1.3: the attachment formats are part of
+// the pipeline) or, given one, into subpass 0 of a render pass (the window's swapchain pass).
 #pragma once
 #include <memory>
 #include <vector>
@@ -21,6 +21,8 @@ struct GraphicsPipelineDesc {
   bool depthTest = true;
   bool depthWrite = true;
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
+  VkRenderPass renderPass =
+      VK_NULL_HANDLE;  // set: subpass 0 of this pass (colorFormats count its attachments)
 };
 
 class GraphicsPipeline {
@@ -43,6 +45,21 @@ class GraphicsPipeline {
   GraphicsPipelineDesc desc_;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
   double createMs_ = 0;
+};
+
+// A compute pipeline from one compute stage.
+class ComputePipeline {
+ public:
+  ComputePipeline(Context& ctx, const shader::CompiledShader& stage, VkPipelineLayout layout,
+                  const std::vector<SpecializationConstant>& constants = {});
+  ~ComputePipeline();
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+  VkPipeline handle() const { return pipeline_; }
+
+ private:
+  Context& ctx_;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
 };
 
 // Sets a full-size viewport (y down, depth 0..1) and scissor.

@@ -73,14 +73,11 @@ bool PipelineLayout::compatibleWith(const shader::PipelineLayoutDesc& other) con
   return true;
 }
 
-DescriptorSets::DescriptorSets(Context& ctx) : ctx_(ctx) {}
-
-const shader::DescriptorBinding* DescriptorSets::target(uint32_t set, uint32_t binding, DescriptorKind kind) {
-  requested_.push_back({set, binding, kind});
-  return layout_ ? layout_->binding(set, binding) : nullptr;
+const shader::DescriptorBinding* DescriptorSets::target(uint32_t set, uint32_t binding) const {
+  return layout_.binding(set, binding);
 }
 
-DescriptorSets::DescriptorSets(Context& ctx, const PipelineLayout& layout) : ctx_(ctx), layout_(&layout) {
+DescriptorSets::DescriptorSets(Context& ctx, const PipelineLayout& layout) : ctx_(ctx), layout_(layout) {
   std::map<VkDescriptorType, uint32_t> counts;
   for (const auto& b : layout.desc().bindings) {
     counts[b.type] += b.runtimeArray ? kRuntimeArrayCapacity : std::max(b.count, 1u);
@@ -109,7 +106,7 @@ DescriptorSets::~DescriptorSets() {
 }
 
 void DescriptorSets::writeBuffer(uint32_t set, uint32_t binding, VkBuffer buffer, VkDeviceSize size) {
-  const auto* b = target(set, binding, DescriptorKind::Buffer);
+  const auto* b = target(set, binding);
   if (!b) return;
   VkDescriptorBufferInfo info{buffer, 0, size};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -122,7 +119,7 @@ void DescriptorSets::writeBuffer(uint32_t set, uint32_t binding, VkBuffer buffer
 }
 
 void DescriptorSets::writeStorageImage(uint32_t set, uint32_t binding, VkImageView view) {
-  const auto* b = target(set, binding, DescriptorKind::StorageImage);
+  const auto* b = target(set, binding);
   if (!b) return;
   VkDescriptorImageInfo info{VK_NULL_HANDLE, view, VK_IMAGE_LAYOUT_GENERAL};
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -136,7 +133,7 @@ void DescriptorSets::writeStorageImage(uint32_t set, uint32_t binding, VkImageVi
 
 void DescriptorSets::writeSampledImages(uint32_t set, uint32_t binding,
                                         const std::vector<VkDescriptorImageInfo>& images) {
-  const auto* b = target(set, binding, DescriptorKind::SampledImages);
+  const auto* b = target(set, binding);
   if (!b || images.empty()) return;
   uint32_t capacity = b->runtimeArray ? kRuntimeArrayCapacity : std::max(b->count, 1u);
   VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -150,7 +147,7 @@ void DescriptorSets::writeSampledImages(uint32_t set, uint32_t binding,
 
 void DescriptorSets::writeAccelerationStructure(uint32_t set, uint32_t binding,
                                                 VkAccelerationStructureKHR as) {
-  const auto* b = target(set, binding, DescriptorKind::AccelerationStructure);
+  const auto* b = target(set, binding);
   if (!b) return;
   VkWriteDescriptorSetAccelerationStructureKHR asInfo{
       VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
@@ -165,9 +162,7 @@ void DescriptorSets::writeAccelerationStructure(uint32_t set, uint32_t binding,
   vkUpdateDescriptorSets(ctx_.device(), 1, &w, 0, nullptr);
 }
 
-namespace {
-
-const char* kindName(DescriptorKind k) {
+const char* descriptorKindName(DescriptorKind k) {
   switch (k) {
     case DescriptorKind::Buffer:
       return "a buffer";
@@ -191,40 +186,6 @@ bool fills(DescriptorKind k, VkDescriptorType t) {
     default:
       return t == VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
   }
-}
-
-}  // namespace
-
-void requireProvided(const shader::ShaderLibrary::ProgramBuild& build,
-                     const std::vector<ProvidedBinding>& provided, const std::string& renderer) {
-  std::vector<shader::Diagnostic> errors;
-  for (const auto& b : build.layout.bindings) {
-    const ProvidedBinding* match = nullptr;
-    for (const auto& p : provided)
-      if (p.set == b.set && p.binding == b.binding) match = &p;
-    if (match && fills(match->kind, b.type)) continue;
-    std::string message = "set " + std::to_string(b.set) + " binding " + std::to_string(b.binding) + " (" +
-                          shader::descriptorTypeName(b.type) + " '" + b.name + "', " +
-                          shader::stageFlagsToString(b.stages) + ") ";
-    message +=
-        match ? std::string("is bound by ") + renderer + " to " + kindName(match->kind) + ", not to this type"
-              : std::string("is not bound by ") + renderer +
-                    ": declare only the resources it provides (shaders/shared/gpu_types.h)";
-    // Every stage that uses it: the declaration in that stage's files.
-    bool located = false;
-    for (const auto& stage : build.stages) {
-      if (!stage || !(shader::toVkStage(stage->stage) & b.stages)) continue;
-      for (const auto& r : stage->reflection.bindings) {
-        if (r.set != b.set || r.binding != b.binding) continue;
-        const auto where = shader::findDeclaration(*stage, r);
-        const shader::Diagnostic d{where.first, where.second, "error", message};
-        if (std::find(errors.begin(), errors.end(), d) == errors.end()) errors.push_back(d);
-        located = true;
-      }
-    }
-    if (!located) errors.push_back({std::filesystem::path(), 0, "error", message});
-  }
-  if (!errors.empty()) throw shader::CompileError(std::move(errors));
 }
 
 }  // namespace wb::vk

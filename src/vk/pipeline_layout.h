@@ -38,22 +38,17 @@ class PipelineLayout {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
 };
 
-// What a renderer writes at a binding (the descriptor types each kind of write fills).
+// What a write fills (the descriptor types each kind of write can fill: fills()).
 enum class DescriptorKind { Buffer, StorageImage, SampledImages, AccelerationStructure };
-struct ProvidedBinding {
-  uint32_t set = 0, binding = 0;
-  DescriptorKind kind = DescriptorKind::Buffer;
-};
+const char* descriptorKindName(DescriptorKind kind);  // "a buffer", "a storage image", ...
+bool fills(DescriptorKind kind, VkDescriptorType type);
 
-// One descriptor set per layout set; writes are addressed by binding number (from the shared header), and
-// writes for bindings that no stage uses are skipped (they are not in the reflected layout). Every write
-// asked for is recorded (requested()): what the renderer provides, checked against a new program's bindings
-// before its pipeline is built (requireProvided).
+// One descriptor set per layout set, written by set and binding number (render::Pass finds the numbers by
+// the names the shaders declare). Writes for bindings that no stage uses are skipped (they are not in the
+// reflected layout).
 class DescriptorSets {
  public:
   DescriptorSets(Context& ctx, const PipelineLayout& layout);
-  // A recorder: no descriptor sets, the writes are only recorded.
-  explicit DescriptorSets(Context& ctx);
   ~DescriptorSets();
   DescriptorSets(const DescriptorSets&) = delete;
   DescriptorSets& operator=(const DescriptorSets&) = delete;
@@ -66,23 +61,13 @@ class DescriptorSets {
   void writeSampledImages(uint32_t set, uint32_t binding, const std::vector<VkDescriptorImageInfo>& images);
   void writeAccelerationStructure(uint32_t set, uint32_t binding, VkAccelerationStructureKHR as);
 
-  const std::vector<ProvidedBinding>& requested() const { return requested_; }
-
  private:
-  const shader::DescriptorBinding* target(uint32_t set, uint32_t binding, DescriptorKind kind);
+  const shader::DescriptorBinding* target(uint32_t set, uint32_t binding) const;
 
   Context& ctx_;
-  const PipelineLayout* layout_ = nullptr;  // null for a recorder
+  const PipelineLayout& layout_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
-  std::vector<ProvidedBinding> requested_;
 };
-
-// Throws shader::CompileError when `build` uses a binding that `provided` does not fill, or fills with
-// another kind of descriptor: one diagnostic per binding, at the file:line that declares it, naming
-// `renderer`. A program that passes binds every descriptor its pipeline reads (no
-// VUID-vkCmdTraceRaysKHR-None-02699).
-void requireProvided(const shader::ShaderLibrary::ProgramBuild& build,
-                     const std::vector<ProvidedBinding>& provided, const std::string& renderer);
 
 }  // namespace wb::vk

@@ -8,7 +8,7 @@
 namespace {
 
 TEST(ReloadLog, MissingFramesAreNullNotZero) {
-  wb::render::ReloadEvent e;
+  wb::live::ReloadEvent e;
   e.frames.firstNewFrame = 12.5;  // only the first new frame exists
   const auto j = wb::app::reloadEventJson(e);
   EXPECT_TRUE(j["frame_ms_median_before"].is_null()) << j.dump();
@@ -20,7 +20,7 @@ TEST(ReloadLog, MissingFramesAreNullNotZero) {
 }
 
 TEST(ReloadLog, InvalidUtf8IsReplacedNotThrown) {
-  wb::render::ReloadEvent e;
+  wb::live::ReloadEvent e;
   e.filesChanged = {"/tmp/\xff\xfe.rchit"};
   e.ok = false;
   e.error = "closesthit.rchit:1: error: '\xc3' : unexpected token";

@@ -14,13 +14,13 @@
 
 #include "common/paths.h"
 #include "gpu_fixture.h"
-#include "render/hot_reload.h"
+#include "live/hot_reload.h"
 #include "render/hybrid/hybrid_renderer.h"
 #include "test_scenes.h"
 
 using namespace wb;
 using namespace wb::testing;
-using Pass = render::HybridRenderer::Pass;
+using Pass = render::HybridPass;
 
 namespace {
 
@@ -370,10 +370,10 @@ TEST(Hybrid, SharedIncludeRebuildsRasterAndRayTracingRasterOnlyEditDoesNot) {
                 std::min(hybrid.program(Pass::ShadowAo), hybrid.program(Pass::Reflection)),
                 std::max(hybrid.program(Pass::ShadowAo), hybrid.program(Pass::Reflection))}));
 
-  render::HotReload hot(library, {shaders.root});
+  live::HotReload hot(library, {shaders.root});
   hot.addRenderer(hybrid);
   hot.start();  // the watches are in place when start() returns
-  auto waitForReload = [&]() -> std::optional<render::ReloadEvent> {
+  auto waitForReload = [&]() -> std::optional<live::ReloadEvent> {
     // A cap for a busy machine (a 1 s reload took tens of seconds beside two busy loops), not a timing.
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(300);
     while (std::chrono::steady_clock::now() < deadline) {

@@ -10,8 +10,8 @@
 
 namespace wb::app {
 
-void ABView::set(const std::vector<render::ABOutcome>& outcomes,
-                 const std::vector<render::HotReload::InstalledProgram>& programs, double ms,
+void ABView::set(const std::vector<live::ABOutcome>& outcomes,
+                 const std::vector<live::HotReload::InstalledPass>& programs, double ms,
                  double editToFirstFrameMs) {
   results.clear();
   for (const auto& o : outcomes) results.push_back(o.result);

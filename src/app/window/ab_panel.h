@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "render/ab_comparison.h"
-#include "render/hot_reload.h"
+#include "live/ab_comparison.h"
+#include "live/hot_reload.h"
 
 namespace wb::app {
 
@@ -21,8 +21,8 @@ struct ABView {
   bool userChose = false;
   static constexpr double kMaxCostRatio = 0.2;
 
-  std::vector<render::ReloadAB> results;  // the last comparison, the active renderer's first
-  std::vector<render::HotReload::InstalledProgram> installed;  // what Revert reinstalls
+  std::vector<live::ReloadAB> results;                    // the last comparison, the active renderer's first
+  std::vector<live::HotReload::InstalledPass> installed;  // what Revert reinstalls
   double abMs = -1, editMs = -1;  // the last comparison's cost and its edit's time (edit to first frame)
   std::string note;               // why the comparison was switched off, or what Revert/Accept did
   bool decided = false;           // Revert or Accept was pressed for the last comparison
@@ -36,9 +36,8 @@ struct ABView {
 
   // Takes a comparison's outcomes (shown: the first), the programs it compared and its cost against the
   // edit's time; switches the comparison off when it costs too much (see `enabled`).
-  void set(const std::vector<render::ABOutcome>& outcomes,
-           const std::vector<render::HotReload::InstalledProgram>& programs, double ms,
-           double editToFirstFrameMs);
+  void set(const std::vector<live::ABOutcome>& outcomes,
+           const std::vector<live::HotReload::InstalledPass>& programs, double ms, double editToFirstFrameMs);
 };
 
 // The A/B panel (an ImGui window over the image's bottom-right corner), when there is a comparison or the

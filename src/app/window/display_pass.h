@@ -1,13 +1,13 @@
 // The display pass: a fullscreen triangle whose fragment shader reads the path tracer's accumulation and AOV
-// images and applies exposure, a tonemapper and sRGB (shaders/display/). Its layout is reflected from the
-// shaders; like the renderers it hot reloads in two steps (build off the frame path, install at a frame
-// boundary), so a broken edit keeps the last good pipeline on screen.
+// images and applies exposure, a tonemapper and sRGB (shaders/display/). A render::Pass like the renderers'
+// (reflected layout, resources by name, hot reloaded by the live-edit loop), drawn into the swapchain's
+// render pass.
 #pragma once
 #include <memory>
 
 #include "display/display_types.h"
+#include "render/pass.h"
 #include "shader/library.h"
-#include "vk/built_pipeline.h"
 
 namespace wb::app {
 
@@ -20,31 +20,18 @@ struct DisplaySources {
 
 class DisplayPass {
  public:
-  DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRenderPass renderPass);
-  ~DisplayPass();
-  DisplayPass(const DisplayPass&) = delete;
-  DisplayPass& operator=(const DisplayPass&) = delete;
+  DisplayPass(vk::Context& ctx, shader::ShaderLibrary& library, VkRenderPass renderPass, VkFormat format);
 
   static std::vector<shader::ShaderKey> stageKeys();
-  shader::ShaderLibrary::ProgramId program() const { return program_; }
+  render::Pass& pass() { return pass_; }
 
-  std::unique_ptr<vk::BuiltPipeline> build(const shader::ShaderLibrary::ProgramBuild& build) const;
-  void install(std::unique_ptr<vk::BuiltPipeline> pipeline);  // waits for the device
-
-  // Rewrites the descriptors when an image changed (call between frames, when the last frame finished).
+  // Points the pass at other images (call between frames, when the last frame finished).
   void setSources(const DisplaySources& sources);
   // Records the draw into the current render pass, with the viewport set to the image's rectangle.
   void record(VkCommandBuffer cmd, const gpu::DisplayPush& push) const;
 
  private:
-  void writeDescriptors(vk::DescriptorSets& s);
-
-  vk::Context& ctx_;
-  VkRenderPass renderPass_;
-  shader::ShaderLibrary::ProgramId program_ = 0;
-  std::unique_ptr<vk::BuiltPipeline> current_;
-  std::unique_ptr<vk::DescriptorSets> sets_;
-  std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
+  render::Pass pass_;
   DisplaySources sources_;
 };
 

@@ -367,9 +367,8 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   char busy[192] = "";
   bool active = true;
   const auto hs = c.hot.status();
-  if (hs.stage != render::HotReload::Status::Stage::Idle) {
-    std::snprintf(busy, sizeof busy, "%s  %.1f s", render::HotReload::stageName(hs.stage),
-                  hs.elapsedMs * 1e-3);
+  if (hs.stage != live::HotReload::Status::Stage::Idle) {
+    std::snprintf(busy, sizeof busy, "%s  %.1f s", live::HotReload::stageName(hs.stage), hs.elapsedMs * 1e-3);
   } else if (!c.modeSwitch.empty()) {
     std::snprintf(busy, sizeof busy, "preparing %s  %.1f s", c.modeSwitch.c_str(), c.modeSwitchSeconds);
   } else if (const auto last = c.hot.lastEvent(); last && last->ok) {

@@ -11,7 +11,7 @@
 #include "app/window/progressive.h"
 #include "app/window/workbench_state.h"
 #include "eval/live_error.h"
-#include "render/hot_reload.h"
+#include "live/hot_reload.h"
 #include "render/hybrid/hybrid_renderer.h"
 #include "scene/scene.h"
 #include "shader/library.h"
@@ -27,7 +27,7 @@ struct PanelContext {
   WorkbenchState& state;
   const scene::Scene& scene;
   const ProgressiveTracer& progressive;
-  render::HotReload& hot;
+  live::HotReload& hot;
   shader::ShaderLibrary& library;
   CameraController& camera;
   const std::optional<PickResult>& pick;

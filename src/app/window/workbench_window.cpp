@@ -41,7 +41,8 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   auto& ctx = session_->context();
 
   makeSwapchain();
-  display_ = std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass());
+  display_ =
+      std::make_unique<DisplayPass>(ctx, session_->library(), swapchain_->renderPass(), swapchain_->format());
   input_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
   gui_ = std::make_unique<GuiLayer>(ctx, window_, *swapchain_, o.imguiIni);
   progressive_ = std::make_unique<ProgressiveTracer>(ctx, session_->pathTracer());
@@ -52,13 +53,11 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o) : w
   applied_ = state_;
   camera_.reset(session_->scene().camera, sceneRadius(session_->scene()));
 
-  hot_ = std::make_unique<render::HotReload>(session_->library(),
-                                             std::vector<std::filesystem::path>{shaderDir()});
-  registerHotReload();
-  hot_->setOnReady(
-      [] { glfwPostEmptyEvent(); });      // ends a rest or an idle wait: the build is committed at once
-  session_->attachHotReload(hot_.get());  // every renderer, the modes made later too
-  hot_->start();
+  live::EditLoopOptions lo;
+  lo.ab = ab_.enabled;
+  loop_ = std::make_unique<live::EditLoop>(*session_, lo);  // every renderer, the modes made later too
+  loop_->addPass(display_->pass());
+  loop_->start([] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
   applyMode(true);  // the mode the window opens in (--mode) is there from the first frame
 
   VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
@@ -115,7 +114,7 @@ void WorkbenchWindow::makeSwapchain() {
 }
 
 WorkbenchWindow::~WorkbenchWindow() {
-  if (hot_) hot_->stop();
+  if (loop_) loop_->hot().stop();
   if (!session_) return;
   VkDevice d = session_->context().device();
   session_->context().waitIdle();
@@ -128,19 +127,9 @@ WorkbenchWindow::~WorkbenchWindow() {
   display_.reset();
   swapchain_.reset();
   progressive_.reset();
-  abCompare_.reset();     // its stand-ins render on the session's device
   ab_.installed.clear();  // the old pipelines kept for Revert
-  session_->attachHotReload(nullptr);
-  hot_.reset();  // its targets point at the session's renderers
+  loop_.reset();          // its passes are the session's renderers' and the display's
   session_.reset();
-}
-
-void WorkbenchWindow::registerHotReload() {
-  DisplayPass* display = display_.get();
-  hot_->addTarget(
-      display->program(),
-      {"display", [display](const shader::ShaderLibrary::ProgramBuild& b) { return display->build(b); },
-       [display](std::unique_ptr<vk::BuiltPipeline> p) { display->install(std::move(p)); }});
 }
 
 void WorkbenchWindow::scriptCommand(const std::string& name) {

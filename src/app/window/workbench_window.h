@@ -31,8 +31,7 @@
 #include "app/window/script.h"
 #include "app/window/workbench_state.h"
 #include "eval/live_error.h"
-#include "render/ab_comparison.h"
-#include "render/hot_reload.h"
+#include "live/edit_loop.h"
 #include "render/render_session.h"
 #include "vk/swapchain.h"
 
@@ -92,7 +91,7 @@ class WorkbenchWindow : public ScriptHost {
   void scriptInspect(const std::string& path) override;  // workbench_window_inspect.cpp
   void scriptSwitchMode(const std::string& mode) override;
   bool modeSwitchPending() const override { return !modeSwitch_.empty(); }
-  size_t reloadCount() const override { return hot_->history().size(); }
+  size_t reloadCount() const override { return loop_->hot().history().size(); }
   uint32_t samples() const override {
     if (activeHybrid()) return activeHybrid()->samplesAccumulated();
     return progressive_->inPreview() ? 0 : progressive_->samples();
@@ -101,11 +100,10 @@ class WorkbenchWindow : public ScriptHost {
  private:
   // The window surface and its swapchain; throws PresentationUnavailable when the device cannot present.
   void makeSwapchain();
-  void registerHotReload();
-  // The A/B comparison (workbench_window_ab.cpp): a reload that installed pipelines is compared after its
-  // first frame (when the comparison is on), and the panel's Revert/Accept are applied at a frame boundary.
-  void noteReload(const std::optional<render::ReloadEvent>& event);
-  void runPendingAB();
+  // The A/B comparison (workbench_window_ab.cpp): the edit loop compares a reload that installed pipelines
+  // after its first frame (when the comparison is on); the panel shows it, and its Revert/Accept are applied
+  // at a frame boundary.
+  void showCompletedReloads();
   void applyABDecision();
   void applyState();
   void handleInput(const Rect& view, float dt);
@@ -157,11 +155,9 @@ class WorkbenchWindow : public ScriptHost {
   std::unique_ptr<DisplayPass> display_;
   std::unique_ptr<InputEvents> input_;  // before gui_: ImGui's callbacks chain to its
   std::unique_ptr<GuiLayer> gui_;
-  std::unique_ptr<render::HotReload> hot_;
+  std::unique_ptr<live::EditLoop> loop_;
   std::unique_ptr<ProgressiveTracer> progressive_;
-  std::unique_ptr<render::ABComparison> abCompare_;  // made on the first comparison
   ABView ab_;
-  bool abPending_ = false;
   std::unique_ptr<SwapchainCapture> capture_;
   uint64_t hybridGeneration_ = 0;
   uint64_t hybridResets_ = 0;  // accumulation restarts while a hybrid mode was shown

@@ -99,7 +99,8 @@ void WorkbenchWindow::recordFrame(VkCommandBuffer cmd, uint32_t imageIndex, cons
 
 bool WorkbenchWindow::traceOnlyAllowed(Clock::time_point now) const {
   using Seconds = std::chrono::duration<double>;
-  if (activeHybrid() || dragging_ || state_.paused || hot_->busy() || !modeSwitch_.empty()) return false;
+  if (activeHybrid() || dragging_ || state_.paused || loop_->hot().busy() || !modeSwitch_.empty())
+    return false;
   if (!screenshotPath_.empty() || state_.saveRequest) return false;
   if (hasScript_ && !script_.waitingForEvent()) return false;
   if (progressive_->inPreview() || progressive_->samples() == 0 || progressive_->done()) return false;
@@ -151,7 +152,7 @@ bool WorkbenchWindow::nothingToDo() const {
       activeHybrid() ? !state_.paused && (state_.params.render.spp == 0 ||
                                           activeHybrid()->samplesAccumulated() < state_.params.render.spp)
                      : !state_.paused && !progressive_->done();
-  return !tracing && !hot_->busy() && !dragging_ && modeSwitch_.empty() && screenshotPath_.empty() &&
+  return !tracing && !loop_->hot().busy() && !dragging_ && modeSwitch_.empty() && screenshotPath_.empty() &&
          !state_.saveRequest && (!hasScript_ || script_.waitingForEvent()) && !options_.frames;
 }
 
@@ -160,18 +161,14 @@ void WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
   WB_VK(vkWaitForFences(ctx.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
   frameInFlight_ = false;
   readTimestamps(true);
-  hot_->frameFinished(frameBegin);
-  runPendingAB();
+  loop_->frameFinished(frameBegin);
+  showCompletedReloads();
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
-  // cores (render/hot_reload.h): the panel and the present cost CPU time besides the trace budget.
-  const double restRatio = ctx.policy().windowRestRatio;
-  if (restRatio > 0 && hot_->compiling()) {
-    const auto end = Clock::now();
-    const auto until = end + std::chrono::duration_cast<Clock::duration>((end - frameBegin) * restRatio);
-    // Input still wakes the loop's event queue; it is handled with the next frame.
-    for (auto t = end; hot_->compiling() && t < until; t = Clock::now())
-      glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
-  }
+  // cores: the panel and the present cost CPU time besides the trace budget.
+  const auto until = loop_->restUntil(frameBegin, Clock::now(), ctx.policy().windowRestRatio);
+  // Input still wakes the loop's event queue; it is handled with the next frame.
+  for (auto t = Clock::now(); loop_->compiling() && t < until; t = Clock::now())
+    glfwWaitEventsTimeout(std::chrono::duration<double>(until - t).count());
   counters_ = session_->renderer().readCounters();
   updateLiveError();
   updateInspection();
@@ -234,7 +231,7 @@ bool WorkbenchWindow::drawFrame(float dt) {
       state_,
       session_->scene(),
       *progressive_,
-      *hot_,
+      loop_->hot(),
       session_->library(),
       camera_,
       pick_,
@@ -374,7 +371,7 @@ int WorkbenchWindow::run() {
 
     if (options_.frames && frameCount_ >= options_.frames) break;
     if (!stepScript(exitCode)) break;
-    noteReload(hot_->poll());
+    loop_->beginFrame();
     drawFrame(dt);
   }
   if (frameInFlight_) {

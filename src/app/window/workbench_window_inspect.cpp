@@ -31,7 +31,7 @@ bool WorkbenchWindow::applyInspection() {
     if (pixel != hybrid->inspectPixel()) hybrid->setInspectPixel(pixel);
   }
   if (want == tracer.inspection()) return false;
-  if (tracer.setInspection(want)) hot_->addRenderer(tracer);  // the other variant's program
+  tracer.setInspection(want);
   state_.inspectShown = -1;
   return true;
 }

@@ -104,7 +104,7 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["delivered_paths_per_second"] = wall > 0 ? counters_.pathCount / wall : 0.0;
   j["rays_per_second"] = counters_.rayCount / secs;
   j["nan_inf_dropped"] = counters_.droppedSamples;
-  const std::string err = hot_->currentError();
+  const std::string err = loop_->hot().currentError();
   j["shader_error"] = err;
   j["banner"] = err.empty() ? "" : "shader error (still rendering with the last good pipeline):\n" + err;
   j["mode_switches"] = nlohmann::json::array();
@@ -124,7 +124,7 @@ nlohmann::json WorkbenchWindow::statsJson() {
   j["ab_edit_ms"] = ab_.editMs;
   j["ab_note"] = ab_.note;
   j["reloads"] = nlohmann::json::array();
-  for (const auto& e : hot_->history()) j["reloads"].push_back(reloadEventJson(e));
+  for (const auto& e : loop_->hot().history()) j["reloads"].push_back(reloadEventJson(e));
   j["shader_files"] = nlohmann::json::array();
   for (const auto& [path, f] : session_->library().fileStatuses()) {
     j["shader_files"].push_back({{"path", path.string()}, {"ok", f.ok}, {"programs", f.programs}});

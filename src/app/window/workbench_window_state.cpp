@@ -67,7 +67,7 @@ void WorkbenchWindow::applyState() {
   }
   if (settingsChanged) {
     const auto features = render::featuresFor(session_->scene(), s);
-    if (tracer.setFeatures(features)) hot_->addRenderer(tracer);  // the new variant's program
+    tracer.setFeatures(features);
     progressive_->setSettings(s);
     for (auto mode : {render::RenderMode::Hybrid, render::RenderMode::Reflections}) {
       auto* h = session_->rendererFor(mode);
@@ -103,7 +103,7 @@ void WorkbenchWindow::applyState() {
     restart = true;
   }
   if (st.reloadShaders) {
-    hot_->reloadAll();
+    loop_->hot().reloadAll();
     st.reloadShaders = false;
   }
   if (st.vsync != applied_.vsync) {
@@ -118,7 +118,7 @@ void WorkbenchWindow::applyState() {
   opts.preview = st.preview;
   opts.budgetMs = st.budgetMs;
   // A rebuild compiling gets the share of the cores the device's policy gives it.
-  if (hot_ && hot_->compiling())
+  if (loop_ && loop_->compiling())
     opts.budgetMs = st.budgetMs * session_->context().policy().windowTraceShareWhileCompiling;
   if (restart) {
     progressive_->invalidate();

@@ -32,27 +32,28 @@ glm::mat4 reversedInfinitePerspective(float yfov, float aspect, float znear) {
 
 }  // namespace
 
-const char* HybridRenderer::passName(Pass p) {
+const char* HybridRenderer::passName(HybridPass p) {
   switch (p) {
-    case Pass::GBuffer:
+    case HybridPass::GBuffer:
       return "hybrid gbuffer (raster)";
-    case Pass::ShadowAo:
+    case HybridPass::ShadowAo:
       return "hybrid shadow+ao (ray tracing)";
-    case Pass::Reflection:
+    case HybridPass::Reflection:
       return "hybrid reflections (ray tracing)";
     default:
       return "hybrid composite (compute)";
   }
 }
 
-std::vector<shader::ShaderKey> HybridRenderer::stageKeys(Pass pass, const std::filesystem::path& shaderRoot) {
+std::vector<shader::ShaderKey> HybridRenderer::stageKeys(HybridPass pass,
+                                                         const std::filesystem::path& shaderRoot) {
   const auto dir = (shaderRoot.empty() ? shaderDir() : shaderRoot) / "hybrid";
   switch (pass) {
-    case Pass::GBuffer:
+    case HybridPass::GBuffer:
       return {{dir / "gbuffer.vert"}, {dir / "gbuffer.frag"}};
-    case Pass::ShadowAo:
+    case HybridPass::ShadowAo:
       return {{dir / "shadow_ao.rgen"}, {dir / "occlusion.rmiss"}, {dir / "alpha.rahit"}};
-    case Pass::Reflection:
+    case HybridPass::Reflection:
       return {{dir / "reflect.rgen"},
               {dir / "reflect.rmiss"},
               {dir / "occlusion.rmiss"},
@@ -108,27 +109,58 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
   inspect_ = vk::Buffer(ctx_, sizeof(gpu::HybridInspectRecord), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   setInspectPixel(std::nullopt);
   createImages();
-  {
-    vk::DescriptorSets recorder(ctx_);
-    writeDescriptors(recorder);
-    provided_ = recorder.requested();
-  }
 
+  // How each pass's program becomes a pipeline.
+  PipelineRecipe recipes[kPassCount];
+  {
+    GraphicsRecipe g;
+    g.desc.colorFormats = {kAlbedoFormat, kNormalFormat, kEmissiveFormat};
+    g.desc.depthFormat = kDepthFormat;
+    g.desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z
+    g.desc.cullMode = VK_CULL_MODE_NONE;
+    g.desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    recipes[size_t(HybridPass::GBuffer)] = g;
+    // Miss 0 = shadow rays, miss 1 = AO rays (the same "nothing hit" shader); one hit group with only the
+    // alpha any-hit (occlusion rays skip closest-hit).
+    RayTracingRecipe shadow;
+    shadow.table.raygen("shadow_ao.rgen")
+        .miss("occlusion.rmiss")
+        .miss("occlusion.rmiss")
+        .hitGroup({.anyHit = "alpha.rahit"});
+    recipes[size_t(HybridPass::ShadowAo)] = shadow;
+    recipes[size_t(HybridPass::Reflection)] = reflectionRecipe();
+    recipes[size_t(HybridPass::Composite)] = ComputeRecipe{};
+  }
   static const char* programNames[kPassCount] = {"hybrid-gbuffer", "hybrid-shadow-ao", "hybrid-reflections",
                                                  "hybrid-composite"};
   for (size_t i = 0; i < kPassCount; ++i) {
-    const Pass pass = static_cast<Pass>(i);
-    if (!hasPass(pass)) continue;
-    programs_[i] = library_.registerProgram(programNames[i], stageKeys(pass, shaderRoot_));
-    installPipeline(programs_[i], buildPipeline(programs_[i], library_.buildProgram(programs_[i])));
+    const HybridPass id = static_cast<HybridPass>(i);
+    if (!hasPass(id)) continue;
+    passes_[i] = std::make_unique<Pass>(ctx_, library_, passName(id), recipes[i]);
+    passes_[i]->setOnInstall([this] { frameIndex_ = 0; });
+    if (id == HybridPass::GBuffer) passes_[i]->setPushConstantBytes(sizeof(gpu::HybridDrawConstants));
+    passes_[i]->useProgram(programNames[i], stageKeys(id, shaderRoot_));
   }
+  bindResources();
+  for (auto& p : passes_)
+    if (p) p->rebuild();
 }
 
 HybridRenderer::~HybridRenderer() {
   ctx_.waitIdle();
-  for (auto& s : sets_) s.reset();
-  for (auto& p : pipelines_) p.reset();
+  for (auto& p : passes_) p.reset();
   if (nearest_) vkDestroySampler(ctx_.device(), nearest_, nullptr);
+}
+
+RayTracingRecipe HybridRenderer::reflectionRecipe() const {
+  // Miss 0 = reflected environment, miss 1 = occlusion (shadow rays of reflected hits).
+  RayTracingRecipe r;
+  r.table.raygen("reflect.rgen")
+      .miss("reflect.rmiss")
+      .miss("occlusion.rmiss")
+      .hitGroup({.closestHit = "reflect.rchit", .anyHit = "alpha.rahit"});
+  r.constants = {{0, hybrid_.reflectionDepth}};
+  return r;
 }
 
 void HybridRenderer::createImages() {
@@ -164,27 +196,27 @@ void HybridRenderer::createImages() {
   frameIndex_ = 0;
 }
 
-void HybridRenderer::writeDescriptors(vk::DescriptorSets& s) {
-  s.writeAccelerationStructure(0, WB_BIND_TLAS, gpuScene_.tlas());
-  s.writeBuffer(0, WB_BIND_GEOMETRIES, gpuScene_.geometries().handle());
-  s.writeBuffer(0, WB_BIND_MATERIALS, gpuScene_.materials().handle());
-  s.writeSampledImages(0, WB_BIND_TEXTURES, gpuScene_.textureDescriptors());
-  s.writeSampledImages(0, WB_BIND_ENV_MAP, {env_->descriptor()});
-  s.writeBuffer(0, WB_BIND_HYBRID_FRAME, uniforms_.handle());
+void HybridRenderer::bindResources() {
   auto sampled = [&](const vk::Image& img) {
     return std::vector<VkDescriptorImageInfo>{
         {nearest_, img.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
   };
-  s.writeSampledImages(0, WB_BIND_GBUF_ALBEDO, sampled(albedo_));
-  s.writeSampledImages(0, WB_BIND_GBUF_NORMAL, sampled(normal_));
-  s.writeSampledImages(0, WB_BIND_GBUF_DEPTH, sampled(depth_));
-  s.writeSampledImages(0, WB_BIND_GBUF_EMISSIVE, sampled(emissive_));
-  s.writeStorageImage(0, WB_BIND_SHADOW_MASK, shadowMask_.view());
-  s.writeStorageImage(0, WB_BIND_AO_MASK, aoMask_.view());
-  s.writeStorageImage(0, WB_BIND_HYBRID_HISTORY, history_.view());
-  s.writeStorageImage(0, WB_BIND_REFLECTION, reflection_.view());
-  s.writeStorageImage(0, WB_BIND_HYBRID_OUTPUT, output_.view());
-  s.writeBuffer(0, WB_BIND_HYBRID_INSPECT, inspect_.handle());
+  for (auto& pass : passes_) {
+    if (!pass) continue;
+    Pass& p = *pass;
+    bindSceneResources(p, gpuScene_, *env_);
+    p.setBuffer("HybridFrameBlock", uniforms_);
+    p.setSampledImages("gbufAlbedo", sampled(albedo_));
+    p.setSampledImages("gbufNormal", sampled(normal_));
+    p.setSampledImages("gbufDepth", sampled(depth_));
+    p.setSampledImages("gbufEmissive", sampled(emissive_));
+    p.setStorageImage("shadowMask", shadowMask_.view());
+    p.setStorageImage("aoMask", aoMask_.view());
+    p.setStorageImage("history", history_.view());
+    p.setStorageImage("reflectionImage", reflection_.view());
+    p.setStorageImage("outputImage", output_.view());
+    p.setBuffer("HybridInspectBlock", inspect_);
+  }
 }
 
 void HybridRenderer::setInspectPixel(std::optional<glm::uvec2> pixel) {
@@ -201,99 +233,11 @@ gpu::HybridInspectRecord HybridRenderer::readInspection() const {
   return r;
 }
 
-std::optional<HybridRenderer::Pass> HybridRenderer::passOf(shader::ShaderLibrary::ProgramId program) const {
-  for (size_t i = 0; i < kPassCount; ++i)
-    if (hasPass(Pass(i)) && programs_[i] == program) return Pass(i);
-  return std::nullopt;
-}
-
-std::vector<RendererProgram> HybridRenderer::programs() const {
-  std::vector<RendererProgram> out;
-  for (size_t i = 0; i < kPassCount; ++i)
-    if (hasPass(Pass(i))) out.push_back({programs_[i], passName(Pass(i))});
+std::vector<Pass*> HybridRenderer::passes() const {
+  std::vector<Pass*> out;
+  for (const auto& p : passes_)
+    if (p) out.push_back(p.get());
   return out;
-}
-
-std::unique_ptr<vk::BuiltPipeline> HybridRenderer::buildPipeline(
-    shader::ShaderLibrary::ProgramId program, const shader::ShaderLibrary::ProgramBuild& build) const {
-  const auto pass = passOf(program);
-  if (!pass) throw std::invalid_argument("program " + std::to_string(program) + " is not a hybrid pass");
-  vk::requireProvided(build, provided_, std::string("the ") + passName(*pass) + " pass");
-  auto p = std::make_unique<vk::BuiltPipeline>();
-  p->layout = std::make_unique<vk::PipelineLayout>(ctx_, build.layout);
-  switch (*pass) {
-    case Pass::GBuffer: {
-      vk::GraphicsPipelineDesc desc;
-      desc.colorFormats = {kAlbedoFormat, kNormalFormat, kEmissiveFormat};
-      desc.depthFormat = kDepthFormat;
-      desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed Z
-      desc.cullMode = VK_CULL_MODE_NONE;
-      desc.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-      p->graphics = std::make_unique<vk::GraphicsPipeline>(ctx_, build.stages, desc, p->layout->handle());
-      break;
-    }
-    case Pass::ShadowAo: {
-      // Miss 0 = shadow rays, miss 1 = AO rays (the same "nothing hit" shader); one hit group with only the
-      // alpha any-hit (occlusion rays skip closest-hit).
-      vk::RtBindingTable table;
-      table.raygen("shadow_ao.rgen")
-          .miss("occlusion.rmiss")
-          .miss("occlusion.rmiss")
-          .hitGroup({.anyHit = "alpha.rahit"});
-      p->rayTracing =
-          std::make_unique<vk::RayTracingPipeline>(ctx_, build.stages, table, p->layout->handle(), 1);
-      break;
-    }
-    case Pass::Reflection: {
-      // Miss 0 = reflected environment, miss 1 = occlusion (shadow rays of reflected hits).
-      vk::RtBindingTable table;
-      table.raygen("reflect.rgen")
-          .miss("reflect.rmiss")
-          .miss("occlusion.rmiss")
-          .hitGroup({.closestHit = "reflect.rchit", .anyHit = "alpha.rahit"});
-      p->rayTracing = std::make_unique<vk::RayTracingPipeline>(
-          ctx_, build.stages, table, p->layout->handle(), 1,
-          std::vector<vk::SpecializationConstant>{{0, hybrid_.reflectionDepth}});
-      break;
-    }
-    case Pass::Composite: {
-      const vk::ShaderModule module(ctx_.device(), *build.stages.at(0));
-      VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-      ci.stage = module.stageInfo();
-      ci.layout = p->layout->handle();
-      VkPipeline compute = VK_NULL_HANDLE;
-      WB_VK(vkCreateComputePipelines(ctx_.device(), ctx_.pipelineCache(), 1, &ci, nullptr, &compute));
-      p->other = vk::OwnedPipeline(ctx_.device(), compute);
-      break;
-    }
-  }
-  return p;
-}
-
-std::shared_ptr<vk::BuiltPipeline> HybridRenderer::pipeline(shader::ShaderLibrary::ProgramId program) const {
-  const auto pass = passOf(program);
-  return pass ? pipelines_[size_t(*pass)] : nullptr;
-}
-
-std::shared_ptr<vk::BuiltPipeline> HybridRenderer::exchangePipeline(
-    shader::ShaderLibrary::ProgramId program, std::shared_ptr<vk::BuiltPipeline> pipeline) {
-  const auto pass = passOf(program);
-  if (!pass) return nullptr;
-  ctx_.waitIdle();  // the old pipeline and descriptor sets may still be in flight
-  const size_t i = size_t(*pass);
-  sets_[i].reset();
-  std::swap(pipelines_[i], pipeline);
-  sets_[i] = std::make_unique<vk::DescriptorSets>(ctx_, *pipelines_[i]->layout);
-  if (!sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
-  builds_[i]++;
-  frameIndex_ = 0;
-  return pipeline;
-}
-
-uint32_t HybridRenderer::pipelineInstalls() const {
-  uint32_t n = 0;
-  for (uint32_t b : builds_) n += b;
-  return n;
 }
 
 std::unique_ptr<Renderer> HybridRenderer::makeLike(const RendererResources& resources,
@@ -311,22 +255,6 @@ void HybridRenderer::matchCompiledParameters(const Renderer& other) {
   }
 }
 
-VkPipeline HybridRenderer::pipelineHandle(Pass p) const {
-  const auto& pl = pipelines_[size_t(p)];
-  return pl ? pl->handle() : VK_NULL_HANDLE;
-}
-
-VkPipelineBindPoint HybridRenderer::bindPoint(Pass pass) const {
-  switch (pass) {
-    case Pass::GBuffer:
-      return VK_PIPELINE_BIND_POINT_GRAPHICS;
-    case Pass::Composite:
-      return VK_PIPELINE_BIND_POINT_COMPUTE;
-    default:
-      return VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR;
-  }
-}
-
 void HybridRenderer::setCamera(const CameraState& camera) {
   camera_ = camera;
   frameIndex_ = 0;
@@ -338,9 +266,7 @@ void HybridRenderer::setSettings(const RenderSettings& settings) {
   if (resized) {
     ctx_.waitIdle();
     createImages();
-    for (size_t i = 0; i < kPassCount; ++i) {
-      if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
-    }
+    bindResources();
   }
   frameIndex_ = 0;
 }
@@ -348,9 +274,9 @@ void HybridRenderer::setSettings(const RenderSettings& settings) {
 void HybridRenderer::setHybridSettings(const HybridSettings& hybrid) {
   const bool depthChanged = hybrid.reflectionDepth != hybrid_.reflectionDepth;
   hybrid_ = hybrid;
-  if (depthChanged && hasPass(Pass::Reflection)) {
-    const auto id = programs_[size_t(Pass::Reflection)];
-    installPipeline(id, buildPipeline(id, library_.buildProgram(id)));
+  if (depthChanged && hasPass(HybridPass::Reflection)) {
+    pass(HybridPass::Reflection).setRecipe(reflectionRecipe());
+    pass(HybridPass::Reflection).rebuild();
   }
   frameIndex_ = 0;
 }
@@ -358,9 +284,7 @@ void HybridRenderer::setHybridSettings(const HybridSettings& hybrid) {
 void HybridRenderer::setEnvironment(const GpuEnvironment& env) {
   ctx_.waitIdle();
   env_ = &env;
-  for (size_t i = 0; i < kPassCount; ++i) {
-    if (sets_[i] && !sets_[i]->sets().empty()) writeDescriptors(*sets_[i]);
-  }
+  bindResources();
   frameIndex_ = 0;
 }
 
@@ -412,16 +336,6 @@ void HybridRenderer::updateUniforms() {
 void HybridRenderer::record(VkCommandBuffer cmd) {
   updateUniforms();
   const uint32_t w = settings_.width, h = settings_.height;
-  auto bind = [&](Pass pass) {
-    const auto& pl = *pipelines_[size_t(pass)];
-    vkCmdBindPipeline(cmd, bindPoint(pass), pl.handle());
-    const auto& sets = sets_[size_t(pass)]->sets();
-    if (!sets.empty()) {
-      vkCmdBindDescriptorSets(cmd, bindPoint(pass), pl.layout->handle(), 0,
-                              static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
-    }
-    return pl.layout.get();
-  };
 
   // 1. G-buffer (dynamic rendering). The previous contents are discarded.
   for (const vk::Image* img : {&albedo_, &normal_, &emissive_}) {
@@ -453,16 +367,14 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
   ri.pDepthAttachment = &depth;
   vkCmdBeginRendering(cmd, &ri);
   {
-    const vk::PipelineLayout* layout = bind(Pass::GBuffer);
+    const Pass& gbuffer = pass(HybridPass::GBuffer);
+    gbuffer.bind(cmd);
     vk::setViewportAndScissor(cmd, w, h);
     for (const auto& d : draws_) {
       gpu::HybridDrawConstants pc{};
       pc.model = d.model;
       pc.geometryIndex = d.geometry;
-      for (const auto& range : layout->desc().pushConstants) {
-        vkCmdPushConstants(cmd, layout->handle(), range.stageFlags, range.offset, range.size,
-                           reinterpret_cast<const char*>(&pc) + range.offset);
-      }
+      gbuffer.push(cmd, pc);
       vkCmdDraw(cmd, d.vertexCount, 1, 0, 0);
     }
   }
@@ -475,18 +387,16 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_ASPECT_DEPTH_BIT);
 
   // 2. Shadows + AO, 3. reflections (ray tracing pipelines, launched over the image).
-  bind(Pass::ShadowAo);
-  pipelines_[size_t(Pass::ShadowAo)]->rayTracing->sbt().trace(ctx_, cmd, w, h);
-  vk::memoryBarrier(cmd);
-  if (hasPass(Pass::Reflection)) {
-    bind(Pass::Reflection);
-    pipelines_[size_t(Pass::Reflection)]->rayTracing->sbt().trace(ctx_, cmd, w, h);
+  for (HybridPass id : {HybridPass::ShadowAo, HybridPass::Reflection}) {
+    if (!hasPass(id)) continue;
+    pass(id).bind(cmd);
+    pass(id).traceRays(cmd, w, h);
     vk::memoryBarrier(cmd);
   }
 
   // 4. Composite.
-  bind(Pass::Composite);
-  vkCmdDispatch(cmd, (w + 7) / 8, (h + 7) / 8, 1);
+  pass(HybridPass::Composite).bind(cmd);
+  pass(HybridPass::Composite).dispatch(cmd, (w + 7) / 8, (h + 7) / 8);
   vk::memoryBarrier(cmd);
 }
 

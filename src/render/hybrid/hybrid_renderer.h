@@ -1,7 +1,7 @@
 // The hybrid renderer: a G-buffer raster pass (dynamic rendering), ray traced sun shadows and ambient
 // occlusion from the G-buffer (ray tracing pipeline, no primary rays), optional ray traced reflections for
 // smooth surfaces, and a compute composite into linear radiance. Every pipeline comes from the ShaderLibrary
-// (compiled, cached, reflected into its layout) and is hot reloadable through render::HotReload.
+// (compiled, cached, reflected into its layout) and is hot reloadable through live::HotReload.
 #pragma once
 #include <array>
 #include <filesystem>
@@ -17,12 +17,14 @@
 
 namespace wb::render {
 
+// The hybrid renderer's passes, in the order a frame runs them. Reflection exists only in
+// RenderMode::Reflections.
+enum class HybridPass { GBuffer = 0, ShadowAo = 1, Reflection = 2, Composite = 3 };
+
 class HybridRenderer final : public Renderer {
  public:
-  // The programs, in the order of the passes. Reflection is registered only in RenderMode::Reflections.
-  enum class Pass { GBuffer = 0, ShadowAo = 1, Reflection = 2, Composite = 3 };
   static constexpr size_t kPassCount = 4;
-  static const char* passName(Pass p);
+  static const char* passName(HybridPass p);
 
   // `shaderRoot` is the shaders/ folder (tests point it at a temporary copy); the library's include roots
   // should contain it.
@@ -33,10 +35,12 @@ class HybridRenderer final : public Renderer {
   HybridRenderer(const HybridRenderer&) = delete;
   HybridRenderer& operator=(const HybridRenderer&) = delete;
 
-  static std::vector<shader::ShaderKey> stageKeys(Pass pass, const std::filesystem::path& shaderRoot);
+  static std::vector<shader::ShaderKey> stageKeys(HybridPass pass, const std::filesystem::path& shaderRoot);
 
-  bool hasPass(Pass p) const { return p != Pass::Reflection || mode_ == RenderMode::Reflections; }
-  shader::ShaderLibrary::ProgramId program(Pass p) const { return programs_[size_t(p)]; }
+  bool hasPass(HybridPass p) const { return p != HybridPass::Reflection || mode_ == RenderMode::Reflections; }
+  // The pass (it must exist: hasPass()).
+  Pass& pass(HybridPass p) const { return *passes_[size_t(p)]; }
+  shader::ShaderLibrary::ProgramId program(HybridPass p) const { return pass(p).program(); }
 
   void setHybridSettings(const HybridSettings& hybrid);
   const HybridSettings& hybridSettings() const { return hybrid_; }
@@ -57,21 +61,14 @@ class HybridRenderer final : public Renderer {
   // The composited linear radiance.
   const vk::Image& outputImage() const override { return output_; }
   eval::ImageRGBA readImage() const override;
-  std::vector<RendererProgram> programs() const override;
-  std::unique_ptr<vk::BuiltPipeline> buildPipeline(
-      shader::ShaderLibrary::ProgramId program,
-      const shader::ShaderLibrary::ProgramBuild& build) const override;
-  std::shared_ptr<vk::BuiltPipeline> exchangePipeline(shader::ShaderLibrary::ProgramId program,
-                                                      std::shared_ptr<vk::BuiltPipeline> pipeline) override;
-  std::shared_ptr<vk::BuiltPipeline> pipeline(shader::ShaderLibrary::ProgramId program) const override;
-  uint32_t pipelineInstalls() const override;
+  std::vector<Pass*> passes() const override;
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   void matchCompiledParameters(const Renderer& other) override;
 
   // Pipelines installed per pass since construction (the initial build counts as 1).
-  uint32_t pipelineBuilds(Pass p) const { return builds_[size_t(p)]; }
-  VkPipeline pipelineHandle(Pass p) const;
+  uint32_t pipelineBuilds(HybridPass p) const { return pass(p).installs(); }
+  VkPipeline pipelineHandle(HybridPass p) const { return pass(p).pipeline().handle(); }
 
   // Readbacks (they wait for the device).
   std::vector<float> readOutput() const;        // RGBA32F linear radiance
@@ -95,12 +92,11 @@ class HybridRenderer final : public Renderer {
     uint32_t geometry = 0;
     uint32_t vertexCount = 0;
   };
-  std::optional<Pass> passOf(shader::ShaderLibrary::ProgramId program) const;
   void createImages();
-  // Writes every descriptor the hybrid passes provide into s (a recorder lists them: provided_).
-  void writeDescriptors(vk::DescriptorSets& s);
+  // Sets every resource the hybrid passes bind on each of them.
+  void bindResources();
   void updateUniforms();
-  VkPipelineBindPoint bindPoint(Pass pass) const;
+  RayTracingRecipe reflectionRecipe() const;
 
   vk::Context& ctx_;
   shader::ShaderLibrary& library_;
@@ -116,11 +112,7 @@ class HybridRenderer final : public Renderer {
   gpu::DirectionalLight sun_{};
   bool hasSun_ = false;
   std::vector<Draw> draws_;
-  std::array<shader::ShaderLibrary::ProgramId, kPassCount> programs_{};
-  std::array<std::shared_ptr<vk::BuiltPipeline>, kPassCount> pipelines_;
-  std::array<std::unique_ptr<vk::DescriptorSets>, kPassCount> sets_;
-  std::vector<vk::ProvidedBinding> provided_;  // what writeDescriptors fills: a program may use no more
-  std::array<uint32_t, kPassCount> builds_{};
+  std::array<std::unique_ptr<Pass>, kPassCount> passes_;  // null where !hasPass()
   vk::Image albedo_, normal_, emissive_, depth_, shadowMask_, aoMask_, history_, reflection_, output_;
   VkSampler nearest_ = VK_NULL_HANDLE;
   vk::Buffer uniforms_;

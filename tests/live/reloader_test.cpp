@@ -1,9 +1,9 @@
 // Reloader: editor save patterns, broken edits, dependency-driven rebuilds. The tests of its timing logic
 // (quiet period, write and recreate graces) see real inotify events and move a manual clock instead of
 // sleeping.
-#include "shader/reloader.h"
-#include "shader/watcher.h"
-#include "test_util.h"
+#include "live/reloader.h"
+#include "live/watcher.h"
+#include "../shader/test_util.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -17,6 +17,7 @@
 #include <vector>
 
 using namespace wb::shader;
+using namespace wb::live;
 using namespace wb::shader::test;
 using namespace std::chrono_literals;
 

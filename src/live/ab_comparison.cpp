@@ -1,19 +1,20 @@
-#include "render/ab_comparison.h"
+#include "live/ab_comparison.h"
 
 #include <algorithm>
 #include <stdexcept>
 
-namespace wb::render {
+namespace wb::live {
 
-ABComparison::ABComparison(RenderSession& session, ABBudget budget) : session_(session), budget_(budget) {}
+ABComparison::ABComparison(render::RenderSession& session, ABBudget budget)
+    : session_(session), budget_(budget) {}
 
 ABComparison::~ABComparison() = default;
 
-Renderer& ABComparison::standIn(Renderer& live) {
+render::Renderer& ABComparison::standIn(render::Renderer& live) {
   auto& s = standIns_[&live];
-  // A stand-in made for another variant of the live renderer (its programs differ in number) is made anew.
-  if (s && s->programs().size() != live.programs().size()) s.reset();
-  RenderSettings settings = live.settings();
+  // A stand-in made for another variant of the live renderer (its passes differ in number) is made anew.
+  if (s && s->passes().size() != live.passes().size()) s.reset();
+  render::RenderSettings settings = live.settings();
   settings.width = std::max(1u, budget_.width);
   settings.height = std::max(1u, budget_.height);
   settings.debugView = 0;  // the image the estimator gives, whatever the window shows
@@ -24,34 +25,37 @@ Renderer& ABComparison::standIn(Renderer& live) {
                       settings);
   }
   s->matchCompiledParameters(live);
-  if (auto* hybrid = dynamic_cast<HybridRenderer*>(s.get()))
+  if (auto* hybrid = dynamic_cast<render::HybridRenderer*>(s.get()))
     hybrid->setHybridSettings(session_.hybridSettings());
   s->setSettings(settings);
   s->setEnvironment(session_.environment());
   s->setLights(session_.lights());
   s->setCamera(session_.camera());
-  // Every program renders with live's pipeline (programs() come in the same order in both).
-  const auto mine = s->programs(), theirs = live.programs();
-  for (size_t i = 0; i < mine.size(); ++i) {
-    auto p = live.pipeline(theirs[i].id);
-    if (p && p != s->pipeline(mine[i].id)) s->exchangePipeline(mine[i].id, std::move(p));
-  }
+  // Every pass renders with the live one's pipeline (passes() come in the same order in both).
+  const auto mine = s->passes(), theirs = live.passes();
+  for (size_t i = 0; i < mine.size(); ++i) use(*mine[i], theirs[i]->installed());
   return *s;
 }
 
-ABOutcome ABComparison::compareOne(const HotReload::InstalledProgram& ip) {
-  Renderer& live = *ip.renderer;
-  Renderer& s = standIn(live);
-  const auto programs = s.programs();
-  if (ip.programIndex >= programs.size()) throw std::runtime_error("A/B: the stand-in lacks " + ip.name);
-  const auto program = programs[ip.programIndex].id;
-  // The two sides: the pipeline the reload replaced, and the live renderer's new one.
-  const std::shared_ptr<vk::BuiltPipeline> sides[2] = {ip.oldPipeline, live.pipeline(ip.program)};
+void ABComparison::use(render::Pass& standIn, const render::PassPipeline& pipeline) {
+  if (!pipeline || standIn.installed().pipeline == pipeline.pipeline) return;
+  // The stand-in's pass takes the live pass's pipeline as its own program's.
+  render::PassPipeline p = pipeline;
+  p.program = standIn.program();
+  standIn.install(std::move(p));
+}
+
+ABOutcome ABComparison::compareOne(const HotReload::InstalledPass& ip) {
+  render::Renderer& live = *ip.owner;
+  render::Renderer& s = standIn(live);
+  const auto passes = s.passes();
+  if (ip.passIndex >= passes.size()) throw std::runtime_error("A/B: the stand-in lacks " + ip.name);
+  render::Pass& pass = *passes[ip.passIndex];
+  // The two sides: the pipeline the reload replaced, and the live pass's new one.
+  const render::PassPipeline sides[2] = {ip.before, ip.pass->installed()};
   if (!sides[0] || !sides[1]) throw std::runtime_error("A/B: no old or new pipeline for " + ip.name);
-  auto use = [&](int side) {
-    if (s.pipeline(program) != sides[side]) s.exchangePipeline(program, sides[side]);
-  };
-  RenderSettings settings = s.settings();
+  auto use = [&](int side) { this->use(pass, sides[side]); };
+  render::RenderSettings settings = s.settings();
   const uint32_t baseSeed = settings.seed;
   auto seed = [&](uint32_t k) {
     settings.seed = baseSeed + k;
@@ -88,7 +92,7 @@ ABOutcome ABComparison::compareOne(const HotReload::InstalledProgram& ip) {
 
   ABOutcome o;
   o.result.pipeline = ip.name;
-  o.result.mode = renderModeName(live.mode());
+  o.result.mode = render::renderModeName(live.mode());
   o.result.active = &live == &session_.renderer();
   o.result.image = eval::compareImages(images[0], images[1]);
   o.result.speed = eval::compareSpeed(ms[0], ms[1]);
@@ -107,15 +111,15 @@ ABOutcome ABComparison::compareOne(const HotReload::InstalledProgram& ip) {
 }
 
 void ABComparison::prepare() {
-  session_.forEachRenderer([&](Renderer& live) { standIn(live); });
+  session_.forEachRenderer([&](render::Renderer& live) { standIn(live); });
 }
 
-std::vector<ABOutcome> ABComparison::compare(const std::vector<HotReload::InstalledProgram>& installed) {
+std::vector<ABOutcome> ABComparison::compare(const std::vector<HotReload::InstalledPass>& installed) {
   std::vector<ABOutcome> out;
   for (const auto& ip : installed) {
-    // Only the session's renderers are compared (a target added by hand has no stand-in).
+    // Only the session's renderers are compared (a pass added by hand has no stand-in).
     bool ours = false;
-    session_.forEachRenderer([&](Renderer& r) { ours = ours || &r == ip.renderer; });
+    session_.forEachRenderer([&](render::Renderer& r) { ours = ours || &r == ip.owner; });
     if (!ours) continue;
     out.push_back(compareOne(ip));
   }
@@ -123,4 +127,4 @@ std::vector<ABOutcome> ABComparison::compare(const std::vector<HotReload::Instal
   return out;
 }
 
-}  // namespace wb::render
+}  // namespace wb::live

@@ -2,9 +2,9 @@
 // window's reload history): synthetic frame times with known answers.
 #include <gtest/gtest.h>
 
-#include "render/reload_frames.h"
+#include "live/reload_frames.h"
 
-using namespace wb::render;
+using namespace wb::live;
 using Clock = ReloadFrameTimeline::Clock;
 using std::chrono::milliseconds;
 

@@ -18,14 +18,15 @@
 #include <vector>
 
 #include "eval/ab.h"
-#include "render/jit_warmup.h"
-#include "render/reload_frames.h"
+#include "live/jit_warmup.h"
+#include "live/reload_frames.h"
+#include "render/pass.h"
+#include "render/render_session.h"
 #include "render/renderer.h"
-#include "render/warmup_slot.h"
-#include "shader/reloader.h"
-#include "vk/built_pipeline.h"
+#include "live/warmup_slot.h"
+#include "live/reloader.h"
 
-namespace wb::render {
+namespace wb::live {
 
 // The A/B comparison of one rebuilt pipeline (render/ab_comparison.h): old against new at the A/B budget.
 struct ReloadAB {
@@ -64,33 +65,22 @@ struct ReloadEvent {
 
 class HotReload {
  public:
-  // A pipeline owner: `build` makes a pipeline from a program build on the worker thread; `install` takes it
-  // on the render thread, at a frame boundary.
-  struct Target {
+  // A pass whose new pipeline poll() installed: the pipeline (and build) it replaced, kept alive until the
+  // next reload (the A/B comparison renders with it, a revert reinstalls it), and the new one.
+  struct InstalledPass {
+    render::ReloadTarget* pass = nullptr;
+    render::Renderer* owner = nullptr;  // the renderer the pass belongs to (addRenderer), else nullptr
+    size_t passIndex = 0;               // its index in owner->passes()
     std::string name;
-    std::function<std::unique_ptr<vk::BuiltPipeline>(const shader::ShaderLibrary::ProgramBuild&)> build;
-    std::function<void(std::unique_ptr<vk::BuiltPipeline>)> install;
-    Renderer* renderer = nullptr;  // the renderer whose program this is (addRenderer), for the A/B comparison
-    size_t programIndex = 0;       // its index in renderer->programs()
-    // Instead of `install` where set: installs and hands back the pipeline replaced.
-    std::function<std::shared_ptr<vk::BuiltPipeline>(std::unique_ptr<vk::BuiltPipeline>)> exchange;
-  };
-  // A program whose new pipeline poll() installed: the pipeline it replaced (kept alive until the next
-  // reload: the A/B comparison renders with it, a revert reinstalls it) and the builds before and after.
-  struct InstalledProgram {
-    shader::ShaderLibrary::ProgramId program = 0;
-    std::string name;
-    Renderer* renderer = nullptr;
-    size_t programIndex = 0;
-    std::shared_ptr<vk::BuiltPipeline> oldPipeline;
-    shader::ShaderLibrary::ProgramBuild before, after;
+    render::PassPipeline before, after;
   };
   // The JIT warm-up of one renderer's reloads.
   struct WarmupStats {
-    bool enabled = false;     // the device's policy asks for it (and no warm-up has failed)
+    bool enabled = false;     // the device's policy asks for it
     bool present = false;     // the warm-up device exists or is being made
     uint32_t warmups = 0;     // pipelines compiled ahead
     uint32_t mismatches = 0;  // warmed pipelines whose groups got other numbers (the first frame compiled)
+    uint32_t failures = 0;    // warm-ups that threw (that reload's first frame compiled)
   };
 
   HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs);
@@ -98,30 +88,38 @@ class HotReload {
   HotReload(const HotReload&) = delete;
   HotReload& operator=(const HotReload&) = delete;
 
-  void addTarget(shader::ShaderLibrary::ProgramId program, Target target);
-  // Registers every program of `renderer` as a target (call it again after its programs changed: new ones are
-  // added). With DevicePolicy::jitWarmup its warm-up device starts being made now, on a low-priority thread,
-  // so that the first edit does not wait for it. `renderer` must outlive this object.
-  void addRenderer(Renderer& renderer);
-  WarmupStats jitWarmup(const Renderer& renderer) const;
+  // A pass to reload (it must outlive this object): a compiled change of its program (whichever variant it
+  // uses at the time) is built into a pipeline on the worker and installed by poll().
+  void addPass(render::ReloadTarget& pass);
+  // Every pass of `renderer` (those added already are skipped), reloaded with the JIT warm-up where the
+  // device's policy asks for it (DevicePolicy::jitWarmup: its warm-up device starts being made now, on a
+  // low-priority thread, so that the first edit does not wait for it) and compared by the A/B comparison.
+  // `renderer` must outlive this object.
+  void addRenderer(render::Renderer& renderer);
+  WarmupStats jitWarmup(const render::Renderer& renderer) const;
   // With DevicePolicy::jitWarmup: rebuilds each of `renderer`'s pipelines beside a warm-up of it (as a reload
   // does), so that its first frame loads the machine code from Mesa's cache instead of compiling on the
   // render loop. For a renderer made off the loop (a mode being prepared), before addRenderer; blocks for the
   // compile. Nothing to do on other devices. Throws what the compile and pipeline creation throw.
-  void compileAhead(Renderer& renderer);
+  void compileAhead(render::Renderer& renderer);
+  // For RenderSession::setRendererHooks: every renderer the session makes is added (addRenderer), and one
+  // made off the render loop is compiled ahead (compileAhead).
+  render::RendererHooks sessionHooks();
   void start();
   void stop();
 
-  // Render thread, at a frame boundary: commits prepared pipelines. Returns the event it applied, if any.
+  // Render thread, at a frame boundary: installs the prepared pipelines that no newer save has superseded
+  // (the pass's program changed since the compile they were built from: a newer build is on its way).
+  // Returns the event it applied, if any.
   std::optional<ReloadEvent> poll();
-  // Render thread: the programs the latest poll() that applied an event installed with a build from before
-  // (those of a renderer added with addRenderer); cleared by the next such poll().
-  const std::vector<InstalledProgram>& lastInstalled() const { return lastInstalled_; }
+  // Render thread: the passes the latest poll() that applied an event installed into (those of a renderer
+  // added with addRenderer); cleared by the next such poll().
+  const std::vector<InstalledPass>& lastInstalled() const { return lastInstalled_; }
   // Render thread: attaches A/B results to the newest event of the history.
   void attachAB(std::vector<ReloadAB> ab, double ms);
   // Render thread: reinstalls the pipelines `installed` replaced (kept, so nothing is built); the newest
   // event is marked reverted. The files on disk are not touched: a later save rebuilds from them.
-  void revert(const std::vector<InstalledProgram>& installed);
+  void revert(const std::vector<InstalledPass>& installed);
   // Render thread, once per frame: a frame finished; the first after a commit used the new pipelines (fills
   // editToFirstFrameMs and the event's frame times). frameBegin: when the frame's work began (default: the
   // previous call, for loops that draw back to back; pass it when the loop also waits between frames).
@@ -156,28 +154,42 @@ class HotReload {
   std::string currentError() const;              // empty when the last reload of every program succeeded
 
  private:
-  struct Pending {
-    ReloadEvent event;
-    std::vector<std::pair<shader::ShaderLibrary::ProgramId, std::unique_ptr<vk::BuiltPipeline>>> built;
-    std::vector<shader::ShaderLibrary::ProgramBuild> builds;  // built[i]'s program build
-    std::chrono::steady_clock::time_point editTime;
-  };
   struct Warmup {
-    std::atomic<bool> enabled{false};
-    std::atomic<uint32_t> mismatches{0};
+    bool enabled = false;
+    std::atomic<uint32_t> mismatches{0}, failures{0};
     WarmupSlot<JitWarmup> slot;
   };
+  // A pass being reloaded; its address is stable (entries_ holds them by pointer).
+  struct Entry {
+    render::ReloadTarget* pass = nullptr;
+    render::Renderer* owner = nullptr;
+    size_t passIndex = 0;
+    Warmup* warmup = nullptr;  // owner's (null without an owner)
+  };
+  struct Built {
+    Entry* entry = nullptr;
+    render::PassPipeline pipeline;
+  };
+  struct Pending {
+    ReloadEvent event;
+    std::vector<Built> built;
+    uint64_t sequence = 0;  // the compile's (ReloadResult::sequence)
+    std::chrono::steady_clock::time_point editTime;
+  };
   void run();
-  Warmup& warmupFor(const Renderer& renderer);  // made on first use
-  std::unique_ptr<vk::BuiltPipeline> buildWithWarmup(Renderer& renderer, Warmup& warmup, size_t programIndex,
-                                                     shader::ShaderLibrary::ProgramId program,
-                                                     const shader::ShaderLibrary::ProgramBuild& build);
+  // Builds the pipelines of one compile result; false when a newer save superseded all of it.
+  bool prepare(ReloadResult& result);
+  Warmup* warmupFor(const render::Renderer& renderer);  // made on first use
+  render::PassPipeline buildWithWarmup(const Entry& entry, shader::ShaderLibrary::ProgramId program,
+                                       const shader::ShaderLibrary::ProgramBuild& build);
+  std::vector<Entry*> entries() const;
 
   shader::ShaderLibrary& library_;
-  shader::Reloader reloader_;
-  std::function<void()> onReady_;  // set before start()
-  std::map<shader::ShaderLibrary::ProgramId, Target> targets_;
-  std::map<const Renderer*, std::unique_ptr<Warmup>> warmups_;  // declared after targets_: destroyed first
+  Reloader reloader_;
+  std::function<void()> onReady_;                // set before start()
+  std::vector<std::unique_ptr<Entry>> entries_;  // guarded by mutex_
+  std::map<const render::Renderer*, std::unique_ptr<Warmup>>
+      warmups_;  // guarded by mutex_; entries live as long
   std::thread thread_;
   std::atomic<bool> running_{false};
   std::atomic<bool> autoReload_{true};
@@ -185,19 +197,16 @@ class HotReload {
   std::atomic<bool> preparing_{false};
   std::atomic<std::chrono::steady_clock::rep> prepareStart_{0};
   std::atomic<uint64_t> superseded_{0};
-  std::set<shader::ShaderLibrary::ProgramId>
-      pipelineFailed_;  // last pipeline build failed (guarded by mutex_)
+  std::set<std::string> carriedFiles_;  // files of superseded results, reported with the next event
   mutable std::mutex mutex_;
+  std::set<shader::ShaderLibrary::ProgramId> pipelineFailed_;  // last pipeline build failed
   std::deque<Pending> pending_;
   std::vector<ReloadEvent> history_;
   std::map<shader::ShaderLibrary::ProgramId, std::string> errors_;
   std::optional<std::chrono::steady_clock::time_point> awaitingFrame_;
-  ReloadFrameTimeline frameTimeline_;  // render thread only
-  // The build of each program's installed pipeline (guarded by mutex_), and what the last poll installed
-  // (render thread only).
-  std::map<shader::ShaderLibrary::ProgramId, shader::ShaderLibrary::ProgramBuild> installedBuilds_;
-  std::vector<InstalledProgram> lastInstalled_;
+  ReloadFrameTimeline frameTimeline_;         // render thread only
+  std::vector<InstalledPass> lastInstalled_;  // render thread only
   std::optional<std::chrono::steady_clock::time_point> lastFrameEnd_;
 };
 
-}  // namespace wb::render
+}  // namespace wb::live

@@ -10,11 +10,12 @@
 #include <map>
 #include <mutex>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <random>
 #include <thread>
 
-#include "render/hot_reload.h"
+#include "live/hot_reload.h"
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -28,7 +29,7 @@ void writeShader(const fs::path& p, int value) {
                                     << value << "u; }\n";
 }
 
-std::optional<wb::render::ReloadEvent> waitForEvent(wb::render::HotReload& hot) {
+std::optional<wb::live::ReloadEvent> waitForEvent(wb::live::HotReload& hot) {
   const auto deadline = std::chrono::steady_clock::now() + 300s;  // a cap for a busy machine, not a timing
   while (std::chrono::steady_clock::now() < deadline) {
     if (auto e = hot.poll()) return e;
@@ -36,6 +37,41 @@ std::optional<wb::render::ReloadEvent> waitForEvent(wb::render::HotReload& hot) 
   }
   return std::nullopt;
 }
+
+// A pass without a device: `build` makes its pipelines (stand-ins), `onInstall` sees each install.
+class FakePass : public wb::render::ReloadTarget {
+ public:
+  using Build = std::function<std::shared_ptr<wb::vk::BuiltPipeline>(const ProgramBuild&)>;
+  FakePass(wb::shader::ShaderLibrary& lib, ProgramId program, Build build,
+           std::function<void(const wb::vk::BuiltPipeline*)> onInstall = {})
+      : program_(program), build_(std::move(build)), onInstall_(std::move(onInstall)) {
+    installed_ = {program, lib.buildProgram(program), std::make_shared<wb::vk::BuiltPipeline>()};
+  }
+  const std::string& name() const override { return name_; }
+  ProgramId program() const override { return program_; }
+  wb::render::PassPipeline buildPipeline(ProgramId program, const ProgramBuild& build) const override {
+    return {program, build, build_(build)};
+  }
+  wb::render::PassPipeline install(wb::render::PassPipeline p) override {
+    if (p.program != program_) return {};
+    if (onInstall_) onInstall_(p.pipeline.get());
+    std::lock_guard lock(m_);
+    std::swap(installed_, p);
+    return p;
+  }
+  wb::render::PassPipeline installed() const override {
+    std::lock_guard lock(m_);
+    return installed_;
+  }
+
+ private:
+  std::string name_ = "test pipeline";
+  ProgramId program_;
+  Build build_;
+  std::function<void(const wb::vk::BuiltPipeline*)> onInstall_;
+  mutable std::mutex m_;
+  wb::render::PassPipeline installed_;
+};
 
 }  // namespace
 
@@ -51,13 +87,15 @@ TEST(HotReload, PipelineFailureIsTheCurrentErrorUntilABuildSucceeds) {
 
   std::atomic<bool> failing{true};
   std::atomic<int> commits{0};
-  wb::render::HotReload hot(lib, {dir});
-  hot.addTarget(id, {"test pipeline",
-                     [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                       if (failing) throw std::runtime_error("the driver refused it");
-                       return std::make_unique<wb::vk::BuiltPipeline>();
-                     },
-                     [&](std::unique_ptr<wb::vk::BuiltPipeline>) { ++commits; }});
+  wb::live::HotReload hot(lib, {dir});
+  FakePass pass(
+      lib, id,
+      [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+        if (failing) throw std::runtime_error("the driver refused it");
+        return std::make_shared<wb::vk::BuiltPipeline>();
+      },
+      [&](const wb::vk::BuiltPipeline*) { ++commits; });
+  hot.addPass(pass);
   hot.start();  // the watches are in place when start() returns
 
   writeShader(file, 2);
@@ -130,24 +168,26 @@ TEST(HotReload, SavesDuringABuildSupersedeItAndOnlyTheNewestIsInstalled) {
       if (buildHolds(b, v)) return v;
     return 0;
   };
-  wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild& b) {
-                         std::unique_lock lock(m);
-                         built.push_back(valueOf(b));
-                         if (!firstStarted) {  // the first build blocks until the test has saved twice more
-                           firstStarted = true;
-                           cv.notify_all();
-                           cv.wait(lock, [&] { return release; });
-                         }
-                         auto p = std::make_unique<wb::vk::BuiltPipeline>();
-                         tags[p.get()] = valueOf(b);
-                         return p;
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline> p) {
-                         std::lock_guard lock(m);
-                         installed.push_back(tags[p.get()]);
-                       }});
+  wb::live::HotReload hot(*f.lib, {f.dir});
+  FakePass pass(
+      *f.lib, f.id,
+      [&](const wb::shader::ShaderLibrary::ProgramBuild& b) {
+        std::unique_lock lock(m);
+        built.push_back(valueOf(b));
+        if (!firstStarted) {  // the first build blocks until the test has saved twice more
+          firstStarted = true;
+          cv.notify_all();
+          cv.wait(lock, [&] { return release; });
+        }
+        auto p = std::make_shared<wb::vk::BuiltPipeline>();
+        tags[p.get()] = valueOf(b);
+        return p;
+      },
+      [&](const wb::vk::BuiltPipeline* p) {
+        std::lock_guard lock(m);
+        installed.push_back(tags[p]);
+      });
+  hot.addPass(pass);
   hot.start();
   writeShader(f.file, 1002);
   {
@@ -188,16 +228,18 @@ TEST(HotReload, AnUnrelatedFileDuringABuildDoesNotDropIt) {
   std::condition_variable cv;
   bool started = false, release = false;
   std::atomic<int> installs{0};
-  wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                         std::unique_lock lock(m);
-                         started = true;
-                         cv.notify_all();
-                         cv.wait(lock, [&] { return release; });
-                         return std::make_unique<wb::vk::BuiltPipeline>();
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) { ++installs; }});
+  wb::live::HotReload hot(*f.lib, {f.dir});
+  FakePass pass(
+      *f.lib, f.id,
+      [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+        std::unique_lock lock(m);
+        started = true;
+        cv.notify_all();
+        cv.wait(lock, [&] { return release; });
+        return std::make_shared<wb::vk::BuiltPipeline>();
+      },
+      [&](const wb::vk::BuiltPipeline*) { ++installs; });
+  hot.addPass(pass);
   hot.start();
   writeShader(f.file, 1002);
   {
@@ -221,13 +263,12 @@ TEST(HotReload, AnUnrelatedFileDuringABuildDoesNotDropIt) {
 TEST(HotReload, ASaveThatChangesNoSpirvRebuildsNothing) {
   Fixture f("unchanged");
   std::atomic<int> builds{0};
-  wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                         ++builds;
-                         return std::make_unique<wb::vk::BuiltPipeline>();
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) {}});
+  wb::live::HotReload hot(*f.lib, {f.dir});
+  FakePass pass(*f.lib, f.id, [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+    ++builds;
+    return std::make_shared<wb::vk::BuiltPipeline>();
+  });
+  hot.addPass(pass);
   hot.start();
   // The same bytes again (an editor's save without changes).
   writeShader(f.file, 1001);
@@ -257,12 +298,11 @@ TEST(HotReload, AFixClearsTheErrorOfEveryProgramOfTheFileOnce) {
   Fixture f("variants");
   const auto unused = f.lib->registerProgram("test", {{f.file, std::nullopt, {{"VARIANT", "1"}}}});
   f.lib->buildProgram(unused);
-  wb::render::HotReload hot(*f.lib, {f.dir});
-  hot.addTarget(f.id, {"test pipeline",
-                       [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
-                         return std::make_unique<wb::vk::BuiltPipeline>();
-                       },
-                       [&](std::unique_ptr<wb::vk::BuiltPipeline>) {}});
+  wb::live::HotReload hot(*f.lib, {f.dir});
+  FakePass pass(*f.lib, f.id, [&](const wb::shader::ShaderLibrary::ProgramBuild&) {
+    return std::make_shared<wb::vk::BuiltPipeline>();
+  });
+  hot.addPass(pass);
   hot.start();
   { std::ofstream(f.file, std::ios::trunc) << "#version 460\nvoid main() { broken }\n"; }
   auto bad = waitForEvent(hot);

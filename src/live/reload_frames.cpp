@@ -1,11 +1,11 @@
-#include "render/reload_frames.h"
+#include "live/reload_frames.h"
 
 #include <algorithm>
 #include <vector>
 
 #include "common/statistics.h"
 
-namespace wb::render {
+namespace wb::live {
 namespace {
 
 double ms(ReloadFrameTimeline::Clock::time_point a, ReloadFrameTimeline::Clock::time_point b) {
@@ -43,4 +43,4 @@ ReloadFrameStats ReloadFrameTimeline::stats(Clock::time_point editSeen, bool las
   return s;
 }
 
-}  // namespace wb::render
+}  // namespace wb::live

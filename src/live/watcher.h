@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace wb::shader {
+namespace wb::live {
 
 namespace fs = std::filesystem;
 
@@ -35,4 +35,4 @@ class DirWatcher {
   std::map<int, fs::path> dirs_;
 };
 
-}  // namespace wb::shader
+}  // namespace wb::live

@@ -16,9 +16,9 @@
 #include <thread>
 
 #include "common/paths.h"
-#include "gpu_fixture.h"
-#include "render/hot_reload.h"
-#include "render/jit_warmup.h"
+#include "../render/gpu_fixture.h"
+#include "live/hot_reload.h"
+#include "live/jit_warmup.h"
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -27,12 +27,12 @@ namespace {
 
 // The cache's size once Mesa's writer thread is done (no change for 1 s; at most 120 s on a busy machine).
 uint64_t settledCacheBytes() {
-  uint64_t last = wb::render::mesaShaderCacheBytes();
+  uint64_t last = wb::live::mesaShaderCacheBytes();
   auto stableSince = std::chrono::steady_clock::now();
   const auto deadline = stableSince + 120s;
   while (std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(20ms);
-    const uint64_t now = wb::render::mesaShaderCacheBytes();
+    const uint64_t now = wb::live::mesaShaderCacheBytes();
     if (now != last) {
       last = now;
       stableSince = std::chrono::steady_clock::now();
@@ -80,8 +80,8 @@ class JitWarmup : public ::testing::Test {
   }
 
   // Waits for the hot reload of one edit and commits it (poll() at a frame boundary, as the render loops do).
-  static void reload(wb::render::HotReload& hot) {
-    std::optional<wb::render::ReloadEvent> e;
+  static void reload(wb::live::HotReload& hot) {
+    std::optional<wb::live::ReloadEvent> e;
     for (auto deadline = std::chrono::steady_clock::now() + 300s;  // a cap for a busy machine, not a timing
          !e && std::chrono::steady_clock::now() < deadline;)
       if (!(e = hot.poll())) std::this_thread::sleep_for(10ms);
@@ -101,15 +101,14 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
     GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
   s->render(1);  // the first pipeline, compiled at its first trace
   // Two more ray tracing pipelines on the render device: its group numbers run ahead of a new device's.
-  for (int i = 0; i < 2; ++i)
-    tracer.swapPipeline(tracer.program(), s->library().buildProgram(tracer.program()));
+  for (int i = 0; i < 2; ++i) tracer.passes()[0]->rebuild();
 
   // A hot reload of the closest-hit shader through the production path: HotReload's worker builds the
   // pipeline and warms it up; poll() installs it.
   const fs::path chit = fs::canonical(root_ / "shaders/pathtracer/closesthit.rchit");
-  wb::render::HotReload::WarmupStats warmup;
+  wb::live::HotReload::WarmupStats warmup;
   {
-    wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    wb::live::HotReload hot(s->library(), {wb::shaderDir()});
     EXPECT_FALSE(hot.jitWarmup(tracer).present);
     hot.addRenderer(tracer);
     EXPECT_TRUE(hot.jitWarmup(tracer).present) << "made ahead of the first edit, not by it";
@@ -129,7 +128,7 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   // The same kind of edit without the warm-up (as a pipeline swapped on the render thread).
   edit(chit, "const float minCos = 1.5e-3;", "const float minCos = 2.5e-3;");
   s->library().invalidateFiles({chit});
-  tracer.swapPipeline(tracer.program(), s->library().buildProgram(tracer.program()));
+  tracer.passes()[0]->rebuild();
   const uint64_t beforeCold = settledCacheBytes();
   s->render(1);
   const uint64_t coldTrace = settledCacheBytes() - beforeCold;
@@ -145,8 +144,46 @@ TEST_F(JitWarmup, TheFirstTraceAfterAWarmedReloadCompilesNothing) {
   EXPECT_EQ(wb::vk::Context::processValidationErrors(), 0u) << "the warm-up device too";
 }
 
+// A program that uses a resource its pass does not bind fails to build on both devices; the warm-up stays on
+// and compiles the next good edit ahead.
+TEST_F(JitWarmup, ABindingErrorLeavesTheWarmupOn) {
+  auto s = session(wb::render::RenderMode::PathTrace);
+  auto& tracer = s->pathTracer();
+  if (!s->context().policy().jitWarmup)
+    GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
+  s->render(1);
+  const fs::path chit = fs::canonical(root_ / "shaders/pathtracer/closesthit.rchit");
+  std::ifstream in(chit);
+  const std::string good((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bad = good;
+  bad.insert(bad.find('\n', bad.rfind("#include")) + 1,
+             "layout(set = 0, binding = 30, std430) buffer WbExtra { vec4 v[]; } wbExtra;\n");
+  bad.insert(bad.find('\n', bad.find("void main()")) + 1, "  if (wbExtra.v[0].x > 1e30) return;\n");
+  wb::live::HotReload hot(s->library(), {wb::shaderDir()});
+  hot.addRenderer(tracer);
+  hot.start();
+  std::ofstream(chit, std::ios::trunc) << bad;
+  std::optional<wb::live::ReloadEvent> e;
+  for (auto deadline = std::chrono::steady_clock::now() + 300s;  // a cap for a busy machine, not a timing
+       !e && std::chrono::steady_clock::now() < deadline;)
+    if (!(e = hot.poll())) std::this_thread::sleep_for(10ms);
+  ASSERT_TRUE(e) << "no reload after the edit";
+  EXPECT_FALSE(e->ok) << "a binding the pass does not fill was accepted";
+  EXPECT_NE(e->error.find("WbExtra"), std::string::npos) << e->error;
+  std::string fixed = good;  // and edited: one save, one reload
+  const std::string from = "const float minCos = 1e-3;";
+  ASSERT_NE(fixed.find(from), std::string::npos);
+  fixed.replace(fixed.find(from), from.size(), "const float minCos = 1.5e-3;");
+  std::ofstream(chit, std::ios::trunc) << fixed;
+  reload(hot);
+  hot.stop();
+  const auto warmup = hot.jitWarmup(tracer);
+  EXPECT_TRUE(warmup.enabled) << "a binding error turned the warm-up off";
+  EXPECT_GE(warmup.warmups, 1u) << "the good edit after the failure was not compiled ahead";
+  EXPECT_EQ(warmup.mismatches, 0u);
+}
+
 TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
-  using Pass = wb::render::HybridRenderer::Pass;
   auto s = session(wb::render::RenderMode::Reflections);
   auto* hybrid = s->hybrid();
   ASSERT_NE(hybrid, nullptr);
@@ -156,9 +193,9 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
 
   const fs::path rgen = fs::canonical(root_ / "shaders/hybrid/shadow_ao.rgen");
   const std::string original = "const float phi = 2.0 * kPi * u.y;";
-  wb::render::HotReload::WarmupStats warmup;
+  wb::live::HotReload::WarmupStats warmup;
   {
-    wb::render::HotReload hot(s->library(), {wb::shaderDir()});
+    wb::live::HotReload hot(s->library(), {wb::shaderDir()});
     EXPECT_FALSE(hot.jitWarmup(*hybrid).present);
     hot.addRenderer(*hybrid);
     EXPECT_TRUE(hot.jitWarmup(*hybrid).present) << "made ahead of the first edit, not by it";
@@ -176,8 +213,7 @@ TEST_F(JitWarmup, AHybridShadowShaderEditIsCompiledAhead) {
 
   edit(rgen, "u.y * 0.9999;", "u.y * 0.9998;");
   s->library().invalidateFiles({rgen});
-  hybrid->swapPipeline(hybrid->program(Pass::ShadowAo),
-                       s->library().buildProgram(hybrid->program(Pass::ShadowAo)));
+  hybrid->pass(wb::render::HybridPass::ShadowAo).rebuild();
   const uint64_t beforeCold = settledCacheBytes();
   s->render(1);
   const uint64_t coldFrame = settledCacheBytes() - beforeCold;
@@ -208,19 +244,19 @@ TEST_F(JitWarmup, AModePreparedOffTheLoopIsCompiledAhead) {
     if (!s->context().policy().jitWarmup)
       GTEST_SKIP() << s->context().deviceName() << " compiles at pipeline creation";
     s->render(1);
-    wb::render::HotReload hot(s->library(), {wb::shaderDir()});
-    s->attachHotReload(&hot);
+    wb::live::HotReload hot(s->library(), {wb::shaderDir()});
+    s->setRendererHooks(hot.sessionHooks());
     prepareHybrid(*s);
     auto* hybrid = s->hybrid();
     ASSERT_NE(hybrid, nullptr);
     const auto warmup = hot.jitWarmup(*hybrid);
-    EXPECT_EQ(warmup.warmups, hybrid->programs().size()) << "every pipeline of the mode compiled ahead";
+    EXPECT_EQ(warmup.warmups, hybrid->passes().size()) << "every pipeline of the mode compiled ahead";
     EXPECT_EQ(warmup.mismatches, 0u);
     const uint64_t before = settledCacheBytes();
     s->render(1);
     warmedFrame = settledCacheBytes() - before;
     wb::testing::expectNoValidationErrors(*s);
-    s->attachHotReload(nullptr);
+    s->setRendererHooks({});
   }
   // New shadow/AO code, and a mode made without a hot reload attached.
   edit(root_ / "shaders/hybrid/shadow_ao.rgen", "const float phi = 2.0 * kPi * u.y;",

@@ -1,4 +1,4 @@
-#include "render/jit_warmup.h"
+#include "live/jit_warmup.h"
 
 #include <chrono>
 #include <cstring>
@@ -12,7 +12,7 @@
 #include "vk/pipeline_layout.h"
 #include "vk/shader_module.h"
 
-namespace wb::render {
+namespace wb::live {
 namespace {
 
 constexpr int kCompiledMs = 50;  // a warm-up dispatch slower than this compiled the pipeline
@@ -38,8 +38,8 @@ scene::Scene standInScene() {
   return s;
 }
 
-EnvironmentData blackEnvironment() {
-  EnvironmentData d;
+render::EnvironmentData blackEnvironment() {
+  render::EnvironmentData d;
   d.rgb = {0.0f, 0.0f, 0.0f};
   d.alias = {gpu::EnvAliasEntry{}};
   d.alias[0].prob = 1.0f;
@@ -143,8 +143,8 @@ uint64_t mesaShaderCacheBytes() {
 
 WarmupDevice::WarmupDevice(const vk::Context& main, const shader::ShaderLibrary::Options& libraryOptions)
     : ctx(warmupContext(main)), library(warmupLibrary(libraryOptions)), scene(standInScene()) {
-  gpuScene = std::make_unique<GpuScene>(*ctx, scene);
-  env = std::make_unique<GpuEnvironment>(*ctx, blackEnvironment());
+  gpuScene = std::make_unique<render::GpuScene>(*ctx, scene);
+  env = std::make_unique<render::GpuEnvironment>(*ctx, blackEnvironment());
 }
 
 WarmupDevice::~WarmupDevice() {
@@ -152,13 +152,13 @@ WarmupDevice::~WarmupDevice() {
   gpuScene.reset();
 }
 
-RendererResources WarmupDevice::resources() const {
+render::RendererResources WarmupDevice::resources() const {
   return {*ctx, *library, scene, *gpuScene, *env};
 }
 
-JitWarmup::JitWarmup(const Renderer& like, const shader::ShaderLibrary::Options& libraryOptions)
+JitWarmup::JitWarmup(const render::Renderer& like, const shader::ShaderLibrary::Options& libraryOptions)
     : device_(like.context(), libraryOptions) {
-  RenderSettings settings = like.settings();
+  render::RenderSettings settings = like.settings();
   settings.width = settings.height = 1;
   settings.tileWidth = settings.tileHeight = 0;
   renderer_ = like.makeLike(device_.resources(), settings);
@@ -166,16 +166,17 @@ JitWarmup::JitWarmup(const Renderer& like, const shader::ShaderLibrary::Options&
 
 JitWarmup::~JitWarmup() = default;
 
-bool JitWarmup::warm(const Renderer& like, size_t programIndex,
+bool JitWarmup::warm(const render::Renderer& like, size_t passIndex,
                      const shader::ShaderLibrary::ProgramBuild& build, uint32_t renderDeviceGroupCounter) {
   using Clock = std::chrono::steady_clock;
   // Compiled parameters first: a new specialisation rebuilds a pipeline here (new group numbers).
   renderer_->matchCompiledParameters(like);
   if (!alignGroupCounter(*device_.ctx, build, renderDeviceGroupCounter)) return false;
-  const auto program = renderer_->programs().at(programIndex).id;
-  auto built = renderer_->buildPipeline(program, build);
-  handles_ = built->rayTracing ? built->rayTracing->sbt().groupHandles() : std::vector<uint8_t>{};
-  renderer_->installPipeline(program, std::move(built));
+  render::Pass& pass = *renderer_->passes().at(passIndex);
+  auto built = pass.buildPipeline(pass.program(), build);
+  const auto& rt = built.pipeline->rayTracing;
+  handles_ = rt ? rt->sbt().groupHandles() : std::vector<uint8_t>{};
+  pass.install(std::move(built));
   const uint64_t before = mesaShaderCacheBytes();
   const auto t1 = Clock::now();
   device_.ctx->submitAndWait([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); });
@@ -184,4 +185,4 @@ bool JitWarmup::warm(const Renderer& like, size_t programIndex,
   return true;
 }
 
-}  // namespace wb::render
+}  // namespace wb::live

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <deque>
 
-namespace wb::render {
+namespace wb::live {
 
 // Frame times in ms; -1 where there was no such frame (the logs write null there, not a time of 0).
 struct ReloadFrameStats {
@@ -31,4 +31,4 @@ class ReloadFrameTimeline {
   std::deque<Frame> frames_;
 };
 
-}  // namespace wb::render
+}  // namespace wb::live

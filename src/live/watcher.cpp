@@ -1,4 +1,4 @@
-#include "shader/watcher.h"
+#include "live/watcher.h"
 
 #include <sys/inotify.h>
 #include <unistd.h>
@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <system_error>
 
-namespace wb::shader {
+namespace wb::live {
 
 namespace {
 constexpr uint32_t kMask = IN_CLOSE_WRITE | IN_MOVED_TO | IN_MOVED_FROM | IN_CREATE | IN_DELETE | IN_ATTRIB |
@@ -70,4 +70,4 @@ std::vector<DirWatcher::Event> DirWatcher::read() {
   return out;
 }
 
-}  // namespace wb::shader
+}  // namespace wb::live

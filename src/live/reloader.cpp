@@ -1,10 +1,10 @@
-#include "shader/reloader.h"
+#include "live/reloader.h"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "shader/watcher.h"
+#include "live/watcher.h"
 
 #include <poll.h>
 #include <sys/eventfd.h>
@@ -14,16 +14,16 @@
 #include <algorithm>
 #include <set>
 
-namespace wb::shader {
+namespace wb::live {
 
 void lowerThreadPriority() {
   const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
   ::setpriority(PRIO_PROCESS, tid, 10);  // best effort: a failure only keeps the normal priority
 }
 
-}  // namespace wb::shader
+}  // namespace wb::live
 
-namespace wb::shader {
+namespace wb::live {
 
 namespace {
 using TimePoint = std::chrono::steady_clock::time_point;
@@ -37,12 +37,12 @@ class SteadyClock : public Reloader::Clock {
 };
 
 bool shaderLike(const fs::path& p) {
-  if (stageFromPath(p)) return true;
+  if (shader::stageFromPath(p)) return true;
   const auto e = p.extension();
   return e == ".glsl" || e == ".h" || e == ".inc" || e == ".hlsli";
 }
 
-std::string describe(const ShaderKey& k) {
+std::string describe(const shader::ShaderKey& k) {
   std::string s = k.path.string();
   if (!k.defines.empty()) {
     s += " [";
@@ -54,6 +54,15 @@ std::string describe(const ShaderKey& k) {
 }
 }  // namespace
 
+const shader::ShaderLibrary::ProgramBuild* ReloadResult::buildOf(
+    shader::ShaderLibrary::ProgramId program) const {
+  for (size_t i = 0; i < programs.size(); ++i)
+    if (programs[i] == program) return &builds[i];
+  for (size_t i = 0; i < unchangedPrograms.size(); ++i)
+    if (unchangedPrograms[i] == program) return &unchangedBuilds[i];
+  return nullptr;
+}
+
 std::string ReloadResult::error() const {
   std::string all;
   for (auto id : failedPrograms) {
@@ -63,10 +72,10 @@ std::string ReloadResult::error() const {
   return all;
 }
 
-Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs)
+Reloader::Reloader(shader::ShaderLibrary& lib, std::vector<fs::path> watchDirs)
     : Reloader(lib, std::move(watchDirs), {}) {}
 
-Reloader::Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing)
+Reloader::Reloader(shader::ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing)
     : lib_(lib), dirs_(std::move(watchDirs)), timing_(std::move(timing)) {
   if (!timing_.clock) timing_.clock = std::make_shared<SteadyClock>();
 }
@@ -100,6 +109,8 @@ void Reloader::stop() {
 }
 
 void Reloader::requestReloadAll() {
+  const auto all = lib_.programs();
+  noteChange({all.begin(), all.end()});
   reloadAll_ = true;
   if (wakeFd_ >= 0) {
     const uint64_t one = 1;
@@ -127,7 +138,7 @@ void Reloader::snapshot() {
   for (auto id : lib_.programs()) {
     try {
       last_[id] = lib_.buildProgram(id).stages;
-    } catch (const CompileError&) {
+    } catch (const shader::CompileError&) {
     }
   }
 }
@@ -147,8 +158,30 @@ bool Reloader::newerChange() const {
   return eventsWaiting();  // written already, not yet read by the worker (a busy machine delays it)
 }
 
-bool Reloader::rebuild(const std::vector<fs::path>& files,
-                       const std::vector<ShaderLibrary::ProgramId>& programs, TimePoint editTime,
+uint64_t Reloader::lastChange(shader::ShaderLibrary::ProgramId program) const {
+  std::lock_guard lock(mutex_);
+  const auto it = lastChange_.find(program);
+  return it == lastChange_.end() ? 0 : it->second;
+}
+
+void Reloader::noteChange(const std::set<shader::ShaderLibrary::ProgramId>& programs) {
+  if (programs.empty()) return;
+  std::lock_guard lock(mutex_);
+  ++sequence_;
+  for (auto id : programs) lastChange_[id] = sequence_;
+}
+
+std::set<shader::ShaderLibrary::ProgramId> Reloader::programsFor(const fs::path& file) const {
+  const auto deps = lib_.programsDependingOn(file);
+  std::set<shader::ShaderLibrary::ProgramId> programs(deps.begin(), deps.end());
+  if (shaderLike(file))
+    for (auto id : lib_.programs())
+      if (lib_.programOk(id) == false) programs.insert(id);
+  return programs;
+}
+
+void Reloader::rebuild(const std::vector<fs::path>& files,
+                       const std::vector<shader::ShaderLibrary::ProgramId>& programs, TimePoint editTime,
                        bool force) {
   const auto t0 = timing_.clock->now();
   rebuildStart_ = t0.time_since_epoch().count();
@@ -157,14 +190,14 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
   ReloadResult r;
   r.filesChanged = files;
   r.editTime = editTime;
+  r.forced = force;
+  {
+    std::lock_guard lock(mutex_);
+    r.sequence = sequence_;
+  }
   std::set<std::string> recompiled;
-  std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> next;
+  std::map<shader::ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const shader::CompiledShader>>> next;
   for (auto id : programs) {
-    // A save during the compile supersedes it: only the newest content is compiled and built.
-    if (!force && eventsWaiting()) {
-      rebuilding_ = false;
-      return false;
-    }
     try {
       auto b = lib_.buildProgram(id);
       const auto& prev = last_[id];
@@ -177,11 +210,12 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
       next[id] = b.stages;
       if (same && !force) {
         r.unchangedPrograms.push_back(id);
+        r.unchangedBuilds.push_back(std::move(b));
         continue;
       }
       r.programs.push_back(id);
       r.builds.push_back(std::move(b));
-    } catch (const CompileError& e) {
+    } catch (const shader::CompileError& e) {
       r.ok = false;
       r.failedPrograms.push_back(id);
       r.programErrors[id] = lib_.programName(id) + ":\n" + e.what();
@@ -195,7 +229,6 @@ bool Reloader::rebuild(const std::vector<fs::path>& files,
   results_.push_back(std::move(r));
   rebuilding_ = false;
   resultReady_.notify_all();
-  return true;
 }
 
 void Reloader::run() {
@@ -227,6 +260,8 @@ void Reloader::run() {
         last = now;
         if (e.overflow()) {
           overflow = true;
+          const auto all = lib_.programs();
+          noteChange({all.begin(), all.end()});
           continue;
         }
         if (e.isDir()) continue;
@@ -235,6 +270,8 @@ void Reloader::run() {
         if (e.mask & (IN_MODIFY | IN_CREATE)) writing.insert(e.path);
         if (e.mask & (IN_CLOSE_WRITE | IN_DELETE | IN_MOVED_FROM)) writing.erase(e.path);
         pending.insert(e.path);
+        // Builds of the programs it touches that are in flight are outdated from now on.
+        noteChange(programsFor(e.path));
       }
       return !events.empty();
     };
@@ -248,21 +285,17 @@ void Reloader::run() {
     if (quietFor < timing_.quiet) continue;
     if (!writing.empty() && quietFor < timing_.writeGrace) continue;  // never compile a half-written file
     // Map files to programs.
-    std::set<ShaderLibrary::ProgramId> programs;
+    std::set<shader::ShaderLibrary::ProgramId> programs;
     std::vector<fs::path> files;
     bool missingDependency = false;
     for (const auto& p : pending) {
-      auto deps = lib_.programsDependingOn(p);
-      const bool relevant = !deps.empty() || shaderLike(p);
-      if (!relevant) continue;
+      const auto deps = lib_.programsDependingOn(p);
+      if (deps.empty() && !shaderLike(p)) continue;
       std::error_code ec;
       if (!deps.empty() && !fs::exists(p, ec)) missingDependency = true;
-      programs.insert(deps.begin(), deps.end());
+      const auto touched = programsFor(p);
+      programs.insert(touched.begin(), touched.end());
       files.push_back(p);
-      // Programs that failed last time may be waiting for exactly this file (e.g. a missing include).
-      if (shaderLike(p))
-        for (auto id : lib_.programs())
-          if (lib_.programOk(id) == false) programs.insert(id);
     }
     if (missingDependency && quietFor < timing_.recreateGrace) continue;  // delete + recreate
     // What the checks above saw on disk may be newer than the events read so far (a file recreated and
@@ -274,7 +307,6 @@ void Reloader::run() {
       for (auto id : lib_.programs()) programs.insert(id);
     pending.clear();
     writing.clear();
-    const bool wasOverflow = overflow;
     overflow = false;
     if (programs.empty()) {
       changesPending_ = false;
@@ -282,14 +314,8 @@ void Reloader::run() {
     }
     rebuilding_ = true;  // before the flag below drops: newerChange() stays true throughout
     changesPending_ = false;
-    if (!rebuild(files, {programs.begin(), programs.end()}, first, false)) {
-      // Superseded by a newer save: its files join the next burst, which compiles the newest content.
-      pending.insert(files.begin(), files.end());
-      overflow = wasOverflow;
-      changesPending_ = true;
-      last = clock.now();
-    }
+    rebuild(files, {programs.begin(), programs.end()}, first, false);
   }
 }
 
-}  // namespace wb::shader
+}  // namespace wb::live

@@ -2,14 +2,13 @@
 // turns a pipeline into machine code at its first dispatch, not at vkCreate*Pipelines: the path tracer (every
 // stage inlined into one function) takes most of a second to JIT, so the first frame after a hot reload would
 // stall the render loop by that much. The warm-up builds the new pipeline on a second VkDevice of the same
-// driver, in a renderer like the edited one (Renderer::makeLike) on a stand-in scene at 1x1, and renders one
-// sample there, which makes llvmpipe compile it and store the result in Mesa's shader disk cache
+// driver, in a renderer like the edited one (render::Renderer::makeLike) on a stand-in scene at 1x1, and
+// renders one sample there, which makes llvmpipe compile it and store the result in Mesa's shader disk cache
 // (MESA_SHADER_CACHE_DIR). The render device's first frame with its own copy of the pipeline then loads the
 // machine code from the cache instead of compiling it. The compiled code depends on the SPIR-V, the pipeline
 // layout, the specialisation constants and the groups' numbers (see alignGroupCounter), not on the data
 // bound. HotReload runs it beside the render device's own pipeline creation.
 #pragma once
-#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -20,10 +19,10 @@
 
 #include "render/renderer.h"
 #include "shader/library.h"
-#include "shader/reloader.h"
+#include "live/reloader.h"
 #include "vk/context.h"
 
-namespace wb::render {
+namespace wb::live {
 
 // lavapipe numbers ray tracing shader groups per device (a counter in the leading 32-bit word of each group
 // handle), and the machine code it compiles for a pipeline contains those numbers: a pipeline warmed on
@@ -50,29 +49,29 @@ struct WarmupDevice {
   ~WarmupDevice();
   WarmupDevice(const WarmupDevice&) = delete;
   WarmupDevice& operator=(const WarmupDevice&) = delete;
-  RendererResources resources() const;
+  render::RendererResources resources() const;
 
   std::unique_ptr<vk::Context> ctx;
   std::unique_ptr<shader::ShaderLibrary> library;
   scene::Scene scene;
-  std::unique_ptr<GpuScene> gpuScene;
-  std::unique_ptr<GpuEnvironment> env;
+  std::unique_ptr<render::GpuScene> gpuScene;
+  std::unique_ptr<render::GpuEnvironment> env;
 };
 
 class JitWarmup {
  public:
   // A warm-up device and, on it, a renderer like `like` at 1x1 on the stand-in scene.
-  JitWarmup(const Renderer& like, const shader::ShaderLibrary::Options& libraryOptions);
+  JitWarmup(const render::Renderer& like, const shader::ShaderLibrary::Options& libraryOptions);
   ~JitWarmup();
   JitWarmup(const JitWarmup&) = delete;
   JitWarmup& operator=(const JitWarmup&) = delete;
 
-  // Builds the pipeline of `like`'s program number `programIndex` (in programs() order) from `build` on the
-  // warm-up device and renders one sample there (blocking; call it off the render thread).
+  // Builds the pipeline of `like`'s pass number `passIndex` (in passes() order) from `build` on the warm-up
+  // device and renders one sample there (blocking; call it off the render thread).
   // `renderDeviceGroupCounter` is probeGroupCounter() of the render device, taken before it built its own
   // pipeline of `build`. Returns false when the groups could not be numbered alike (this device numbered more
   // groups already: make a new warm-up). Throws what pipeline creation throws.
-  bool warm(const Renderer& like, size_t programIndex, const shader::ShaderLibrary::ProgramBuild& build,
+  bool warm(const render::Renderer& like, size_t passIndex, const shader::ShaderLibrary::ProgramBuild& build,
             uint32_t renderDeviceGroupCounter);
   // The group handles of the last warmed pipeline (empty when it was not a ray tracing pipeline): equal to
   // the render device's pipeline's when their numbers matched.
@@ -81,31 +80,35 @@ class JitWarmup {
 
  private:
   WarmupDevice device_;
-  std::unique_ptr<Renderer> renderer_;  // after device_: destroyed first
+  std::unique_ptr<render::Renderer> renderer_;  // after device_: destroyed first
   std::vector<uint8_t> handles_;
   uint32_t warmups_ = 0;
 };
 
 // Runs `warm()` on a low-priority thread of its own beside `build()` (the render device's pipeline creation,
-// on the calling thread) and returns what build() returned once both are done. A warm-up that throws is
-// reported and turns `enabled` off: the first frame with a new pipeline then compiles it, as without warm-up.
+// on the calling thread) and returns what build() returned once both are done. A warm-up that throws (the
+// program's pipeline cannot be built: build() throws the same) is reported and sets `failed`: that
+// pipeline's first frame compiles it, as without warm-up; the next reload warms again.
 template <class Build, class Warm>
-auto buildBesideWarmup(std::atomic<bool>& enabled, Build&& build, Warm&& warm) {
-  std::future<void> warmed;
-  if (enabled) {
-    warmed = std::async(std::launch::async, [&] {
-      shader::lowerThreadPriority();
-      try {
-        warm();
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "warning: JIT warm-up off after a failure (%s)\n", e.what());
-        enabled = false;
-      }
-    });
-  }
-  auto result = build();
-  if (warmed.valid()) warmed.get();
-  return result;
+auto buildBesideWarmup(Build&& build, Warm&& warm, bool& failed) {
+  failed = false;
+  std::future<void> warmed = std::async(std::launch::async, [&] {
+    lowerThreadPriority();
+    try {
+      warm();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "warning: JIT warm-up failed for this reload (%s)\n", e.what());
+      failed = true;
+    }
+  });
+  // The warm-up thread reads what build() may throw over: it finishes before this returns or throws.
+  struct Join {
+    std::future<void>& f;
+    ~Join() {
+      if (f.valid()) f.wait();
+    }
+  } join{warmed};
+  return build();
 }
 
-}  // namespace wb::render
+}  // namespace wb::live

@@ -14,10 +14,13 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <span>
 #include <thread>
 
-namespace wb::shader {
+namespace wb::live {
+
+namespace fs = std::filesystem;
 
 // Lowers the calling thread's scheduling priority (nice +10, Linux threads have their own): work that must
 // not compete with the frames (a warm-up device made ahead of the first edit) takes the CPU only when the
@@ -26,21 +29,28 @@ void lowerThreadPriority();
 
 struct ReloadResult {
   std::vector<fs::path> filesChanged;
-  std::vector<std::string> stagesRecompiled;       // stage file paths (+ " [K=V,...]") whose SPIR-V changed
-  std::vector<ShaderLibrary::ProgramId> programs;  // rebuilt successfully, parallel to builds
-  std::vector<ShaderLibrary::ProgramBuild> builds;
-  std::vector<ShaderLibrary::ProgramId> failedPrograms;  // keep their old pipelines
-  // Built with the same SPIR-V as their last build (a save that changed nothing the compiler keeps, such as a
-  // touch or a comment): nothing to rebuild.
-  std::vector<ShaderLibrary::ProgramId> unchangedPrograms;
+  std::vector<std::string> stagesRecompiled;  // stage file paths (+ " [K=V,...]") whose SPIR-V changed
+  std::vector<shader::ShaderLibrary::ProgramId> programs;  // rebuilt successfully, parallel to builds
+  std::vector<shader::ShaderLibrary::ProgramBuild> builds;
+  std::vector<shader::ShaderLibrary::ProgramId> failedPrograms;  // keep their old pipelines
+  // Built with the same SPIR-V as their last compile here (a save that changed nothing the compiler keeps,
+  // such as a touch or a comment), parallel to unchangedBuilds.
+  std::vector<shader::ShaderLibrary::ProgramId> unchangedPrograms;
+  std::vector<shader::ShaderLibrary::ProgramBuild> unchangedBuilds;
   double compileMs = 0;  // wall time of the rebuild
   bool ok = true;
   // Each failed program's own lines ("name:" then its file:line: severity: messages), keyed like
   // failedPrograms.
-  std::map<ShaderLibrary::ProgramId, std::string> programErrors;
+  std::map<shader::ShaderLibrary::ProgramId, std::string> programErrors;
   // Every failure's lines, in failedPrograms order.
   std::string error() const;
   std::chrono::steady_clock::time_point editTime;  // when the first change of the burst was seen
+  // The change sequence when the compile began: a program with Reloader::lastChange() above it changed again
+  // since (a newer save), and whatever is built from this result for it is outdated.
+  uint64_t sequence = 0;
+  bool forced = false;  // a reload of everything (requestReloadAll): every program is rebuilt
+  // The build of `program` in this result (changed or unchanged), or nullptr (failed, or not compiled).
+  const shader::ShaderLibrary::ProgramBuild* buildOf(shader::ShaderLibrary::ProgramId program) const;
 };
 
 class Reloader {
@@ -62,8 +72,8 @@ class Reloader {
     std::chrono::milliseconds recreateGrace{300};  // wait this long for a deleted dependency to reappear
     std::shared_ptr<Clock> clock;                  // null: std::chrono::steady_clock
   };
-  Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs);
-  Reloader(ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing);
+  Reloader(shader::ShaderLibrary& lib, std::vector<fs::path> watchDirs);
+  Reloader(shader::ShaderLibrary& lib, std::vector<fs::path> watchDirs, Timing timing);
   ~Reloader();
   Reloader(const Reloader&) = delete;
   Reloader& operator=(const Reloader&) = delete;
@@ -82,6 +92,9 @@ class Reloader {
   // no program uses): a consumer drops a build for an older result only once a newer result is there. Between
   // start() and stop().
   bool newerChange() const;
+  // The change sequence at the last change seen to one of `program`'s files (an event read from the watcher,
+  // before its burst is compiled), 0 if none since start(). Thread-safe.
+  uint64_t lastChange(shader::ShaderLibrary::ProgramId program) const;
   // When the compile in progress began (meaningful while rebuilding()).
   std::chrono::steady_clock::time_point rebuildStart() const {
     return std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(rebuildStart_.load()));
@@ -89,15 +102,21 @@ class Reloader {
 
  private:
   void run();
-  // Compiles `programs` and publishes the result. Returns false, publishing nothing, when a newer change
-  // arrives first (the caller then compiles again with it). `force` rebuilds programs whose SPIR-V is
-  // unchanged too.
-  bool rebuild(const std::vector<fs::path>& files, const std::vector<ShaderLibrary::ProgramId>& programs,
+  // Compiles `programs` and publishes the result. A change seen while it compiles is compiled by the next
+  // burst; what is built from this result for the programs it touches is dropped then (lastChange()).
+  // `force` reports every program that compiled as changed.
+  void rebuild(const std::vector<fs::path>& files,
+               const std::vector<shader::ShaderLibrary::ProgramId>& programs,
                std::chrono::steady_clock::time_point editTime, bool force);
+  // The programs a changed file may rebuild: those that include it, and for a shader-like file every program
+  // that failed last time (it may be waiting for exactly this file).
+  std::set<shader::ShaderLibrary::ProgramId> programsFor(const fs::path& file) const;
+  // A change to these programs is seen now.
+  void noteChange(const std::set<shader::ShaderLibrary::ProgramId>& programs);
   bool eventsWaiting() const;  // the watcher has unread events
   void snapshot();
 
-  ShaderLibrary& lib_;
+  shader::ShaderLibrary& lib_;
   std::vector<fs::path> dirs_;
   Timing timing_;
   std::unique_ptr<class DirWatcher> watcher_;
@@ -112,7 +131,10 @@ class Reloader {
   mutable std::mutex mutex_;
   std::deque<ReloadResult> results_;
   std::condition_variable resultReady_;
-  std::map<ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const CompiledShader>>> last_;
+  std::map<shader::ShaderLibrary::ProgramId, std::vector<std::shared_ptr<const shader::CompiledShader>>>
+      last_;
+  uint64_t sequence_ = 0;                                            // guarded by mutex_
+  std::map<shader::ShaderLibrary::ProgramId, uint64_t> lastChange_;  // guarded by mutex_
 };
 
-}  // namespace wb::shader
+}  // namespace wb::live

@@ -1,0 +1,99 @@
+#include "live/edit_loop.h"
+
+#include "common/paths.h"
+
+namespace wb::live {
+
+EditLoop::EditLoop(render::RenderSession& session, EditLoopOptions options)
+    : session_(session), budget_(options.budget) {
+  if (options.watchDirs.empty()) options.watchDirs = {shaderDir()};
+  hot_ = std::make_unique<HotReload>(session.library(), options.watchDirs);
+  // Every renderer's passes, the modes made later too (and those compiled ahead while being made).
+  session_.setRendererHooks(hot_->sessionHooks());
+  setAB(options.ab);
+}
+
+EditLoop::~EditLoop() {
+  hot_->stop();
+  comparison_.reset();  // its stand-ins render on the session's device
+  completed_.clear();   // the old pipelines kept for Revert
+  session_.setRendererHooks({});
+}
+
+void EditLoop::start(std::function<void()> onReady) {
+  if (onReady) hot_->setOnReady(std::move(onReady));
+  hot_->start();
+}
+
+void EditLoop::setAB(bool on) {
+  abOn_ = on;
+}
+
+void EditLoop::prepareAB() {
+  if (!comparison_) comparison_ = std::make_unique<ABComparison>(session_, budget_);
+  comparison_->prepare();
+}
+
+void EditLoop::setABBudget(const ABBudget& budget) {
+  budget_ = budget;
+  if (comparison_) comparison_->setBudget(budget);
+}
+
+std::optional<ReloadEvent> EditLoop::beginFrame() {
+  auto e = hot_->poll();
+  if (!e) return e;
+  if (e->pipelinesRebuilt.empty()) {
+    completed_.push_back({*e, {}, {}, {}});  // nothing to draw with: a failure keeps the old pipeline
+  } else {
+    awaitingFirstFrame_ = true;
+    if (!abOn_ && comparison_) comparison_->reset();  // its stand-ins no longer match what is installed
+  }
+  return e;
+}
+
+void EditLoop::frameFinished(Clock::time_point frameBegin) {
+  hot_->frameFinished(frameBegin);
+  if (!awaitingFirstFrame_) return;
+  const auto last = hot_->lastEvent();
+  if (!last || last->editToFirstFrameMs < 0) return;  // the new image's first frame is not done yet
+  awaitingFirstFrame_ = false;
+  CompletedReload c;
+  c.installed = hot_->lastInstalled();
+  if (abOn_) {
+    const auto t0 = Clock::now();
+    if (!comparison_) comparison_ = std::make_unique<ABComparison>(session_, budget_);
+    try {
+      c.ab = comparison_->compare(c.installed);
+      std::vector<ReloadAB> results;
+      for (const auto& o : c.ab) results.push_back(o.result);
+      hot_->attachAB(std::move(results),
+                     std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    } catch (const std::exception& e) {
+      comparison_->reset();
+      c.ab.clear();
+      c.abError = e.what();
+    }
+  }
+  c.event = *hot_->lastEvent();
+  completed_.push_back(std::move(c));
+}
+
+std::vector<CompletedReload> EditLoop::takeCompleted() {
+  std::vector<CompletedReload> out(std::make_move_iterator(completed_.begin()),
+                                   std::make_move_iterator(completed_.end()));
+  completed_.clear();
+  return out;
+}
+
+EditLoop::Clock::time_point EditLoop::restUntil(Clock::time_point frameBegin, Clock::time_point frameEnd,
+                                                double ratio) const {
+  if (ratio <= 0 || !hot_->compiling()) return frameEnd;
+  return frameEnd + std::chrono::duration_cast<Clock::duration>((frameEnd - frameBegin) * ratio);
+}
+
+void EditLoop::revert(const std::vector<HotReload::InstalledPass>& installed) {
+  hot_->revert(installed);
+  if (comparison_) comparison_->reset();
+}
+
+}  // namespace wb::live
