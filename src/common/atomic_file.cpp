@@ -129,8 +129,10 @@ void writeFileAtomically(const fs::path& requested, std::string_view data, const
 }
 
 AppendLog::AppendLog(const fs::path& path, std::string what) : path_(path), what_(std::move(what)) {
-  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOCTTY, 0666);
+  // Non-blocking open: a named pipe without a reader is an error, not a wait. Written blocking.
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_NONBLOCK | O_CLOEXEC | O_NOCTTY, 0666);
   if (fd_ < 0) fail(what_, path_, writeErrorText(errno));
+  if (const int flags = ::fcntl(fd_, F_GETFL); flags >= 0) ::fcntl(fd_, F_SETFL, flags & ~O_NONBLOCK);
 }
 
 AppendLog::~AppendLog() {

@@ -129,13 +129,16 @@ TEST(Faults, FullDiskKeepsTheOldConvergeReport) {
 
 // 2. `watch --log` on a disk that takes no more bytes (/dev/full: every write fails with ENOSPC) lost every
 // line silently. Now the first failure is said once on stderr, the reloads go on (stdout still has their
-// lines) and the exit status says it.
-TEST(Faults, WatchLogOnAFullDiskSaysSoOnceAndExitsNonZero) {
+// lines) and the exit status says it. The same for --ab-diff-dir when its folder stops taking files during
+// the session (it used to end watch at the next edit).
+TEST(Faults, WatchOutputsThatFailSaySoOnceAndExitNonZero) {
   const fs::path root = privateRoot("watch_full");
-  const fs::path out = root / "watch.out", pidFile = root / "watch.pid";
+  const fs::path out = root / "watch.out", pidFile = root / "watch.pid", diffs = root / "diffs";
   const std::string cmd = rootEnv(root) + " " + wb::testing::kOwnSession + "sh -c 'echo $$ > " +
                           pidFile.string() + "; exec " + WB_WORKBENCH_BIN +
-                          " watch --headless --size 16x16 --log /dev/full' > " + out.string() + " 2>&1";
+                          " watch --headless --size 16x16 --log /dev/full --ab --ab-size 8x8 --ab-rounds 1 "
+                          "--ab-diff-dir " +
+                          diffs.string() + "' > " + out.string() + " 2>&1";
   FILE* proc = popen(cmd.c_str(), "r");
   ASSERT_NE(proc, nullptr);
   auto waitFor = [&](const std::function<bool(const std::string&)>& done) {
@@ -149,10 +152,12 @@ TEST(Faults, WatchLogOnAFullDiskSaysSoOnceAndExitsNonZero) {
   });
   const pid_t pid = std::atoi(readFile(pidFile).c_str());
   bool stopped = false;
+  bool immutable = false;
   auto stop = [&] {
     stopped = true;
     if (pid > 0) kill(pid, SIGINT);
     const int status = pclose(proc);
+    if (immutable) wb::testing::runCommand("chattr -i '" + diffs.string() + "'");
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   };
   struct StopOnExit {
@@ -162,6 +167,9 @@ TEST(Faults, WatchLogOnAFullDiskSaysSoOnceAndExitsNonZero) {
     if (!stopped) stop();
   }};
   ASSERT_TRUE(started && readFile(out).find("watching") != std::string::npos) << readFile(out);
+  // The folder stops taking files (the immutable attribute binds root too; skipped where the filesystem has
+  // none).
+  immutable = wb::testing::runCommand("chattr +i '" + diffs.string() + "'").code == 0;
   const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
   const std::string good = readFile(chit);
   const std::string needle = "const float minCos = 1e-3;";
@@ -177,6 +185,10 @@ TEST(Faults, WatchLogOnAFullDiskSaysSoOnceAndExitsNonZero) {
   const int code = stop();
   const std::string text = readFile(out);
   EXPECT_EQ(count(text, "--log: cannot append to '/dev/full': No space left on device"), 1u) << text;
+  if (immutable) {
+    EXPECT_EQ(count(text, "--ab-diff-dir: cannot write"), 1u) << text;
+  }
+  EXPECT_EQ(count(text, "\"pipelines_rebuilt\""), 2u) << "watch went on: " << text;
   EXPECT_EQ(code, 1) << text;
   fs::remove_all(root);
 }
