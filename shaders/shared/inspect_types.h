@@ -39,8 +39,8 @@
 #define WB_INSPECT_END_RUSSIAN_ROULETTE 3u
 #define WB_INSPECT_END_ZERO_THROUGHPUT 4u  // the throughput became zero, NaN or infinite
 
-// Non-finite terms (InspectVertex.nonFinite and InspectSample.nonFinite bits), in the order a vertex computes
-// them: the first set bit of the first vertex that has one is where a NaN/Inf came from.
+// Non-finite terms (InspectVertex.nonFinite and InspectSample.nonFinite bits): the first term, in the order a
+// vertex computes them, of the first vertex that has one is where a NaN/Inf came from.
 #define WB_INSPECT_NAN_SHADING_NORMAL 1u
 #define WB_INSPECT_NAN_EMISSION 2u
 #define WB_INSPECT_NAN_LIGHT 4u       // a light sample's radiance, pdf, MIS weight or contribution
@@ -50,6 +50,10 @@
 #define WB_INSPECT_NAN_THROUGHPUT 64u // the throughput after the vertex (Russian roulette included)
 #define WB_INSPECT_NAN_ENVIRONMENT 128u  // the escaped ray's (MIS-weighted) environment radiance
 #define WB_INSPECT_NAN_RADIANCE 256u  // the sample's sum (finite terms that overflowed)
+// raygen: what the vertex added to the sample (closest-hit's payload radiance, a visible light sample's) while
+// every term closest-hit recorded is finite. In the order of computation it comes after WB_INSPECT_NAN_WEIGHT
+// and before WB_INSPECT_NAN_THROUGHPUT (render/path_inspector.cpp lists the order).
+#define WB_INSPECT_NAN_ADDED 512u
 
 WB_NAMESPACE_BEGIN
 
@@ -107,10 +111,11 @@ struct InspectVertex {
   int geometry;          // GeometryInfo index (instance custom index + geometry index)
   uint rrOutcome;        // raygen: WB_INSPECT_RR_*
   uint nonFinite;        // WB_INSPECT_NAN_* bits closest-hit saw
-  uint pathNonFinite;    // raygen: WB_INSPECT_NAN_* bits (throughput)
+  uint pathNonFinite;    // raygen: WB_INSPECT_NAN_* bits (added, throughput)
   uint lightSamples;     // light samples taken (records: at most WB_INSPECT_MAX_LIGHT_SAMPLES)
+  vec3 added;            // raygen: what it added to the sample at this vertex: throughputIn * (the payload's
+                         // radiance + the radiance of every shadow request that reached its light)
   uint pad0;
-  uint pad1;
   InspectLightSample lights[WB_INSPECT_MAX_LIGHT_SAMPLES];
 };
 

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "app/process.h"
+#include "common/atomic_file.h"
 #include "common/env.h"
 #include "common/paths.h"
 #include "common/statistics.h"
@@ -137,7 +138,7 @@ struct PrivateRoot {
   fs::path edit(int i) const {
     const std::string text = closestHitEdit(original, i);
     const fs::path p = root / ("edit" + std::to_string(i) + ".rchit");
-    std::ofstream(p) << text;
+    writeFileAtomically(p, text, "bench window");
     return p;
   }
 };
@@ -147,7 +148,7 @@ struct PrivateRoot {
 void runWindow(const PrivateRoot& pr, const std::string& script, const std::vector<std::string>& extra,
                const fs::path& log, const std::function<void(ChildProcess&)>& during = {}) {
   const fs::path scriptFile = pr.root / "script.txt";
-  std::ofstream(scriptFile) << script;
+  writeFileAtomically(scriptFile, script, "bench window");
   std::vector<std::string> args = {"--script", scriptFile.string()};
   args.insert(args.end(), extra.begin(), extra.end());
   auto child = ChildProcess::spawn(selfExecutable(), args, pr.env, log.string());
@@ -289,7 +290,7 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
         ChildProcess::spawn("xdotool", args, {{"DISPLAY", display.name()}}, (work / "xdotool.log").string());
     if (xdotool.wait() != 0)
       throw std::runtime_error("bench window: xdotool failed: " + readText(work / "xdotool.log"));
-    std::ofstream(go) << "go\n";
+    writeFileAtomically(go, "go\n", "bench window");
   });
   const json live = readJson(stats);
   const EditTimes idle = editTimes(live, 0, size_t(o.edits));

@@ -206,6 +206,7 @@ json benchHotReload(int edits, const std::string& size, const fs::path& work, bo
   std::vector<double> toPipeline, toFrame, frameBefore, frameDuring, firstFrame, compileMs, pipelineMs,
       libraryMs, linkMs, librariesCompiled, slowest, control;
   for (int i = 0; i < edits; ++i) {
+    // Saved in place, as an editor that rewrites the file does (what the reload measurement times).
     std::ofstream(chit, std::ios::trunc) << closestHitEdit(original, i);
     if (!waitFor([&] { return logLines().size() >= size_t(i + 1); }, 60)) break;
     const auto e = logLines()[i];
@@ -289,7 +290,7 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
       reference = s.image();
       fs::create_directories(refFile.parent_path());
       eval::writeExr(refFile, reference);
-      std::ofstream(refFile.string() + ".txt") << key << "\n";
+      writeFileAtomically(refFile.string() + ".txt", key + "\n", "reference cache");
     }
     for (auto mode : modes) {
       progress.step(bs.name + " in mode " + render::renderModeName(mode));
@@ -548,10 +549,10 @@ int BenchCommand::run() {
 
   printSummary(result, cmdline);
   if (!out.empty()) {
-    std::ofstream f(out);
-    f << jsonText(result, 2) << "\n";
-    if (!f) {
-      std::fprintf(stderr, "workbench bench: error: cannot write '%s'\n", out.c_str());
+    try {
+      writeJsonFile(out, result, "--out");
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "workbench bench: error: %s\n", e.what());
       return 1;
     }
     std::printf("wrote %s\n", out.c_str());

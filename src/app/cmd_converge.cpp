@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -17,6 +16,7 @@
 #include "app/render_options.h"
 #include "render/render_session.h"
 #include "shader/hash.h"
+#include "common/atomic_file.h"
 #include "common/file_io.h"
 #include "common/paths.h"
 #include "eval/metrics.h"
@@ -43,6 +43,19 @@ void addConvergeOptions(CLI::App& cli, ConvergeOptions& c) {
   cli.add_flag("--hard-cases", c.hardCases, "render the built-in numerical hard cases instead of SCENE");
 }
 
+// The command's own flags: a configuration (render flags only) cannot hold them.
+const char* const kConvergeFlags[] = {"--reference", "--reference-spp", "--seconds",
+                                      "--runs",      "--max-spp",       "--target-relmse",
+                                      "--config",    "--out",           "--hard-cases"};
+
+// The first of the command's own flags among a configuration's words, or nullptr.
+const char* commandFlagIn(const std::vector<std::string>& words) {
+  for (const auto& w : words)
+    for (const char* flag : kConvergeFlags)
+      if (w == flag || w.rfind(std::string(flag) + "=", 0) == 0) return flag;
+  return nullptr;
+}
+
 // Parses the command's arguments (plus a configuration's flags, which win) into render options.
 RenderOptions parseConvergeRenderFlags(const std::vector<std::string>& args,
                                        const std::vector<std::string>& extra) {
@@ -59,11 +72,17 @@ std::string mtimeOf(const fs::path& p) {
   return std::to_string(t.time_since_epoch().count());
 }
 
-// The reference: a file (downsampled to the render size when needed), or a cached long render.
-eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base,
-                                      ProgressLine& progress, std::string& description) {
+// The reference: a file (read by finish(), downsampled to the render size when needed), or a cached long
+// render (interrupted: nullopt).
+std::optional<eval::ImageRGBA> loadOrRenderReference(const ConvergeOptions& c, const RenderOptions& base,
+                                                     ProgressLine& progress, std::string& description,
+                                                     const InterruptRequest& interrupt,
+                                                     std::optional<eval::ImageRGBA> fromFile) {
   const auto& s = base.params.render;
-  if (!c.reference.empty()) return loadReferenceFile(c.reference, s.width, s.height, description);
+  if (!c.reference.empty()) {
+    eval::ImageRGBA ref = fromFile ? std::move(*fromFile) : readReferenceFile(c.reference, s.width, s.height);
+    return downsampleReference(std::move(ref), c.reference, s.width, s.height, description);
+  }
   const uint32_t spp = c.referenceSpp ? c.referenceSpp : 1024;
   const fs::path scene = base.scene.empty() ? defaultScenePath() : fs::path(base.scene);
   std::error_code ec;
@@ -83,27 +102,31 @@ eval::ImageRGBA loadOrRenderReference(const ConvergeOptions& c, const RenderOpti
                   file.string() + "`)";
     return eval::readExr(file);
   }
-  const ReferenceRender rendered = renderReference(base, spp, progress);
+  const ReferenceRender rendered =
+      renderReference(base, spp, progress, [&] { return interrupt.requested(); });
+  if (rendered.interrupted) return std::nullopt;
   const double t = rendered.seconds;
   const eval::ImageRGBA& ref = rendered.image;
   fs::create_directories(dir);
   eval::writeExr(file, ref);
-  std::ofstream(dir / (hex + ".txt")) << key << "\n";
+  writeFileAtomically(dir / (hex + ".txt"), key + "\n", "reference cache");
   description = "rendered now by this command and cached: " + std::to_string(spp) +
                 " spp of the same scene " + "with the base flags (`" + file.string() + "`, " +
                 std::to_string(t) + " s)";
   return ref;
 }
 
+// Ctrl-C stops it after the sample in progress: the result holds the checkpoints reached.
 ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
-                       ProgressLine& progress, size_t index, size_t count) {
+                       ProgressLine& progress, size_t index, size_t count,
+                       const InterruptRequest& interrupt) {
   ConfigResult result;
   result.name = cfg.name;
   for (const auto& f : cfg.flags) result.flags += (result.flags.empty() ? "" : " ") + f;
   render::RenderSession session(sessionOptions(cfg.options));
   result.setupSeconds = session.setupSeconds();
   std::vector<uint32_t> schedule;  // spp of the checkpoints, set by run 0
-  for (uint32_t run = 0; run < c.runs; ++run) {
+  for (uint32_t run = 0; run < c.runs && !interrupt.requested(); ++run) {
     render::RenderSettings s = cfg.options.params.render;
     s.seed = runSeed(cfg.options.params.render.seed, run);
     session.forEachRenderer([&](render::Renderer& r) {
@@ -125,7 +148,7 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
       addMeasurement(cp, session.image(), reference, t);
       ++next;
     };
-    while (true) {
+    while (!interrupt.requested()) {
       if (run == 0) {
         if (t >= c.seconds || spp >= c.maxSpp) break;
         t += timedRender(session, 1);
@@ -179,6 +202,7 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
 void ConvergeCommand::addFlags(CLI::App& cli) {
   addRenderOptions(cli, base);
   addConvergeOptions(cli, converge);
+  referenceSppOption_ = cli.get_option("--reference-spp");
 }
 
 int runConvergeCommand(const std::vector<std::string>& args) {
@@ -188,50 +212,103 @@ int runConvergeCommand(const std::vector<std::string>& args) {
 
 void ConvergeCommand::finish() {
   auto& c = converge;
-  {
-    base = parseConvergeRenderFlags(args, {});
-    if (!c.reference.empty() && c.referenceSpp) {
-      throw std::invalid_argument("give --reference or --reference-spp, not both");
-    }
-    if (!(c.seconds > 0)) throw std::invalid_argument("--seconds must be positive");
-    if (c.configs.empty()) c.configs.push_back("base:");
-    for (const auto& text : c.configs) {
-      const auto colon = text.find(':');
-      if (colon == std::string::npos || colon == 0) {
-        throw std::invalid_argument("--config: expected NAME:FLAGS, got '" + text + "'");
-      }
-      ConvergeConfig cfg;
-      cfg.name = text.substr(0, colon);
-      cfg.flags = splitFlags(text.substr(colon + 1));
-      try {
-        cfg.options = parseConvergeRenderFlags(args, cfg.flags);
-      } catch (const CLI::ParseError& e) {
-        throw std::invalid_argument("--config '" + cfg.name + "': " + e.what());
-      }
-      if (cfg.options.params.render.width != base.params.render.width ||
-          cfg.options.params.render.height != base.params.render.height || cfg.options.scene != base.scene) {
-        throw std::invalid_argument("--config '" + cfg.name +
-                                    "': a configuration cannot change SCENE or --size");
-      }
-      configs.push_back(std::move(cfg));
-    }
+  base = parseConvergeRenderFlags(args, {});
+  if (!c.reference.empty() && c.referenceSpp) {
+    throw std::invalid_argument("give --reference or --reference-spp, not both");
   }
+  if (!(c.seconds > 0) || !std::isfinite(c.seconds))
+    throw std::invalid_argument("--seconds: a finite number of seconds above 0");
+  if (c.maxSpp == 0) throw std::invalid_argument("--max-spp: at least 1");
+  if (!(c.targetRelMse >= 0) || !std::isfinite(c.targetRelMse))
+    throw std::invalid_argument("--target-relmse: a finite relMSE of 0 or more (0: the median)");
+  if (referenceSppOption_ && referenceSppOption_->count() && c.referenceSpp == 0)
+    throw std::invalid_argument("--reference-spp: at least 1 (without it: 1024)");
+  if (c.configs.empty()) c.configs.push_back("base:");
+  std::map<std::string, std::string> files;  // error image -> the configuration that writes it
+  for (const auto& text : c.configs) {
+    const auto colon = text.find(':');
+    if (colon == std::string::npos || colon == 0) {
+      throw std::invalid_argument("--config: expected NAME:FLAGS, got '" + text + "'");
+    }
+    ConvergeConfig cfg;
+    cfg.name = text.substr(0, colon);
+    cfg.flags = splitFlags(text.substr(colon + 1));
+    // Two configurations of one name would share a CSV name and an error image (one overwriting the other).
+    const std::string image = "error_" + safeName(cfg.name) + ".png";
+    if (const auto other = files.find(image); other != files.end()) {
+      throw std::invalid_argument("--config '" + cfg.name + "': " +
+                                  (other->second == cfg.name
+                                       ? "a second configuration of this name"
+                                       : "the same file name as '" + other->second + "'") +
+                                  " (" + image + "): give each its own name");
+    }
+    files[image] = cfg.name;
+    if (const char* flag = commandFlagIn(cfg.flags)) {
+      throw std::invalid_argument("--config '" + cfg.name + "': " + flag +
+                                  " belongs to the command, not to a configuration (give it once, outside "
+                                  "--config)");
+    }
+    try {
+      cfg.options = parseConvergeRenderFlags(args, cfg.flags);
+    } catch (const CLI::ParseError& e) {
+      throw std::invalid_argument("--config '" + cfg.name + "': " + e.what());
+    }
+    if (cfg.options.params.render.width != base.params.render.width ||
+        cfg.options.params.render.height != base.params.render.height || cfg.options.scene != base.scene) {
+      throw std::invalid_argument("--config '" + cfg.name +
+                                  "': a configuration cannot change SCENE or --size");
+    }
+    configs.push_back(std::move(cfg));
+  }
+  // A reference file is read now: a missing file, another format or another size is refused before any
+  // folder is made or anything rendered.
+  if (!c.reference.empty() && !c.hardCases)
+    referenceImage_ = readReferenceFile(c.reference, base.params.render.width, base.params.render.height);
 }
 
 int ConvergeCommand::run() {
   const auto& c = converge;
+  const fs::path dir(c.out);
+  std::error_code ec;
+  const bool dirExisted = fs::exists(dir, ec);
+  // A command that fails leaves no empty folder it made behind.
+  auto removeIfEmptyAndNew = [&] {
+    std::error_code rec;
+    if (!dirExisted && fs::is_directory(dir, rec) && fs::is_empty(dir, rec)) fs::remove(dir, rec);
+  };
   try {
-    const fs::path dir(c.out);
     requireWritableDirectory(dir, "--out");  // before any render: never fail at the end for want of a folder
     if (c.hardCases) return runHardCases();
+    // Ctrl-C stops the render in progress: the report then covers the checkpoints done, marked partial.
+    InterruptRequest interrupt;
     ProgressLine progress("converge");
     std::string refDescription;
-    const eval::ImageRGBA reference = loadOrRenderReference(c, base, progress, refDescription);
+    std::optional<eval::ImageRGBA> loaded =
+        loadOrRenderReference(c, base, progress, refDescription, interrupt, std::move(referenceImage_));
+    if (!loaded) {
+      std::fprintf(stderr,
+                   "workbench converge: interrupted while rendering the reference: nothing written\n");
+      removeIfEmptyAndNew();
+      return 128 + interrupt.signal();
+    }
+    const eval::ImageRGBA reference = std::move(*loaded);
     const eval::Rgb refMean = eval::meanRgb(reference);
     std::vector<ConfigResult> results;
     std::string device;
-    for (size_t i = 0; i < configs.size(); ++i) {
-      results.push_back(runConfig(configs[i], c, reference, progress, i, configs.size()));
+    for (size_t i = 0; i < configs.size() && !interrupt.requested(); ++i) {
+      results.push_back(runConfig(configs[i], c, reference, progress, i, configs.size(), interrupt));
+    }
+    std::string partialNote;
+    if (interrupt.requested()) {
+      const ConfigResult& last = results.back();
+      size_t runs = 0;
+      for (const auto& cp : last.checkpoints) runs = std::max(runs, cp.seconds.size());
+      partialNote = "interrupted (signal " + std::to_string(interrupt.signal()) + ") in configuration '" +
+                    last.name + "' after " + std::to_string(last.checkpoints.size()) +
+                    " checkpoint(s) of run " + std::to_string(std::max<size_t>(runs, 1)) + " of " +
+                    std::to_string(c.runs) + "; " + std::to_string(results.size() - 1) + " of " +
+                    std::to_string(configs.size()) +
+                    " configuration(s) done before it. The rows below are what was measured until then.";
     }
     {
       // The device name, from a cheap context (the sessions are gone).
@@ -257,11 +334,15 @@ int ConvergeCommand::run() {
     setup.referenceMean = refMean;
     setup.targetRelMse = c.targetRelMse;
     setup.plotNote = plotNote;
+    setup.partialNote = partialNote;
     writeSummary(dir, results, setup, reference);
-    std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)\n", results.size(),
-                dir.string().c_str(), plotNote.empty() ? ", converge.png" : "");
+    std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)%s\n", results.size(),
+                dir.string().c_str(), plotNote.empty() ? ", converge.png" : "",
+                partialNote.empty() ? "" : ": partial, interrupted");
+    if (!partialNote.empty()) return 128 + interrupt.signal();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench converge: error: %s\n", e.what());
+    removeIfEmptyAndNew();
     return 1;
   }
   return 0;
@@ -279,7 +360,8 @@ int ConvergeCommand::runHardCases() {
   const auto& c = converge;
   const fs::path dir(c.out);
   const uint32_t spp = base.params.render.spp;
-  std::ofstream md(dir / "hard_cases.md");
+  // Written whole after each case (common/atomic_file.h): the file shows the cases done so far.
+  std::ostringstream md;
   md << "# Hard cases\n\n";
   md << "Each scene isolates one numerical risk. " << base.params.render.width << "x"
      << base.params.render.height << ", " << spp << " spp per configuration, max bounces "
@@ -322,7 +404,7 @@ int ConvergeCommand::runHardCases() {
          << fmt("%.4f", m[0]) << " " << fmt("%.4f", m[1]) << " " << fmt("%.4f", m[2]) << " | " << energy
          << " | " << fmt("%.1f", ff.maxOverMean) << " | " << fmt("%.2g", ff.fractionAbove10x) << " | "
          << fmt("%.2f", seconds) << " |\n";
-      md.flush();
+      writeFileAtomically(dir / "hard_cases.md", md.str(), "converge --hard-cases");
       progress.update("[" + std::to_string(i + 1) + "/" + std::to_string(cases.size()) + "] " + hc.name, 1.0,
                       variant, true);
       progress.finish();
@@ -336,6 +418,7 @@ int ConvergeCommand::runHardCases() {
   }
   md << "\nGoal: 0 NaN/Inf samples dropped everywhere. " << failures
      << " configuration(s) dropped samples.\n";
+  writeFileAtomically(dir / "hard_cases.md", md.str(), "converge --hard-cases");
   std::printf("converge --hard-cases: %zu case(s) -> %s\n", cases.size(),
               (dir / "hard_cases.md").string().c_str());
   return 0;

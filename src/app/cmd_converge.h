@@ -4,6 +4,7 @@
 // images to DIR. `--hard-cases` renders the built-in numerical hard-case scenes instead and writes
 // hard_cases.md.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,8 @@ class ConvergeCommand : public Command {
 
  private:
   int runHardCases();
+  CLI::Option* referenceSppOption_ = nullptr;
+  std::optional<eval::ImageRGBA> referenceImage_;  // --reference, read by finish()
 };
 
 int runConvergeCommand(const std::vector<std::string>& args);

@@ -1,7 +1,6 @@
 #include "app/cmd_render.h"
 
 #include <cstdio>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -35,10 +34,10 @@ void RenderCommand::addFlags(CLI::App& cli) {
       "converged reference .exr of the same view: adds error_vs_reference (RMSE, relative MSE) to --stats");
   cli.add_option("--inspect-pixel", inspectPixel,
                  "path inspector: record the paths of pixel X,Y (0,0 = top left)");
-  cli.add_option(
+  inspectSamplesOption = cli.add_option(
       "--inspect-samples", inspectSamples,
-      "path inspector: samples to record (default and at most: --spp; without --out only the pixel is "
-      "traced)");
+      "path inspector: samples to record (default: --spp; at most --spp, and as many as 32768 vertex records "
+      "hold at --max-bounces; without --out only the pixel is traced)");
   cli.add_option("--inspect-out", inspectOut,
                  "path inspector: write the records as JSON (docs/path_inspector.md)");
 }
@@ -46,6 +45,7 @@ void RenderCommand::addFlags(CLI::App& cli) {
 void RenderCommand::finish() {
   finishRenderOptions(options);
   if (options.params.render.spp == 0) throw std::invalid_argument("--spp: at least 1 sample per pixel");
+  inspectSamplesGiven = inspectSamplesOption && inspectSamplesOption->count() > 0;
   finishInspectFlags(*this);
   const std::string ext = std::filesystem::path(out).extension().string();
   if (!out.empty() && ext != ".png" && ext != ".exr")
@@ -162,9 +162,7 @@ int RenderCommand::run() {
       j["blas_build_ms"] = session.gpuScene().accel().blasBuildMs();
       j["tlas_build_ms"] = session.gpuScene().accel().tlasBuildMs();
       j["device_bytes"] = session.gpuScene().deviceBytes();
-      std::ofstream f(stats);
-      f << jsonText(j, 2) << "\n";
-      if (!f.flush()) throw std::runtime_error("cannot write --stats file '" + stats + "'");
+      writeJsonFile(stats, j, "--stats");
     }
     // Said last: every file is written.
     std::printf("%s %s (%u triangles) at %ux%u, %u spp in %.2f s on %s -> %s\n",

@@ -23,7 +23,9 @@ class RenderCommand : public Command {
   std::string out, stats, reference;
   // The path inspector (--inspect-pixel X,Y --inspect-out FILE.json [--inspect-samples N]).
   std::string inspectPixel, inspectOut;
-  uint32_t inspectSamples = 0;  // 0: --spp
+  uint32_t inspectSamples = 0;  // 0: not given (--spp)
+  bool inspectSamplesGiven = false;
+  CLI::Option* inspectSamplesOption = nullptr;
   uint32_t inspectX = 0, inspectY = 0;
 };
 

@@ -4,15 +4,16 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "app/reload_log.h"
 #include "eval/image.h"
 #include "app/render_options.h"
+#include "common/file_io.h"
 #include "common/json_text.h"
 #include "common/paths.h"
 #include "live/edit_loop.h"
@@ -28,22 +29,47 @@ std::atomic<bool> gInterrupted{false};
 void WatchCommand::addFlags(CLI::App& cli) {
   addRenderOptions(cli, options);
   cli.add_flag("--headless", headless, "render offscreen (no window)");
-  auto* framesOpt = cli.add_option("--frames", frames, "stop after N frames");
-  cli.add_option("--seconds", seconds, "stop after S seconds")->excludes(framesOpt);
+  framesOption_ = cli.add_option("--frames", frames, "stop after N frames (at least 1)");
+  secondsOption_ =
+      cli.add_option("--seconds", seconds, "stop after S seconds (more than 0)")->excludes(framesOption_);
   cli.add_option("--log", logPath, "append one JSON line per reload to this file");
   cli.add_flag(
       "--ab", ab,
       "after each reload, compare the old and the new pipeline (same seeds): image and speed verdicts in "
       "the log's \"ab\"");
-  cli.add_option("--ab-size", abSize, "A/B trace size WxH")->capture_default_str();
-  cli.add_option("--ab-spp", abSpp, "A/B samples per side (one seed each)")
-      ->check(CLI::Range(1u, 1024u))
-      ->capture_default_str();
-  cli.add_option("--ab-rounds", abRounds, "A/B timing rounds (alternating old and new)")
-      ->check(CLI::Range(1u, 1000u))
-      ->capture_default_str();
-  cli.add_option("--ab-diff-dir", abDiffDir,
-                 "write each A/B comparison's old, new and difference images (EXR)");
+  abOptions_ = {cli.add_option("--ab-size", abSize, "A/B trace size WxH")->capture_default_str(),
+                cli.add_option("--ab-spp", abSpp, "A/B samples per side (one seed each)")
+                    ->check(CLI::Range(1u, 1024u))
+                    ->capture_default_str(),
+                cli.add_option("--ab-rounds", abRounds, "A/B timing rounds (alternating old and new)")
+                    ->check(CLI::Range(1u, 1000u))
+                    ->capture_default_str(),
+                cli.add_option("--ab-diff-dir", abDiffDir,
+                               "write each A/B comparison's old, new and difference images (EXR)")};
+}
+
+void WatchCommand::finish() {
+  finishRenderOptions(options);
+  if (framesOption_->count() && frames == 0) throw std::invalid_argument("--frames: at least 1");
+  if (secondsOption_->count() && !(seconds > 0 && std::isfinite(seconds)))
+    throw std::invalid_argument("--seconds: a finite number of seconds above 0");
+  if (!options.aov.empty()) throw std::invalid_argument("--aov: watch writes no images (render --aov does)");
+  for (const CLI::Option* o : abOptions_) {
+    if (o->count() && !ab) throw std::invalid_argument(o->get_name() + ": needs --ab");
+  }
+  uint32_t w = 0, h = 0;
+  char x = 0;
+  std::string extra;
+  std::istringstream in(abSize);
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w == 0 || h == 0 || w > 4096 ||
+      h > 4096) {
+    throw std::invalid_argument("--ab-size: expected WxH with 1..4096, got '" + abSize + "'");
+  }
+  abWidth = w;
+  abHeight = h;
+  // The outputs, before any work: the diff folder must take files (it is written at each reload).
+  if (!abDiffDir.empty()) requireWritableDirectory(abDiffDir, "--ab-diff-dir");
+  if (!logPath.empty()) log_ = AppendLog(logPath, "--log");
 }
 
 int runWatchCommand(const std::vector<std::string>& args) {
@@ -59,36 +85,8 @@ int WatchCommand::run() {
   live::ABBudget budget;
   budget.spp = abSpp;
   budget.rounds = abRounds;
-  {
-    uint32_t w = 0, h = 0;
-    char x = 0;
-    std::string extra;
-    std::istringstream in(abSize);
-    if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> extra) || w == 0 || h == 0 || w > 4096 ||
-        h > 4096) {
-      std::fprintf(stderr, "workbench watch: error: --ab-size: expected WxH with 1..4096, got '%s'\n",
-                   abSize.c_str());
-      return 1;
-    }
-    budget.width = w;
-    budget.height = h;
-  }
-  if (!abDiffDir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(abDiffDir, ec);
-    if (!std::filesystem::is_directory(abDiffDir)) {
-      std::fprintf(stderr, "workbench watch: error: cannot create --ab-diff-dir '%s'\n", abDiffDir.c_str());
-      return 1;
-    }
-  }
-  std::ofstream log;
-  if (!logPath.empty()) {
-    log.open(logPath, std::ios::app);
-    if (!log) {
-      std::fprintf(stderr, "workbench watch: error: cannot open --log file '%s'\n", logPath.c_str());
-      return 1;
-    }
-  }
+  budget.width = abWidth;
+  budget.height = abHeight;
   try {
     render::SessionOptions so;
     so.scenePath = ro.scene;
@@ -112,27 +110,37 @@ int WatchCommand::run() {
 
     const auto start = std::chrono::steady_clock::now();
     size_t reloads = 0;
+    // An output that fails during the session (a disk that fills up) is said once and in the exit status; the
+    // session goes on.
+    std::string outputError;
+    auto writeDiffImages = [&](const live::CompletedReload& c) {
+      for (size_t i = 0; i < c.ab.size() && !abDiffDir.empty() && outputError.empty(); ++i) {
+        const std::string stem = "reload" + std::to_string(reloads) + "_" + std::to_string(i);
+        const std::filesystem::path dir(abDiffDir);
+        try {
+          eval::writeExr(dir / (stem + "_old.exr"), c.ab[i].oldImage);
+          eval::writeExr(dir / (stem + "_new.exr"), c.ab[i].newImage);
+          eval::writeExr(dir / (stem + "_diff.exr"),
+                         eval::differenceImage(c.ab[i].oldImage, c.ab[i].newImage));
+        } catch (const std::exception& e) {
+          outputError = e.what();
+          std::fprintf(stderr,
+                       "workbench watch: error: --ab-diff-dir: %s; later comparisons are not written\n",
+                       e.what());
+        }
+      }
+    };
     // Each reload once it is over (a failure at once; an install after its first frame and comparison), with
     // the comparison's images when asked for.
     auto writeCompleted = [&] {
       for (const auto& c : loop.takeCompleted()) {
         ++reloads;
-        for (size_t i = 0; i < c.ab.size() && !abDiffDir.empty(); ++i) {
-          const std::string stem = "reload" + std::to_string(reloads) + "_" + std::to_string(i);
-          const std::filesystem::path dir(abDiffDir);
-          eval::writeExr(dir / (stem + "_old.exr"), c.ab[i].oldImage);
-          eval::writeExr(dir / (stem + "_new.exr"), c.ab[i].newImage);
-          eval::writeExr(dir / (stem + "_diff.exr"),
-                         eval::differenceImage(c.ab[i].oldImage, c.ab[i].newImage));
-        }
+        writeDiffImages(c);
         if (!c.abError.empty()) std::fprintf(stderr, "workbench watch: A/B failed: %s\n", c.abError.c_str());
         const std::string line = jsonText(reloadEventJson(c.event));
         std::printf("%s\n", line.c_str());
         std::fflush(stdout);
-        if (log) {
-          log << line << "\n";
-          log.flush();
-        }
+        if (log_.isOpen()) log_.writeLine(line);  // a failure is said once on stderr and in the exit status
       }
     };
     // While a rebuild compiles, rest after each frame where the device's policy says so (the compile then
@@ -162,6 +170,7 @@ int WatchCommand::run() {
     loop.hot().stop();
     std::printf("watch: %llu frames, %zu reloads\n", static_cast<unsigned long long>(frame),
                 loop.hot().history().size());
+    if (log_.failed() || !outputError.empty()) return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench watch: error: %s\n", e.what());
     return 1;

@@ -7,6 +7,7 @@
 
 #include "app/command.h"
 #include "app/render_options.h"
+#include "common/atomic_file.h"
 
 namespace wb::app {
 
@@ -18,7 +19,9 @@ class WatchCommand : public Command {
     return "Render continuously offscreen while watching the shaders; log every reload";
   }
   void addFlags(CLI::App& app) override;
-  void finish() override { finishRenderOptions(options); }
+  // Checks the flags (a count or a duration that never ends, A/B flags without --ab, flags watch has no use
+  // for) and the outputs (--log opened, --ab-diff-dir writable) before any work.
+  void finish() override;
   int run() override;
 
   RenderOptions options;
@@ -32,6 +35,13 @@ class WatchCommand : public Command {
   uint32_t abSpp = 4;
   uint32_t abRounds = 5;
   std::string abDiffDir;  // non-empty: each comparison's old, new and difference images (EXR) go there
+  uint32_t abWidth = 0, abHeight = 0;  // --ab-size, parsed
+
+ private:
+  std::vector<CLI::Option*> abOptions_;  // --ab-size, --ab-spp, --ab-rounds, --ab-diff-dir
+  CLI::Option* framesOption_ = nullptr;
+  CLI::Option* secondsOption_ = nullptr;
+  AppendLog log_;
 };
 
 int runWatchCommand(const std::vector<std::string>& args);

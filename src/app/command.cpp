@@ -3,8 +3,40 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/numbers.h"
+
 namespace wb::app {
 namespace {
+
+// Every numeric flag of `app` and its subcommands takes decimal numbers only: CLI11 reads integers with
+// strtoull(base 0) ("0x10" is 16, "010" is 8, "-1" wraps to 2^64 - 1) and floating point with strtold ("nan",
+// "inf", hexadecimal).
+void requireDecimalNumbers(CLI::App& app) {
+  for (CLI::Option* o : app.get_options()) {
+    const std::string type = o->get_type_name().substr(0, o->get_type_name().find(':'));
+    const bool isUnsigned = type == "UINT", isInteger = type == "INT", isFloat = type == "FLOAT";
+    if (!isUnsigned && !isInteger && !isFloat) continue;
+    o->transform(CLI::Validator(
+        [=](std::string& text) -> std::string {
+          if (isUnsigned ? parseDecimalUnsigned(text).has_value() : parseDecimal(text).has_value()) {
+            if (isFloat) return "";
+            if (text.find_first_of(".eE") == std::string::npos) {
+              // Leading zeros go: CLI11 would read "010" as octal 8.
+              const size_t sign = text[0] == '-' || text[0] == '+' ? 1 : 0;
+              const size_t digits = text.find_first_not_of('0', sign);
+              text.erase(sign, digits == std::string::npos ? text.size() - sign - 1 : digits - sign);
+              return "";
+            }
+          }
+          return "'" + text + "' is not a " +
+                 (isUnsigned  ? "non-negative decimal integer"
+                  : isInteger ? "decimal integer"
+                              : "finite decimal number");
+        },
+        ""));
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) requireDecimalNumbers(*sub);
+}
 
 // "workbench render" for the subcommand that was being parsed, else "workbench".
 std::string label(CLI::App& app, const std::vector<Command*>& subcommands, const Command* single) {
@@ -20,6 +52,7 @@ int parseAndRun(CLI::App& app, const std::vector<std::string>& args, Command* de
   Command* chosen = defaultCommand;
   CLI::App* chosenApp = &app;
   try {
+    requireDecimalNumbers(app);
     if (defaultCommand && !args.empty()) defaultCommand->checkFirstWord(args.front());
     std::vector<std::string> reversed(args.rbegin(), args.rend());
     app.parse(reversed);

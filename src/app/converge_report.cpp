@@ -4,15 +4,20 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <ostream>
+#include <sstream>
 
+#include "common/atomic_file.h"
+#include "common/file_io.h"
 #include "common/paths.h"
 
 namespace fs = std::filesystem;
 
 namespace wb::app {
 namespace {
+
+// gnuplot's output, renamed to converge.png once gnuplot succeeded.
+constexpr const char* kPlotTemp = ".converge.png.tmp";
 
 void writeErrorImages(const fs::path& dir, const std::vector<ConfigResult>& results,
                       const eval::ImageRGBA& reference, std::ostream& md) {
@@ -23,7 +28,7 @@ void writeErrorImages(const fs::path& dir, const std::vector<ConfigResult>& resu
     const auto& img = r.checkpoints.back().images.front();
     const auto rgba = eval::errorHeatmap(img, reference, scale, &scale);  // the first sets the scale
     const std::string file = "error_" + safeName(r.name) + ".png";
-    eval::writePng8(dir / file, img.width, img.height, rgba);
+    writeFileAtomically(dir / file, eval::encodePng8(img.width, img.height, rgba), "converge");
     md << "- `" << file << "`: " << r.name << " at " << r.checkpoints.back().spp << " spp\n";
   }
   md << "\n|a - b| averaged over RGB, false colour black - blue - magenta - yellow - white, white = " << scale
@@ -65,7 +70,7 @@ std::optional<double> timeToReach(const ConfigResult& r, double target) {
 }
 
 void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, const eval::Rgb& refMean) {
-  std::ofstream f(path);
+  std::ostringstream f;
   f << "config,flags,spp,seconds,seconds_min,seconds_max,runs,mse,rmse,relmse,variance,bias2,mean_r,mean_g,"
        "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency\n";
   for (const auto& r : results) {
@@ -85,15 +90,16 @@ void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, co
       f << line;
     }
   }
+  writeFileAtomically(path, f.str(), "converge");
 }
 
 std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& results,
                       const std::string& title) {
   const fs::path script = dir / "converge.gp";
   {
-    std::ofstream g(script);
+    std::ostringstream g;
     g << "set terminal pngcairo size 1100,480 font 'sans,10' noenhanced\n";
-    g << "set output '" << (dir / "converge.png").string() << "'\n";
+    g << "set output '" << (dir / kPlotTemp).string() << "'\n";
     g << "set logscale xy\nset grid\nset key bottom left\nset xlabel 'time (s)'\n";
     for (size_t i = 0; i < results.size(); ++i) {
       g << "$d" << i << " << EOD\n";
@@ -115,6 +121,7 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
       g << "\n";
     }
     g << "unset multiplot\n";
+    writeFileAtomically(script, g.str(), "converge");
   }
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
     return "gnuplot is not installed (scripts/setup.sh installs gnuplot-nox): no plot; the script is " +
@@ -122,15 +129,32 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
   }
   const std::string cmd = "gnuplot '" + script.string() + "' 2>&1";
   const int rc = std::system(cmd.c_str());
-  if (rc != 0) return "gnuplot failed (exit " + std::to_string(rc) + ") on " + script.string();
+  // gnuplot writes the plot beside its final name; only a whole plot is renamed over converge.png.
+  std::error_code ec;
+  if (rc != 0) {
+    fs::remove(dir / kPlotTemp, ec);
+    return "gnuplot failed (exit " + std::to_string(rc) + ") on " + script.string();
+  }
+  // gnuplot can exit 0 after a write failed: a whole PNG ends with its IEND chunk.
+  const auto png = readRegularFile(dir / kPlotTemp);
+  if (!png || png->size() < 12 || png->compare(png->size() - 8, 4, "IEND") != 0) {
+    fs::remove(dir / kPlotTemp, ec);
+    return "gnuplot wrote no whole image (a full disk?) from " + script.string();
+  }
+  fs::rename(dir / kPlotTemp, dir / "converge.png", ec);
+  if (ec) {
+    fs::remove(dir / kPlotTemp, ec);
+    return "cannot write " + (dir / "converge.png").string() + ": " + ec.message();
+  }
   return "";
 }
 
 void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results, const ReportSetup& setup,
                   const eval::ImageRGBA& reference) {
   const eval::Rgb& refMean = setup.referenceMean;
-  std::ofstream md(dir / "converge.md");
+  std::ostringstream md;
   md << "# Convergence: " << setup.scene << "\n\n";
+  if (!setup.partialNote.empty()) md << "**Partial:** " << setup.partialNote << "\n\n";
   md << "- Size " << setup.width << "x" << setup.height << ", " << setup.budget << ", " << setup.runs
      << " independent run(s) (seeds) per configuration, device " << setup.device << ".\n";
   md << "- Reference: " << setup.reference << "; mean RGB " << fmt("%.5f", refMean[0]) << " "
@@ -184,6 +208,7 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
        << " |\n";
   }
   writeErrorImages(dir, results, reference, md);
+  writeFileAtomically(dir / "converge.md", md.str(), "converge");  // last: it names the files above
 }
 
 }  // namespace wb::app

@@ -1,6 +1,6 @@
 // `workbench converge`'s results and how they are written: per configuration and checkpoint the errors of its
 // independent runs, then converge.csv, the gnuplot plot, converge.md (with time to error) and the error
-// images.
+// images, each file written whole or not at all (common/atomic_file.h; failures throw naming the file).
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -70,6 +70,7 @@ struct ReportSetup {
   double targetRelMse = 0;         // the time-to-error target; 0: the median of the final relMSEs
   std::string plotNote;            // why the plot is missing; empty when it is there
   std::vector<std::string> notes;  // further lines of the set-up list
+  std::string partialNote;  // non-empty: heads the report ("**Partial:** ..."): the run was interrupted
 };
 // converge.md: the set-up, the table of final errors and time to error, and the error images.
 void writeSummary(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,

@@ -78,7 +78,8 @@ render::Parameters referenceParameters(const render::Parameters& base) {
   return p;
 }
 
-ReferenceRender renderReference(const RenderOptions& base, uint32_t spp, ProgressLine& progress) {
+ReferenceRender renderReference(const RenderOptions& base, uint32_t spp, ProgressLine& progress,
+                                const std::function<bool()>& stop) {
   RenderOptions ro = base;
   ro.params = referenceParameters(base.params);
   render::RenderSession session(sessionOptions(ro));
@@ -87,6 +88,11 @@ ReferenceRender renderReference(const RenderOptions& base, uint32_t spp, Progres
   out.setupSeconds = session.setupSeconds();
   out.device = session.context().deviceName();
   for (uint32_t done = 0; done < spp;) {
+    if (stop && stop()) {
+      progress.finish();
+      out.interrupted = true;
+      return out;
+    }
     const uint32_t n = std::min<uint32_t>(8, spp - done);
     out.seconds += timedRender(session, n);
     done += n;
@@ -99,17 +105,39 @@ ReferenceRender renderReference(const RenderOptions& base, uint32_t spp, Progres
   return out;
 }
 
-eval::ImageRGBA loadReferenceFile(const std::string& path, uint32_t width, uint32_t height,
-                                  std::string& description) {
-  eval::ImageRGBA ref = eval::readExr(path);
-  if (ref.width != width || ref.height != height) {
-    ref = eval::downsampleTo(ref, width, height);
-    description = "file `" + path + "` (box-downsampled to " + std::to_string(width) + "x" +
-                  std::to_string(height) + ")";
-  } else {
-    description = "file `" + path + "`";
+eval::ImageRGBA readReferenceFile(const std::string& path, uint32_t width, uint32_t height) {
+  eval::ImageRGBA ref;
+  try {
+    ref = eval::readExr(path);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(std::string("--reference: ") + e.what());
+  }
+  const bool same = ref.width == width && ref.height == height;
+  const bool multiple =
+      ref.width % width == 0 && ref.height % height == 0 && ref.width / width == ref.height / height;
+  if (!same && !multiple) {
+    throw std::invalid_argument(
+        "--reference '" + path + "' is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
+        ", the render " + std::to_string(width) + "x" + std::to_string(height) +
+        ": a reference is the render's size or the same integer multiple of it on both "
+        "axes (it is box-downsampled)");
   }
   return ref;
+}
+
+eval::ImageRGBA downsampleReference(eval::ImageRGBA ref, const std::string& path, uint32_t width,
+                                    uint32_t height, std::string& description) {
+  description = "file `" + path + "`";
+  if (ref.width != width || ref.height != height) {
+    ref = eval::downsampleTo(ref, width, height);
+    description += " (box-downsampled to " + std::to_string(width) + "x" + std::to_string(height) + ")";
+  }
+  return ref;
+}
+
+eval::ImageRGBA loadReferenceFile(const std::string& path, uint32_t width, uint32_t height,
+                                  std::string& description) {
+  return downsampleReference(readReferenceFile(path, width, height), path, width, height, description);
 }
 
 void addMeasurement(Checkpoint& cp, eval::ImageRGBA image, const eval::ImageRGBA& reference, double seconds) {

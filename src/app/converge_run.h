@@ -47,12 +47,22 @@ struct ReferenceRender {
   double seconds = 0;       // rendering
   double setupSeconds = 0;  // the session's set-up (scene, device, shaders)
   std::string device;
+  bool interrupted = false;  // `stop` ended it before `spp` samples (no image)
 };
-// Renders the reference of `base` (referenceParameters) at `spp`, showing progress.
-ReferenceRender renderReference(const RenderOptions& base, uint32_t spp, ProgressLine& progress);
+// Renders the reference of `base` (referenceParameters) at `spp`, showing progress. `stop` (optional) is
+// asked between batches of samples: true ends it, interrupted.
+ReferenceRender renderReference(const RenderOptions& base, uint32_t spp, ProgressLine& progress,
+                                const std::function<bool()>& stop = {});
 
-// A reference file (.exr), box-downsampled to width x height when it is an integer multiple of that size;
-// `description` says which.
+// A reference image file for a render of width x height: an OpenEXR file of that size or of the same integer
+// multiple on both axes. Throws std::invalid_argument starting "--reference" with a plain reason (no such
+// file, not an OpenEXR image, the sizes).
+eval::ImageRGBA readReferenceFile(const std::string& path, uint32_t width, uint32_t height);
+// A reference read by readReferenceFile, box-downsampled to width x height when it is larger; `description`
+// says which.
+eval::ImageRGBA downsampleReference(eval::ImageRGBA ref, const std::string& path, uint32_t width,
+                                    uint32_t height, std::string& description);
+// Both.
 eval::ImageRGBA loadReferenceFile(const std::string& path, uint32_t width, uint32_t height,
                                   std::string& description);
 

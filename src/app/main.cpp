@@ -16,7 +16,10 @@
 #include "app/cmd_watch.h"
 #include "app/sweep/cmd_sweep.h"
 #include "app/window/window_command.h"
+#include "common/env.h"
+#include "common/paths.h"
 #include "vk/context.h"
+#include "vk/driver_policy.h"
 
 namespace {
 
@@ -44,6 +47,16 @@ int main(int argc, char** argv) {
   std::signal(SIGILL, crashHandler);
   std::signal(SIGFPE, crashHandler);
 #endif
+  // The environment is checked before anything else: a variable with a value it cannot take is refused
+  // naming it, as a bad flag is (exit status 2), instead of meaning the default, or crashing the driver.
+  try {
+    wb::env::checkWorkbenchVariables();
+    wb::vk::checkDriverEnvironment();
+    (void)wb::projectRoot();  // WB_ROOT
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "workbench: error: %s\n", e.what());
+    return wb::app::kUsageError;
+  }
   const std::vector<std::string> args(argv + 1, argv + argc);
   wb::app::WindowCommand window;
   wb::app::RenderCommand render;

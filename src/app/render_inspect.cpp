@@ -1,8 +1,8 @@
 // `render --inspect-pixel X,Y [--inspect-samples N] --inspect-out FILE.json`: the path inspector headless.
 #include "app/cmd_render.h"
 
+#include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,9 +11,17 @@
 #include "common/json_text.h"
 
 namespace wb::app {
+namespace {
+
+// The vertex records one `render --inspect-out` keeps (the JSON document of all of them is built in memory
+// before it is written), and what that costs at most, for the message.
+constexpr uint32_t kMaxInspectVertexRecords = 1u << 15;
+constexpr const char* kVertexRecordsCost = " vertex records: up to ~130 MB of JSON and ~0.7 GB of memory";
+
+}  // namespace
 
 void finishInspectFlags(RenderCommand& c) {
-  const bool any = !c.inspectPixel.empty() || !c.inspectOut.empty() || c.inspectSamples != 0;
+  const bool any = !c.inspectPixel.empty() || !c.inspectOut.empty() || c.inspectSamplesGiven;
   if (!any) {
     if (c.out.empty()) throw std::invalid_argument("--out: required (or --inspect-pixel with --inspect-out)");
     return;
@@ -40,17 +48,29 @@ void finishInspectFlags(RenderCommand& c) {
   c.inspectX = x;
   c.inspectY = y;
   if (c.options.params.mode != render::RenderMode::PathTrace) {  // the hybrid modes' rays of the last frame
-    if (c.inspectSamples != 0)
+    if (c.inspectSamplesGiven)
       throw std::invalid_argument("--inspect-samples: the hybrid modes record the last frame's rays");
     return;
   }
-  if (c.inspectSamples == 0) c.inspectSamples = s.spp;
+  if (c.inspectSamplesGiven && c.inspectSamples == 0)
+    throw std::invalid_argument("--inspect-samples: at least 1 (without the flag: --spp)");
+  const std::string flag = c.inspectSamplesGiven ? "--inspect-samples" : "--inspect-samples (default: --spp)";
+  if (!c.inspectSamplesGiven) c.inspectSamples = s.spp;
   if (c.inspectSamples > s.spp) {
-    throw std::invalid_argument("--inspect-samples: at most --spp (" + std::to_string(s.spp) + "), got " +
+    throw std::invalid_argument(flag + ": at most --spp (" + std::to_string(s.spp) + "), got " +
                                 std::to_string(c.inspectSamples));
   }
-  if (c.inspectSamples > render::kMaxInspectSamples)
-    throw std::invalid_argument("--inspect-samples: at most " + std::to_string(render::kMaxInspectSamples));
+  // Every record goes into one JSON document, built in memory before it is written: the records are bounded
+  // by vertices, each sample taking up to max bounces + 1 of them.
+  const uint32_t vertices = std::min(s.maxBounces + 1, render::kMaxInspectVertices);
+  const uint32_t bound = std::min(render::kMaxInspectSamples, kMaxInspectVertexRecords / vertices);
+  if (c.inspectSamples > bound) {
+    throw std::invalid_argument(flag + ": at most " + std::to_string(bound) + " at --max-bounces " +
+                                std::to_string(s.maxBounces) + " (a sample records up to " +
+                                std::to_string(vertices) + " vertices and one inspection at most " +
+                                std::to_string(kMaxInspectVertexRecords) + kVertexRecordsCost + "), got " +
+                                std::to_string(c.inspectSamples));
+  }
 }
 
 void startInspection(const RenderCommand& c, render::RenderSession& session) {
@@ -80,9 +100,7 @@ void writeInspection(const RenderCommand& c, render::RenderSession& session, uin
     auto j = hybridInspectJson(ctx, hybrid->readInspection(), render::renderModeName(session.mode()));
     j["parameters"] = parametersJson(c.options.params);
     j["device"] = session.context().deviceName();
-    std::ofstream f(c.inspectOut);
-    f << jsonText(j, 2) << "\n";
-    if (!f.flush()) throw std::runtime_error("cannot write --inspect-out file '" + c.inspectOut + "'");
+    writeJsonFile(c.inspectOut, j, "--inspect-out");
     std::printf("inspected pixel %u,%u of the last frame -> %s\n", c.inspectX, c.inspectY,
                 c.inspectOut.c_str());
     return;
@@ -104,9 +122,7 @@ void writeInspection(const RenderCommand& c, render::RenderSession& session, uin
   auto j = inspectJson(ctx, samples);
   j["parameters"] = parametersJson(c.options.params);
   j["device"] = session.context().deviceName();
-  std::ofstream f(c.inspectOut);
-  f << jsonText(j, 2) << "\n";
-  if (!f.flush()) throw std::runtime_error("cannot write --inspect-out file '" + c.inspectOut + "'");
+  writeJsonFile(c.inspectOut, j, "--inspect-out");
   std::printf("inspected pixel %u,%u: %zu samples -> %s\n", c.inspectX, c.inspectY, samples.size(),
               c.inspectOut.c_str());
 }

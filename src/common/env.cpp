@@ -1,8 +1,27 @@
 #include "common/env.h"
 
 #include <cstdlib>
+#include <stdexcept>
+
+#include "common/numbers.h"
+#include "common/printable.h"
 
 namespace wb::env {
+namespace {
+
+std::string shown(const std::string& value) {
+  return printableExcerpt(value, 60);
+}
+
+// The WB_* switches (0 or 1) the workbench reads.
+constexpr const char* kSwitches[] = {"WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",   "WB_JIT_WARMUP",
+                                     "WB_CPU_DEVICE_CODE",  "WB_SIMULATE_NO_PRESENT", "WB_SIMULATE_DISK_FULL",
+                                     "WB_VALIDATION"};
+
+// WB_REBUILD_YIELD: frame times of rest per frame while a rebuild compiles.
+constexpr double kMaxRebuildYield = 1000.0;
+
+}  // namespace
 
 std::optional<std::string> get(const char* name) {
   const char* v = std::getenv(name);
@@ -12,27 +31,35 @@ std::optional<std::string> get(const char* name) {
 
 std::optional<bool> choice(const char* name) {
   const auto v = get(name);
-  if (v == "1") return true;
-  if (v == "0") return false;
-  return std::nullopt;
+  if (!v) return std::nullopt;
+  if (*v == "1") return true;
+  if (*v == "0") return false;
+  throw std::invalid_argument(std::string(name) + "=" + shown(*v) + ": expected 0 or 1 (or unset)");
 }
 
 bool enabled(const char* name) {
-  const auto v = get(name);
-  return v && *v != "0";
+  return choice(name).value_or(false);
 }
 
 std::optional<double> number(const char* name) {
   const auto v = get(name);
   if (!v) return std::nullopt;
-  char* end = nullptr;
-  const double d = std::strtod(v->c_str(), &end);
-  if (end == v->c_str() || *end != '\0') return std::nullopt;
+  const auto d = parseDecimal(*v);
+  if (!d) throw std::invalid_argument(std::string(name) + "=" + shown(*v) + ": expected a decimal number");
   return d;
 }
 
 void set(const char* name, const std::string& value) {
   ::setenv(name, value.c_str(), 1);
+}
+
+void checkWorkbenchVariables() {
+  for (const char* name : kSwitches) choice(name);
+  if (const auto yield = number("WB_REBUILD_YIELD"); yield && (*yield < 0 || *yield > kMaxRebuildYield)) {
+    throw std::invalid_argument("WB_REBUILD_YIELD=" + shown(*get("WB_REBUILD_YIELD")) +
+                                ": expected frame times of rest from 0 to " +
+                                std::to_string(int(kMaxRebuildYield)));
+  }
 }
 
 }  // namespace wb::env

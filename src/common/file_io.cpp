@@ -25,7 +25,16 @@ std::string kindOf(mode_t mode) {
 
 std::string describeFileKind(const std::filesystem::path& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return errno == ENOENT ? "missing" : std::strerror(errno);
+  if (::stat(path.c_str(), &st) != 0) {
+    const int err = errno;
+    struct stat lst {};
+    if (err == ENOENT && ::lstat(path.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode)) {
+      std::error_code ec;
+      return "a symbolic link to '" + std::filesystem::read_symlink(path, ec).string() +
+             "', which does not exist";
+    }
+    return err == ENOENT ? "missing" : std::strerror(err);
+  }
   return kindOf(st.st_mode);
 }
 
@@ -81,33 +90,43 @@ void requireWritableFile(const std::filesystem::path& path, const std::string& w
   };
   if (path.empty()) fail("empty path");
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) {
+  const bool exists = ::stat(path.c_str(), &st) == 0;
+  if (exists) {
     if (S_ISDIR(st.st_mode)) fail("is a directory");
     // An existing file: open it for writing without truncating it (non-blocking: never wait on a pipe).
     const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
     if (fd < 0) fail(std::strerror(errno));
     ::close(fd);
-    return;
+    if (!S_ISREG(st.st_mode)) return;  // a pipe or a device is written in place (common/atomic_file.h)
   }
+  // The file is written beside itself and renamed over (common/atomic_file.h): its folder must take a new
+  // file. The probe is created exclusively and removed again.
   const auto parent = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   std::filesystem::create_directories(parent, ec);  // `--out out/x.png` on a fresh checkout makes out/
   struct stat pst {};
   if (::stat(parent.c_str(), &pst) != 0) fail("folder '" + parent.string() + "': " + std::strerror(errno));
   if (!S_ISDIR(pst.st_mode)) fail("'" + parent.string() + "' is not a folder");
-  // Create it (exclusively: the file did not exist) and remove it again.
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) fail(std::strerror(errno));
+  const auto probe =
+      exists ? parent / ("." + path.filename().string() + ".wb_probe." + std::to_string(::getpid())) : path;
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    fail(exists ? "cannot create a file in '" + parent.string() +
+                      "' (it is replaced by a new file): " + std::strerror(errno)
+                : std::strerror(errno));
+  }
   ::close(fd);
-  ::unlink(path.c_str());
+  ::unlink(probe.c_str());
 }
 
 void requireWritableDirectory(const std::filesystem::path& dir, const std::string& what) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir)) {
+    const std::string kind = describeFileKind(dir);
+    const bool dangling = kind.rfind("a symbolic link", 0) == 0;
     throw std::runtime_error(what + ": cannot create folder '" + dir.string() +
-                             "': " + (ec ? ec.message() : "is " + describeFileKind(dir)));
+                             "': " + (ec && !dangling ? ec.message() : "it is " + kind));
   }
   requireWritableFile(dir / (".wb_write_probe." + std::to_string(::getpid())), what);
 }

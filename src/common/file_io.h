@@ -15,12 +15,13 @@ std::optional<std::string> readRegularFile(const std::filesystem::path& path, st
                                            uint64_t maxBytes = uint64_t{4} << 30);
 
 // What kind of file is at path, for messages ("a directory", "a named pipe", ...; "missing" when nothing is
-// there, "a regular file" for files).
+// there, "a regular file" for files, "a symbolic link to 'x', which does not exist" for a dangling link).
 std::string describeFileKind(const std::filesystem::path& path);
 
-// Checks that a file can be written at path (creating its missing folders, and the file, removed again, when
-// it does not exist yet; an existing file is opened for writing without being truncated). Throws
-// std::runtime_error naming `what` (the flag, e.g. "--out"), the path and the reason.
+// Checks that a file can be written at path as writeFileAtomically() writes it (common/atomic_file.h):
+// creates its missing folders; an existing file is opened for writing without being truncated, and a file is
+// created in its folder and removed again (the new content goes there first). Throws std::runtime_error
+// naming `what` (the flag, e.g. "--out"), the path and the reason.
 void requireWritableFile(const std::filesystem::path& path, const std::string& what);
 
 // Checks that dir is (or can be made, with its parents) a folder where files can be created. Throws

@@ -1,5 +1,6 @@
 #include "common/paths.h"
 
+#include <stdexcept>
 #include <system_error>
 
 #include "common/env.h"
@@ -15,7 +16,13 @@ bool looksLikeRoot(const fs::path& p) {
 }
 
 fs::path findRoot() {
-  if (const auto root = env::get("WB_ROOT")) return fs::path(*root);
+  if (const auto root = env::get("WB_ROOT")) {
+    if (!looksLikeRoot(*root)) {
+      throw std::invalid_argument("WB_ROOT=" + *root +
+                                  ": not the workbench's folder (it needs shaders/ and assets/ in it)");
+    }
+    return fs::path(*root);
+  }
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {

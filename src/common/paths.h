@@ -4,8 +4,9 @@
 
 namespace wb {
 
-// The project root: the folder above the running binary (build/workbench -> .) when it holds shaders/,
-// else WB_ROOT from the environment, else the source folder the binary was configured from.
+// The project root: WB_ROOT from the environment when it is set, else the folder above the running binary
+// (build/workbench -> .) that holds shaders/ and assets/, else the source folder the binary was configured
+// from. A WB_ROOT without shaders/ and assets/ throws std::invalid_argument naming WB_ROOT.
 std::filesystem::path projectRoot();
 std::filesystem::path shaderDir();       // projectRoot()/shaders
 std::filesystem::path assetDir();        // projectRoot()/assets

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
+
+#include "common/atomic_file.h"
+#include "common/file_io.h"
 
 namespace wb::eval {
 
@@ -60,43 +65,105 @@ std::vector<uint8_t> tonemapToSrgb8(const ImageRGBA& image, float exposureStops,
   return out;
 }
 
+std::string encodePng8(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8) {
+  std::string png;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &png, int(width), int(height), 4, rgba8.data(), int(width * 4)))
+    throw std::runtime_error("cannot encode a " + std::to_string(width) + "x" + std::to_string(height) +
+                             " PNG");
+  return png;
+}
+
 void writePng8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                const std::vector<uint8_t>& rgba8) {
-  if (!stbi_write_png(path.c_str(), int(width), int(height), 4, rgba8.data(), int(width * 4))) {
-    throw std::runtime_error("cannot write PNG '" + path.string() + "'");
-  }
+  writeFileAtomically(path, encodePng8(width, height, rgba8), "");
 }
 
 void writePng(const std::filesystem::path& path, const ImageRGBA& image, float exposureStops, Tonemap op) {
   writePng8(path, image.width, image.height, tonemapToSrgb8(image, exposureStops, op));
 }
 
-void writeExr(const std::filesystem::path& path, const ImageRGBA& image) {
+std::string encodeExr(const ImageRGBA& image) {
+  // Linear float RGBA, stored as EXR viewers expect it: channels A, B, G, R, uncompressed for tiny images and
+  // ZIP otherwise (as tinyexr's SaveEXR writes files).
+  const size_t n = size_t(image.width) * image.height;
+  std::vector<float> planes[4];
+  for (auto& p : planes) p.resize(n);
+  for (size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 4; ++c) planes[3 - c][i] = image.pixels[4 * i + size_t(c)];
+  float* planePointers[4] = {planes[0].data(), planes[1].data(), planes[2].data(), planes[3].data()};
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.num_channels = 4;
+  exr.images = reinterpret_cast<unsigned char**>(planePointers);
+  exr.width = int(image.width);
+  exr.height = int(image.height);
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.compression_type =
+      image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE : TINYEXR_COMPRESSIONTYPE_ZIP;
+  EXRChannelInfo channels[4] = {};
+  const char* names[4] = {"A", "B", "G", "R"};
+  for (int c = 0; c < 4; ++c) channels[c].name[0] = names[c][0];
+  int pixelTypes[4] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT,
+                       TINYEXR_PIXELTYPE_FLOAT};
+  header.num_channels = 4;
+  header.channels = channels;
+  header.pixel_types = pixelTypes;
+  header.requested_pixel_types = pixelTypes;
+  unsigned char* memory = nullptr;
   const char* err = nullptr;
-  // tinyexr's SaveEXR takes RGBA float data (components = 4) and writes FLOAT channels when save_as_fp16 = 0.
-  int rc = SaveEXR(image.pixels.data(), int(image.width), int(image.height), 4, 0, path.c_str(), &err);
-  if (rc != TINYEXR_SUCCESS) {
+  const size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &err);
+  if (size == 0 || !memory) {
     std::string msg = err ? err : "unknown error";
     if (err) FreeEXRErrorMessage(err);
-    throw std::runtime_error("cannot write EXR '" + path.string() + "': " + msg);
+    free(memory);
+    throw std::runtime_error("cannot encode an EXR image: " + msg);
   }
+  std::string out(reinterpret_cast<const char*>(memory), size);
+  free(memory);
+  return out;
+}
+
+void writeExr(const std::filesystem::path& path, const ImageRGBA& image) {
+  writeFileAtomically(path, encodeExr(image), "");
 }
 
 ImageRGBA readExr(const std::filesystem::path& path) {
-  float* data = nullptr;
+  auto fail = [&](const std::string& why) {
+    return std::runtime_error("cannot read EXR '" + path.string() + "': " + why);
+  };
+  std::string why;
+  const auto data = readRegularFile(path, &why);  // never blocks on a named pipe
+  if (!data) {
+    const std::string kind = describeFileKind(path);
+    throw fail(kind == "missing" ? "no such file" : why);
+  }
+  static const unsigned char kExrMagic[4] = {0x76, 0x2f, 0x31, 0x01};
+  if (data->size() < 4 || std::memcmp(data->data(), kExrMagic, 4) != 0) {
+    static const unsigned char kPngMagic[4] = {0x89, 'P', 'N', 'G'};
+    const bool png = data->size() >= 4 && std::memcmp(data->data(), kPngMagic, 4) == 0;
+    throw fail(
+        png ? "a PNG image, not OpenEXR (a reference is linear radiance: render it with --out FILE.exr)"
+            : "not an OpenEXR image (no EXR signature)");
+  }
+  float* pixels = nullptr;
   int w = 0, h = 0;
   const char* err = nullptr;
-  int rc = LoadEXR(&data, &w, &h, path.c_str(), &err);
+  const int rc = LoadEXRFromMemory(&pixels, &w, &h, reinterpret_cast<const unsigned char*>(data->data()),
+                                   data->size(), &err);
   if (rc != TINYEXR_SUCCESS) {
-    std::string msg = err ? err : "unknown error";
+    std::string msg = err ? err : "tinyexr error " + std::to_string(rc);
     if (err) FreeEXRErrorMessage(err);
-    throw std::runtime_error("cannot read EXR '" + path.string() + "': " + msg);
+    throw fail(msg);
   }
   ImageRGBA img;
   img.width = uint32_t(w);
   img.height = uint32_t(h);
-  img.pixels.assign(data, data + size_t(w) * h * 4);
-  free(data);
+  img.pixels.assign(pixels, pixels + size_t(w) * h * 4);
+  free(pixels);
   return img;
 }
 

@@ -21,13 +21,19 @@ std::vector<uint8_t> tonemapToSrgb8(const ImageRGBA& image, float exposureStops 
                                     Tonemap op = Tonemap::Aces);
 float linearToSrgb(float v);
 
-// PNG is tonemapped for viewing; EXR keeps linear float RGBA. Throws std::runtime_error with the path on
-// failure.
+// PNG is tonemapped for viewing; EXR keeps linear float RGBA. Each file is written whole or not at all
+// (common/atomic_file.h); a failure throws std::runtime_error naming the path and what failed (a full disk,
+// a permission).
 void writePng(const std::filesystem::path& path, const ImageRGBA& image, float exposureStops = 0.0f,
               Tonemap op = Tonemap::Aces);
 void writePng8(const std::filesystem::path& path, uint32_t width, uint32_t height,
                const std::vector<uint8_t>& rgba8);
 void writeExr(const std::filesystem::path& path, const ImageRGBA& image);
+// The file's bytes, for writers that put an image somewhere else first.
+std::string encodePng8(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba8);
+std::string encodeExr(const ImageRGBA& image);
+// Reads a regular file only (a named pipe is refused, not waited on); says "no such file", "a PNG image, not
+// OpenEXR" and the like in its std::runtime_error, with the path.
 ImageRGBA readExr(const std::filesystem::path& path);
 // Writes PNG or EXR by the file extension (.png / .exr); anything else is an error.
 void writeImage(const std::filesystem::path& path, const ImageRGBA& image, float exposureStops = 0.0f,

@@ -3,35 +3,27 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <cstdint>
 #include <stdexcept>
+
+#include "common/numbers.h"
 
 namespace wb::live {
 namespace {
 
 float toFloat(const std::string& name, const std::string& v) {
-  size_t used = 0;
-  float f = 0;
-  try {
-    f = std::stof(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != v.size() || !std::isfinite(f))
-    throw std::invalid_argument(name + ": '" + v + "' is not a finite number");
-  return f;
+  const auto d = parseDecimal(v);  // decimal only
+  if (!d || !std::isfinite(float(*d)))
+    throw std::invalid_argument(name + ": '" + v + "' is not a finite decimal number");
+  return float(*d);
 }
 
 uint32_t toUint(const std::string& name, const std::string& v) {
-  size_t used = 0;
-  unsigned long u = 0;
-  try {
-    u = std::stoul(v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != v.size() || v.empty() || v[0] == '-')
-    throw std::invalid_argument(name + ": '" + v + "' is not a non-negative integer");
-  return uint32_t(u);
+  const auto u = parseDecimalUnsigned(v);
+  if (!u || *u > UINT32_MAX)
+    throw std::invalid_argument(name + ": '" + v +
+                                "' is not a non-negative decimal integer (at most 2^32 - 1)");
+  return uint32_t(*u);
 }
 
 bool toBool(const std::string& name, const std::string& v) {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/numbers.h"
 #include "display/display_types.h"
 #include "shared/hybrid_types.h"
 
@@ -235,14 +236,9 @@ ParameterValue parseParameter(const ParameterInfo& p, const std::string& text) {
     return std::invalid_argument(p.name + ": " + why);
   };
   auto number = [&](const std::string& t) {
-    size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (t.empty() || used != t.size() || !std::isfinite(v)) throw fail("'" + t + "' is not a finite number");
+    const std::optional<double> parsed = parseDecimal(t);  // decimal only: "0x10" is not 16
+    if (!parsed) throw fail("'" + t + "' is not a finite decimal number");
+    const double v = *parsed;
     if (v < p.min || v > p.max)
       throw fail("'" + t + "' is outside " + formatNumber(p.min) + " .. " + formatNumber(p.max));
     return v;

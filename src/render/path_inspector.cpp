@@ -12,9 +12,15 @@ bool finite(const glm::vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// The first set bit of a vertex's or a sample's non-finite terms, in the order they are computed.
+// The first of a vertex's or a sample's non-finite terms, in the order they are computed: closest-hit's
+// terms, what raygen added at the vertex, the throughput after it; the escape, the sample's sum.
 std::optional<uint32_t> firstTerm(uint32_t bits) {
-  for (uint32_t bit = 1; bit <= WB_INSPECT_NAN_RADIANCE; bit <<= 1)
+  static const uint32_t kOrder[] = {
+      WB_INSPECT_NAN_SHADING_NORMAL, WB_INSPECT_NAN_EMISSION,   WB_INSPECT_NAN_LIGHT,
+      WB_INSPECT_NAN_BRDF,           WB_INSPECT_NAN_PDF,        WB_INSPECT_NAN_WEIGHT,
+      WB_INSPECT_NAN_ADDED,          WB_INSPECT_NAN_THROUGHPUT, WB_INSPECT_NAN_ENVIRONMENT,
+      WB_INSPECT_NAN_RADIANCE};
+  for (uint32_t bit : kOrder)
     if (bits & bit) return bit;
   return std::nullopt;
 }
@@ -36,11 +42,7 @@ std::vector<InspectedSample> inspectedSamples(const InspectBuffers& b, uint32_t 
       v.record = b.vertices.at(slot * capacity + k);
       const uint32_t lights = std::min(v.record.lightSamples, WB_INSPECT_MAX_LIGHT_SAMPLES);
       v.lights.assign(v.record.lights, v.record.lights + lights);
-      glm::vec3 reaching = v.record.emitted;
-      for (const auto& l : v.lights) {
-        if (l.status == WB_INSPECT_NEE_TRACED && l.visible) reaching += l.contribution;
-      }
-      v.added = v.record.throughputIn * reaching;
+      v.added = v.record.added;  // raygen's: what went into the sample, whatever closest-hit recorded
       s.sum += v.added;
       const uint32_t bits = v.record.nonFinite | v.record.pathNonFinite;
       if (!s.firstNonFinite) {
@@ -160,6 +162,8 @@ const char* inspectNonFiniteName(uint32_t term) {
       return "throughput";
     case WB_INSPECT_NAN_ENVIRONMENT:
       return "environment";
+    case WB_INSPECT_NAN_ADDED:
+      return "added";
     case WB_INSPECT_NAN_RADIANCE:
       return "sample_sum";
     default:

@@ -17,8 +17,9 @@ namespace wb::render {
 struct InspectedVertex {
   gpu::InspectVertex record;
   std::vector<gpu::InspectLightSample> lights;  // the recorded light samples
-  // What the vertex added to the sample: throughputIn * (emitted + the contributions of visible light
-  // samples).
+  // What raygen added to the sample at the vertex: throughputIn * (the radiance closest-hit returned + every
+  // visible shadow request's). When the shader records what it returns, throughputIn * (emitted + the
+  // contributions of visible light samples).
   glm::vec3 added{0.0f};
 };
 

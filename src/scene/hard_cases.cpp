@@ -9,6 +9,7 @@
 
 #include <stb/stb_image_write.h>
 
+#include "common/atomic_file.h"
 #include "scene/procedural.h"
 
 namespace wb::scene {
@@ -64,9 +65,13 @@ std::string tinySunEnvironment(float peak) {
   std::vector<float> rgb(size_t(w) * h * 3, 0.5f);
   const size_t sun = (size_t(8) * w + 20) * 3;
   rgb[sun] = rgb[sun + 1] = rgb[sun + 2] = peak;
-  if (!stbi_write_hdr(path.c_str(), w, h, 3, rgb.data())) {
-    throw std::runtime_error("cannot write " + path.string());
-  }
+  std::string hdr;
+  auto append = [](void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size));
+  };
+  if (!stbi_write_hdr_to_func(append, &hdr, w, h, 3, rgb.data()))
+    throw std::runtime_error("cannot encode " + path.string());
+  writeFileAtomically(path, hdr, "hard case environment");
   return path.string();
 }
 

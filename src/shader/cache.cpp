@@ -1,5 +1,6 @@
 #include "shader/cache.h"
 
+#include "common/atomic_file.h"
 #include "common/file_io.h"
 
 #include <fcntl.h>
@@ -72,7 +73,9 @@ DiskCache::DiskCache(fs::path dir, WarnFn warn, PruneLimits limits)
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) {
-    disable("cannot create cache directory " + dir_.string() + (ec ? ": " + ec.message() : ""));
+    const std::string kind = describeFileKind(dir_);
+    disable("cannot create cache directory " + dir_.string() + ": " +
+            (kind.rfind("a symbolic link", 0) == 0 || !ec ? "it is " + kind : ec.message()));
     return;
   }
   enabled_ = true;
@@ -149,25 +152,13 @@ bool DiskCache::writeAtomic(const fs::path& p, const char magic[4], const Hash12
   w.u64(payload.size());
   w.u64(hash64(payload));
   w.raw(payload.data(), payload.size());
-  const fs::path tmp = dir_ / tempName();
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  bool ok = fd >= 0;
-  size_t done = 0;
-  while (ok && done < w.out.size()) {
-    const ssize_t n = ::write(fd, w.out.data() + done, w.out.size() - done);
-    if (n <= 0)
-      ok = false;
-    else
-      done += static_cast<size_t>(n);
+  try {
+    writeFileAtomically(p, w.out, "shader cache", FileKind::Cache);
+  } catch (const std::exception& e) {
+    if (warn_) warn_(e.what());
+    return false;
   }
-  if (fd >= 0 && ::close(fd) != 0) ok = false;
-  if (ok && std::rename(tmp.c_str(), p.c_str()) != 0) ok = false;
-  if (!ok) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    if (warn_) warn_("shader cache: cannot write " + p.string() + ": " + std::strerror(errno));
-  }
-  return ok;
+  return true;
 }
 
 std::optional<std::vector<fs::path>> DiskCache::loadIndex(const Hash128& variant) {

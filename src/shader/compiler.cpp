@@ -63,6 +63,15 @@ void refineDiagnostics(std::vector<Diagnostic>& diags, const CompileInput& in, c
   bool errorSeen = false;
   for (auto d : diags) {
     if (anyReal && d.message.find("compilation terminated") != std::string::npos) continue;
+    // glslang names the preamble "-1": its line N is the Nth define (the scene's specialisation, then
+    // --define's). The message names the define instead of "-1:N".
+    if (d.file == fs::path("-1") && d.line >= 1 && size_t(d.line) <= in.defines.size()) {
+      const Define& def = in.defines[size_t(d.line) - 1];
+      d.message = "in the define " + def.name + (def.value.empty() ? "" : "=" + def.value) +
+                  " (--define, or the scene's shader specialisation): " + d.message;
+      d.file = in.path;
+      d.line = 0;
+    }
     if (const size_t at = d.message.find("for header name: "); at != std::string::npos) {
       const int line = includer.includeLine(d.file, trim(d.message.substr(at + 17)));
       if (line > 0) d.line = line;

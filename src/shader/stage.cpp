@@ -118,6 +118,13 @@ std::string defineProblem(const Define& d) {
     return "'" + d.name + "' is not an identifier (letters, digits, _; not starting with a digit)";
   if (std::any_of(d.value.begin(), d.value.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; }))
     return "the value of " + d.name + " holds a newline or another control character";
+  // The value goes into a `#define` line of the shaders' preamble: a comment or a string it opens would run
+  // on into the shader's own first lines, and a backslash at its end would join the next line to it.
+  if (d.value.find("/*") != std::string::npos || d.value.find("//") != std::string::npos)
+    return "the value of " + d.name + " opens a comment (/* or //)";
+  if (d.value.find('"') != std::string::npos) return "the value of " + d.name + " holds a quote (\")";
+  if (!d.value.empty() && d.value.back() == '\\')
+    return "the value of " + d.name + " ends in a backslash (it would continue the line)";
   return "";
 }
 

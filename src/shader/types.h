@@ -28,7 +28,8 @@ struct Define {
   bool operator==(const Define&) const = default;
 };
 // Why a define cannot be used, or "" when it can: the name must be an identifier, the value one line without
-// control characters (a newline would add preprocessor lines of its own).
+// control characters (a newline would add preprocessor lines of its own), comments, quotes or a final
+// backslash (each would run on into the lines after it).
 std::string defineProblem(const Define& d);
 // A define as a command-line flag gives it ("NAME" or "NAME=VALUE"), checked; throws std::invalid_argument
 // starting with `flag` ("--define NAME: ...").

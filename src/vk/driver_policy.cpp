@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <stdexcept>
 
 #include "common/env.h"
+#include "common/printable.h"
 
 namespace wb::vk {
 namespace {
@@ -24,9 +26,20 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   o.jitWarmup = env::choice("WB_JIT_WARMUP");
   o.pipelineLibraries = env::choice("WB_PIPELINE_LIBRARY");
   if (env::choice("WB_DEFERRED_HOST_OPS") == false) o.deferredHostOps = false;
-  if (const auto v = env::get("WB_CPU_DEVICE_CODE")) o.cpuShapedShaderCode = *v == "1";
+  o.cpuShapedShaderCode = env::choice("WB_CPU_DEVICE_CODE");
+  env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   return o;
+}
+
+void checkDriverEnvironment() {
+  const auto width = env::get("LP_NATIVE_VECTOR_WIDTH");
+  if (!width) return;
+  for (const char* accepted : {"128", "256", "512"})
+    if (*width == accepted) return;
+  throw std::invalid_argument("LP_NATIVE_VECTOR_WIDTH=" + printableExcerpt(*width, 40) +
+                              ": llvmpipe (lavapipe) compiles 128, 256 or 512 bits wide; other widths crash "
+                              "it (unset it for the workbench's 128)");
 }
 
 DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides) {
@@ -47,6 +60,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
 }
 
 std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheDir) {
+  checkDriverEnvironment();
   static const std::vector<std::string> applied = [&] {
     std::vector<std::string> set;
     auto setDefault = [&](const char* name, const std::string& value) {

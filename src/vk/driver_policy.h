@@ -27,7 +27,8 @@ struct PolicyOverrides {
   std::optional<bool> pipelineLibraries;    // WB_PIPELINE_LIBRARY=0|1
   std::optional<bool> deferredHostOps;      // WB_DEFERRED_HOST_OPS=0 (on by default where supported)
   std::optional<bool> cpuShapedShaderCode;  // WB_CPU_DEVICE_CODE=0|1
-  std::optional<double> rebuildRestRatio;   // WB_REBUILD_YIELD=R (negative counts as 0)
+  std::optional<double> rebuildRestRatio;   // WB_REBUILD_YIELD=R (0 .. 1000)
+  // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
 
@@ -72,7 +73,12 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
 // under
 //   the workbench's shader cache, one folder per width, because llvmpipe's cache key leaves the width out and
 //   code compiled at another width corrupts memory when loaded.
-// Returns "NAME=value" for each variable it set.
+// Returns "NAME=value" for each variable it set. Throws as checkDriverEnvironment() does.
 std::vector<std::string> applyDriverDefaults(const std::filesystem::path& cacheDir);
+
+// The variables of the drivers that the user may set and a driver would crash on: LP_NATIVE_VECTOR_WIDTH is
+// 128, 256 or 512 (llvmpipe takes any number and crashes compiling at 64, 384, 1024 or 0). Throws
+// std::invalid_argument naming the variable and what it takes.
+void checkDriverEnvironment();
 
 }  // namespace wb::vk

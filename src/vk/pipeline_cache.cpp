@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "common/file_io.h"
 #include "vk/check.h"
 
@@ -64,20 +65,10 @@ bool PipelineCache::save() {
   if (vkGetPipelineCacheData(device_, cache_, &size, data.data()) != VK_SUCCESS) return false;
   std::error_code ec;
   std::filesystem::create_directories(file_.parent_path(), ec);
-  const auto tmp = file_.string() + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(data.data(), std::streamsize(size));
-    if (!f) {
-      warning_ = "cannot write pipeline cache " + tmp;
-      std::filesystem::remove(tmp, ec);
-      return false;
-    }
-  }
-  std::filesystem::rename(tmp, file_, ec);
-  if (ec) {
-    warning_ = "cannot write pipeline cache " + file_.string() + ": " + ec.message();
-    std::filesystem::remove(tmp, ec);
+  try {
+    writeFileAtomically(file_, std::string_view(data.data(), size), "pipeline cache", FileKind::Cache);
+  } catch (const std::exception& e) {
+    warning_ = e.what();
     return false;
   }
   return true;

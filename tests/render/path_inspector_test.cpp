@@ -67,6 +67,14 @@ TEST(PathInspector, RecordsSumToThePixelTheTracerAccumulated) {
       ASSERT_TRUE(s.record.accumulated) << "the default scene gives finite samples";
       // The recorded terms add up to the value raygen accumulated for the sample...
       expectClose(s.sum, s.record.radiance, 1e-5f, "sample " + std::to_string(i));
+      // ... and what raygen added at each vertex is what closest-hit recorded: emission and visible light
+      // samples, times the throughput.
+      for (const auto& v : s.vertices) {
+        glm::vec3 reaching = v.record.emitted;
+        for (const auto& l : v.lights)
+          if (l.status == WB_INSPECT_NEE_TRACED && l.visible) reaching += l.contribution;
+        expectClose(v.added, v.record.throughputIn * reaching, 1e-5f, "vertex added");
+      }
       sum += glm::dvec3(s.sum);
       ++accumulated;
       vertices += s.vertices.size();

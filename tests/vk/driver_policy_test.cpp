@@ -3,9 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "vk/driver_policy.h"
 
+using wb::vk::checkDriverEnvironment;
 using wb::vk::DevicePolicy;
 using wb::vk::DeviceTraits;
 using wb::vk::PolicyOverrides;
@@ -86,8 +91,8 @@ TEST(DriverPolicy, TheEnvironmentIsReadThroughOneReader) {
   ::setenv("WB_JIT_WARMUP", "0", 1);
   ::setenv("WB_PIPELINE_LIBRARY", "1", 1);
   ::setenv("WB_DEFERRED_HOST_OPS", "0", 1);
-  ::setenv("WB_CPU_DEVICE_CODE", "yes", 1);  // anything but 1 means the GPU shape
-  ::setenv("WB_REBUILD_YIELD", "", 1);       // empty: the default
+  ::setenv("WB_CPU_DEVICE_CODE", "0", 1);
+  ::setenv("WB_REBUILD_YIELD", "", 1);  // empty: the default
   const PolicyOverrides o = PolicyOverrides::fromEnvironment();
   EXPECT_EQ(o.jitWarmup, false);
   EXPECT_EQ(o.pipelineLibraries, true);
@@ -99,7 +104,52 @@ TEST(DriverPolicy, TheEnvironmentIsReadThroughOneReader) {
   for (const char* v : {"WB_JIT_WARMUP", "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS", "WB_CPU_DEVICE_CODE",
                         "WB_REBUILD_YIELD"})
     ::unsetenv(v);
+  // A value a variable cannot take is refused naming the variable (it used to mean the default, or "on").
+  for (const auto& [name, value] :
+       std::vector<std::pair<const char*, const char*>>{{"WB_JIT_WARMUP", "banana"},
+                                                        {"WB_PIPELINE_LIBRARY", "abc"},
+                                                        {"WB_CPU_DEVICE_CODE", "yes"},
+                                                        {"WB_REBUILD_YIELD", "-5"},
+                                                        {"WB_REBUILD_YIELD", "0x10"},
+                                                        {"WB_DEFERRED_HOST_OPS", "no"}}) {
+    ::setenv(name, value, 1);
+    try {
+      PolicyOverrides::fromEnvironment();
+      ADD_FAILURE() << name << "=" << value << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+    ::unsetenv(name);
+  }
   const PolicyOverrides none = PolicyOverrides::fromEnvironment();
   EXPECT_FALSE(none.jitWarmup || none.pipelineLibraries || none.deferredHostOps || none.cpuShapedShaderCode ||
                none.rebuildRestRatio);
+}
+
+// llvmpipe takes any LP_NATIVE_VECTOR_WIDTH and segfaults compiling at widths other than 128, 256 and 512
+// (measured on Mesa 25.0.7: 0, 64 and 384 crash, 1024 smashes the stack): those are refused naming the
+// variable (issue 33).
+TEST(DriverPolicy, LlvmpipeVectorWidthIsOneItCompiles) {
+  const char* before = std::getenv("LP_NATIVE_VECTOR_WIDTH");
+  const std::string saved = before ? before : "";
+  for (const char* width : {"128", "256", "512"}) {
+    ::setenv("LP_NATIVE_VECTOR_WIDTH", width, 1);
+    EXPECT_NO_THROW(checkDriverEnvironment()) << width;
+  }
+  for (const char* width : {"0", "64", "-1", "384", "1024", "0x80", "256 ", "abc"}) {
+    ::setenv("LP_NATIVE_VECTOR_WIDTH", width, 1);
+    try {
+      checkDriverEnvironment();
+      ADD_FAILURE() << width << " was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("LP_NATIVE_VECTOR_WIDTH="), std::string::npos) << e.what();
+    }
+  }
+  ::setenv("LP_NATIVE_VECTOR_WIDTH", "", 1);  // empty: unset
+  EXPECT_NO_THROW(checkDriverEnvironment());
+  if (before) {
+    ::setenv("LP_NATIVE_VECTOR_WIDTH", saved.c_str(), 1);
+  } else {
+    ::unsetenv("LP_NATIVE_VECTOR_WIDTH");
+  }
 }

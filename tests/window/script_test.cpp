@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "app/window/script.h"
 
@@ -63,4 +65,54 @@ TEST(Script, AWaitThatTimesOutFailsTheScript) {
   EXPECT_TRUE(ok.step(host));
   host.sampleCount = 2;
   EXPECT_FALSE(ok.step(host));
+}
+
+// Counts and durations that would never end, and camera moves that make the camera NaN, are refused when the
+// line is read, naming the file and line (issue 33: `frames nan`, `frames -1`, `orbit nan inf` were taken).
+TEST(Script, CountsDurationsAndMovesAreCheckedWhenRead) {
+  for (const char* line :
+       {"frames nan", "frames -1", "frames 0", "frames 2.5", "frames 0x10", "wait_reload inf",
+        "wait_reload 0", "wait_samples -1", "wait_samples 4 nan", "wait_file x -3", "sleep -1",
+        "wait_mode 1e999", "orbit nan 0", "orbit 0 inf", "orbit 1e30 0", "resize 10 10", "resize 640 nan"}) {
+    wb::app::Script s;
+    try {
+      s.addLine(line, "t.txt:3");
+      ADD_FAILURE() << line << " was taken";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("t.txt:3: ", 0), 0u) << e.what();
+    }
+  }
+  wb::app::Script ok;
+  for (const char* line : {"frames 3", "wait_reload 0.5", "wait_samples 4", "wait_samples 4 10", "sleep 0",
+                           "orbit -20.5 3", "resize 640 480", "wait_file x 2"})
+    EXPECT_NO_THROW(ok.addLine(line, "t.txt:1")) << line;
+}
+
+TEST(Script, AnUnknownLineIsEchoedTruncated) {
+  wb::app::Script s;
+  try {
+    s.addLine(std::string(5 << 20, 'z'), "t.txt:1");
+    FAIL() << "an unknown command was taken";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_LT(what.size(), 200u);
+    EXPECT_NE(what.find("(5242880 bytes)"), std::string::npos) << what;
+  }
+}
+
+TEST(Script, ListsTheFilesItWrites) {
+  wb::app::Script s;
+  s.addLine("save out/a", "t:1");
+  s.addLine("screenshot b.png", "t:2");
+  s.addLine("stats c.json", "t:3");
+  s.addLine("inspect d.json", "t:4");
+  s.addLine("frames 1", "t:5");
+  std::vector<std::string> paths, whats;
+  for (const auto& o : s.outputs()) {
+    paths.push_back(o.path);
+    whats.push_back(o.what);
+  }
+  EXPECT_EQ(paths,
+            (std::vector<std::string>{"out/a.png", "out/a.exr", "out/a.json", "b.png", "c.json", "d.json"}));
+  EXPECT_EQ(whats.front(), "t:1: save");
 }

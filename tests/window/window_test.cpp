@@ -490,6 +490,29 @@ TEST(Window, SaveDebugViewResizeAndImguiIni) {
   EXPECT_TRUE(fs::exists(dir / "layout.ini")) << "--imgui-ini names where the layout is kept";
 }
 
+// `save` then `quit` wrote nothing: the save waited for a frame that the quit never drew (issue 33). A save
+// that fails is the script's error, naming its line.
+TEST(Window, SaveThenQuitWritesTheFilesAndAFailedSaveEndsTheScript) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("save_quit");
+  writeFile(dir / "s.txt", "wait_samples 1 300\nsave " + (dir / "saved").string() + "\nquit\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_GT(pngWidth(dir / "saved.png"), 0);
+  EXPECT_TRUE(fs::exists(dir / "saved.exr"));
+  EXPECT_TRUE(readJson(dir / "saved.json").contains("camera"));
+  // A full disk (simulated: every file write of the workbench fails as on one; the outputs' checks before
+  // the session pass, as they do on a disk that fills up later).
+  writeFile(dir / "f.txt", "wait_samples 1 300\nsave " + (dir / "full").string() + "\nframes 1\n");
+  auto f = runWindow("--script " + (dir / "f.txt").string(), "WB_SIMULATE_DISK_FULL=1");
+  EXPECT_EQ(f.code, 1) << f.output;
+  EXPECT_NE(f.output.find("script error: " + (dir / "f.txt").string() + ":2: cannot write '" +
+                          (dir / "full.png").string() + "': No space left on device"),
+            std::string::npos)
+      << f.output;
+  EXPECT_FALSE(fs::exists(dir / "full.png"));
+}
+
 TEST(Window, VsyncToggleRecreatesTheSwapchain) {
   REQUIRE_XVFB();
   const auto dir = tempDir("vsync");

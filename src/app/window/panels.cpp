@@ -329,7 +329,8 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
     inspectPanel(c);
   }
   if (ImGui::CollapsingHeader("Lights and environment")) lightsPanel(c);
-  if (ImGui::CollapsingHeader("Shaders", c.session.loop().hot().currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
+  if (ImGui::CollapsingHeader(
+          "Shaders", c.session.loop().hot().currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     shadersPanel(c);
   ImGui::PopItemWidth();
   ImGui::End();

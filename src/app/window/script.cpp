@@ -1,9 +1,14 @@
 #include "app/window/script.h"
 
-#include <fstream>
+#include <cstdio>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "common/file_io.h"
+#include "common/numbers.h"
+#include "common/printable.h"
 
 namespace wb::app {
 namespace {
@@ -13,21 +18,47 @@ const std::set<std::string> kCommands = {
     "wait_reload", "wait_samples", "reset_camera", "reset",       "reload",    "quit",      "resize",
     "wait_file",   "inspect",      "sleep",        "switch_mode", "wait_mode", "ab_revert", "ab_accept"};
 
+// Arguments are checked when the script is read (Script::addLine): every number here is a finite decimal.
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;
-  try {
-    return std::stod(w[i]);
-  } catch (const std::exception&) {
-    throw std::runtime_error(where + ": '" + w[i] + "' is not a number");
+  const auto v = parseDecimal(w[i]);
+  if (!v) throw std::runtime_error(where + ": '" + w[i] + "' is not a finite decimal number");
+  return *v;
+}
+
+// A script line as messages show it: at most 80 characters of it, control characters made visible.
+std::string shownText(const std::string& text) {
+  return printableExcerpt(text, 80);
+}
+
+// A number argument in [lo, hi] (an integer where `integer`), or the reason it is not.
+void checkNumber(const std::vector<std::string>& w, size_t i, const std::string& what, double lo, double hi,
+                 bool integer, const std::string& where) {
+  if (i >= w.size()) return;
+  const auto v = integer ? std::optional<double>() : parseDecimal(w[i]);
+  const auto u = integer ? parseDecimalUnsigned(w[i]) : std::optional<uint64_t>();
+  const double value = integer ? (u ? double(*u) : -1.0) : v.value_or(lo - 1.0);
+  if ((integer && !u) || (!integer && !v) || value < lo || value > hi) {
+    char range[96];
+    std::snprintf(range, sizeof range, integer ? "%.0f .. %.0f" : "%g .. %g", lo, hi);
+    throw std::runtime_error(where + ": " + w[0] + ": " + what + " must be " +
+                             (integer ? "a whole decimal number " : "a decimal number ") + range + ", got '" +
+                             shownText(w[i]) + "'");
   }
 }
+
+// The longest wait a script may ask for (about 11 days): longer is a typo, and still a finite time.
+constexpr double kMaxWaitSeconds = 1e6;
 
 }  // namespace
 
 Script Script::fromFile(const std::filesystem::path& path) {
-  std::ifstream f(path);
-  if (!f) throw std::runtime_error("cannot read script '" + path.string() + "'");
+  std::string why;
+  // A regular file only: a named pipe would block the window before it opens, a folder is no script.
+  const auto text = readRegularFile(path, &why, uint64_t{64} << 20);
+  if (!text) throw std::runtime_error("--script: cannot read '" + path.string() + "': " + why);
   Script s;
+  std::istringstream f(*text);
   std::string line;
   int n = 0;
   while (std::getline(f, line)) s.addLine(line, path.string() + ":" + std::to_string(++n));
@@ -41,7 +72,7 @@ void Script::addLine(const std::string& line, const std::string& where) {
   for (std::string w; ss >> w;) c.words.push_back(w);
   if (c.words.empty() || c.words[0][0] == '#') return;
   if (!kCommands.count(c.words[0]))
-    throw std::runtime_error(where + ": unknown command '" + c.words[0] + "'");
+    throw std::runtime_error(where + ": unknown command '" + shownText(c.words[0]) + "'");
   const std::string& cmd = c.words[0];
   const size_t need = cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
                       : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" ||
@@ -54,7 +85,38 @@ void Script::addLine(const std::string& line, const std::string& where) {
     for (size_t i = 3; i < c.words.size(); ++i) c.words[2] += " " + c.words[i];
     c.words.resize(3);
   }
+  // Every count and duration is finite and in range: a script that never ends is refused when read.
+  const auto& w = c.words;
+  if (cmd == "frames") checkNumber(w, 1, "N", 1, 1e9, true, where);
+  if (cmd == "wait_samples") checkNumber(w, 1, "N", 0, UINT32_MAX, true, where);
+  if (cmd == "wait_reload" || cmd == "wait_mode")
+    checkNumber(w, 1, "SECONDS", 1e-3, kMaxWaitSeconds, false, where);
+  if (cmd == "wait_samples" || cmd == "wait_file")
+    checkNumber(w, 2, "SECONDS", 1e-3, kMaxWaitSeconds, false, where);
+  if (cmd == "sleep") checkNumber(w, 1, "SECONDS", 0, kMaxWaitSeconds, false, where);
+  if (cmd == "orbit") {
+    checkNumber(w, 1, "DX", -1e6, 1e6, false, where);
+    checkNumber(w, 2, "DY", -1e6, 1e6, false, where);
+  }
+  if (cmd == "resize") {
+    checkNumber(w, 1, "W", 64, 16384, true, where);
+    checkNumber(w, 2, "H", 64, 16384, true, where);
+  }
   commands_.push_back(std::move(c));
+}
+
+std::vector<ScriptOutput> Script::outputs() const {
+  std::vector<ScriptOutput> out;
+  for (const auto& c : commands_) {
+    const std::string& cmd = c.words[0];
+    const std::string what = c.where + ": " + cmd;
+    if (cmd == "save") {
+      for (const char* ext : {".png", ".exr", ".json"}) out.push_back({c.words[1] + ext, what});
+    } else if (cmd == "screenshot" || cmd == "stats" || cmd == "inspect") {
+      out.push_back({c.words[1], what});
+    }
+  }
+  return out;
 }
 
 bool Script::waitingForEvent() const {

@@ -2,7 +2,8 @@
 //   frames N                 render N frames
 //   set NAME VALUE           a setting, as --set NAME=VALUE (see settingNamesHelp())
 //   screenshot FILE.png      the window image (panel included) of the next frame, before later commands apply
-//   save BASE                the render: BASE.png (tonemapped), BASE.exr (linear), BASE.json (parameters)
+//   save BASE                the render: BASE.png (tonemapped), BASE.exr (linear), BASE.json (parameters),
+//                            written when the line runs (a failure ends the script with exit status 1)
 //   stats FILE.json          the session's statistics now (samples, resets, shader errors, frame times)
 //   copy SRC DST             copy a file (e.g. a broken shader over a watched one)
 //   wait_reload [SECONDS]    render until the next shader reload is applied (default 20 s; past it the
@@ -56,12 +57,23 @@ class ScriptHost {
   virtual uint32_t samples() const = 0;
 };
 
+// A file a script writes (save, screenshot, stats, inspect), and the line that writes it.
+struct ScriptOutput {
+  std::string path;
+  std::string what;  // "file:line: save"
+};
+
 class Script {
  public:
   Script() = default;
-  // Throws std::runtime_error naming the file and line for unreadable files and unknown commands.
+  // Reads a regular file (a named pipe or a folder is refused, never waited on). Throws std::runtime_error
+  // naming the file and line for unreadable files, unknown commands and arguments out of range.
   static Script fromFile(const std::filesystem::path& path);
+  // Checks the line's command and arguments: counts and durations are finite decimal numbers in range
+  // (frames at least 1; waits above 0 s; orbit within +-1e6 pixels).
   void addLine(const std::string& line, const std::string& where);
+  // Every file the script writes, so that they can be checked before the session starts.
+  std::vector<ScriptOutput> outputs() const;
 
   // Runs commands until one has to wait for frames. Call once per frame boundary. Returns false once every
   // command has run. Command failures throw std::runtime_error naming the script line.

@@ -102,9 +102,16 @@ void WindowCommand::finish() {
   if (!parseWindowSize(o.windowSize, o.windowWidth, o.windowHeight))
     throw std::invalid_argument("--window: expected WxH (at least 64x64), got '" + o.windowSize + "'");
   if (!(o.scale > 0.0f && o.scale <= 2.0f)) throw std::invalid_argument("--scale: expected 0 < scale <= 2");
+  if (app_ && app_->get_option("--frames")->count() > 0 && o.frames == 0)
+    throw std::invalid_argument("--frames: at least 1 (without it the window runs until it is closed)");
   // Files written at exit are checked now, not after the session.
   if (!o.screenshot.empty()) requireWritableFile(o.screenshot, "--screenshot");
   if (!o.statsPath.empty()) requireWritableFile(o.statsPath, "--stats");
+  // The script is read now (a bad line is refused before the window opens), and the files it writes are
+  // checked as the flags' are.
+  if (!o.scriptPath.empty()) {
+    for (const auto& out : Script::fromFile(o.scriptPath).outputs()) requireWritableFile(out.path, out.what);
+  }
 }
 
 int WindowCommand::run() {

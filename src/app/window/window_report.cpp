@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include "app/hybrid_json.h"
@@ -131,8 +130,7 @@ std::string saveRender(live::LiveSession& session, const CameraController& camer
   auto image = session.image();
   eval::writePng(base + ".png", image, display.exposure, display.tonemap);
   eval::writeExr(base + ".exr", image);
-  std::ofstream f(base + ".json");
-  f << jsonText(parametersJson(session, camera), 2) << "\n";
+  writeJsonFile(base + ".json", parametersJson(session, camera), "save");
   std::printf("workbench: saved %s.png (tonemapped), %s.exr (linear), %s.json\n", base.c_str(), base.c_str(),
               base.c_str());
   std::fflush(stdout);
@@ -177,9 +175,7 @@ void writeInspection(live::LiveSession& session, const std::string& path) {
                              {"mean", {e.mean().x, e.mean().y, e.mean().z}},
                              {"variance", {e.variance().x, e.variance().y, e.variance().z}}};
   }
-  std::ofstream f(path);
-  f << jsonText(j, 2) << "\n";
-  if (!f.flush()) throw std::runtime_error("inspect: cannot write '" + path + "'");
+  writeJsonFile(path, j, "inspect");
 }
 
 }  // namespace wb::app

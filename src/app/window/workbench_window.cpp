@@ -92,6 +92,10 @@ void WorkbenchWindow::scriptCommand(const std::string& name) {
   if (name == "ab_accept") session_->ab().acceptRequested = true;
 }
 
+void WorkbenchWindow::scriptSave(const std::string& base) {
+  lastSaved_ = saveRender(*session_, input_->camera(), base);
+}
+
 void WorkbenchWindow::scriptResize(int width, int height) {
   glfwSetWindowSize(window_, width, height);
 }
@@ -121,9 +125,7 @@ void WorkbenchWindow::writeStats(const std::string& path) {
   j["trace_gpu_ms_last"] = presenter_->traceMs();
   j["display_gpu_ms_last"] = presenter_->displayMs();
   j["parameters"] = parametersJson(*session_, input_->camera());
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write stats '" + path + "'");
-  f << jsonText(j, 2) << "\n";
+  writeJsonFile(path, j, "stats");
 }
 
 Rect WorkbenchWindow::imageRect(const Rect& view) const {

@@ -45,7 +45,9 @@ class WorkbenchWindow : public ScriptHost {
   // ScriptHost
   void scriptSet(const std::string& name, const std::string& value) override { session_->set(name, value); }
   void scriptScreenshot(const std::string& path) override { screenshotPath_ = path; }
-  void scriptSave(const std::string& base) override { session_->state().saveRequest = base; }
+  // Saved when the line runs (the device is idle at a script step): a `quit` after it cannot lose it, and a
+  // failure ends the script.
+  void scriptSave(const std::string& base) override;
   void scriptStats(const std::string& path) override { writeStats(path); }
   void scriptOrbit(float dx, float dy) override { input_->orbit(dx, dy); }
   void scriptCommand(const std::string& name) override;
