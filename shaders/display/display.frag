@@ -10,6 +10,7 @@ layout(set = 0, binding = WB_DISPLAY_BIND_NORMAL, rgba16f) uniform readonly imag
 layout(set = 0, binding = WB_DISPLAY_BIND_INFO, rgba16f) uniform readonly image2D infoImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_PREVIEW, rgba32f) uniform readonly image2D previewImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_STATS, rgba32f) uniform readonly image2D statsImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_COST, rgba32f) uniform readonly image2D costImage;
 
 layout(push_constant) uniform Push { DisplayPush pc; };
 
@@ -24,7 +25,9 @@ void main() {
   vec3 color;
   bool display = true;  // false: the view is data, shown without tonemapping
   const float lastBounce = max(pc.maxVertices - 1.0, 1.0);
-  if (pc.view == WB_VIEW_BEAUTY || pc.view == WB_VIEW_DROPPED || pc.view == WB_VIEW_NAN_SOURCE) {
+  const bool costView = pc.view == WB_VIEW_COST || pc.view == WB_VIEW_INEFFICIENCY;
+  if (pc.view == WB_VIEW_BEAUTY || pc.view == WB_VIEW_DROPPED || pc.view == WB_VIEW_NAN_SOURCE ||
+      (costView && pc.costFull <= 0.0)) {
     if (uint(p.y) >= pc.tracedRows && pc.previewSize.x > 0u) {
       color = imageLoad(previewImage, ivec2(uv * vec2(pc.previewSize))).rgb;
     } else {
@@ -38,6 +41,8 @@ void main() {
       const float bounce = imageLoad(statsImage, p).a;
       color = bounce < 1.0e29 ? heatRamp(bounce / lastBounce) : color * 0.25;
       display = bounce >= 1.0e29;
+    } else if (costView) {
+      color *= 0.25;  // no cost data (yet, or no shader clock): the panel says which
     }
   } else if (pc.view == WB_VIEW_ALBEDO) {
     color = imageLoad(albedoImage, p).rgb;
@@ -54,6 +59,18 @@ void main() {
   } else if (pc.view == WB_VIEW_RR_END) {
     const vec4 s = imageLoad(statsImage, p);
     color = s.g > 0.0 ? heatRamp(s.b / s.g / lastBounce) : vec3(0.1, 0.0, 0.15);
+    display = false;
+  } else if (pc.view == WB_VIEW_COST) {
+    const vec4 cost = imageLoad(costImage, p);
+    color = heatRamp((pc.costMedian != 0u ? cost.a : cost.r) / pc.costFull);
+    display = false;
+  } else if (pc.view == WB_VIEW_INEFFICIENCY) {
+    // Relative variance of one sample x its clocks: noisy and expensive at once (1 / efficiency).
+    const float mean = dot(imageLoad(accumImage, p).rgb, vec3(0.2126, 0.7152, 0.0722));
+    const float variance = max(imageLoad(statsImage, p).r - mean * mean, 0.0);
+    const vec4 cost = imageLoad(costImage, p);
+    const float v = mean > 0.0 ? variance / (mean * mean) * (pc.costMedian != 0u ? cost.a : cost.r) : 0.0;
+    color = heatRamp(v / max(pc.inefficiencyFull, 1e-30));
     display = false;
   } else if (pc.view == WB_VIEW_VARIANCE) {
     // Relative standard deviation r of one sample, shown as r / (1 + r): 1 (as much noise as signal) is mid-scale,

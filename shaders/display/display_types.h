@@ -10,6 +10,7 @@
 #define WB_DISPLAY_BIND_INFO 3     // rgba16f AOV: geometric normal, a = path vertices
 #define WB_DISPLAY_BIND_PREVIEW 4  // rgba32f low-resolution preview shown under rows not yet traced
 #define WB_DISPLAY_BIND_STATS 5    // rgba32f AOV: the heat maps' data (WB_BIND_AOV_STATS in shared/bindings.h)
+#define WB_DISPLAY_BIND_COST 6     // rgba32f AOV: clocks per sample (WB_BIND_AOV_COST, the cost variant's)
 
 // What the display shows (the Inspect panel's debug view). Switching never resets accumulation.
 #define WB_VIEW_BEAUTY 0u
@@ -22,7 +23,9 @@
 #define WB_VIEW_RR_END 7u      // heat map: mean bounce where Russian roulette ended paths; dark where it ended none
 #define WB_VIEW_VARIANCE 8u    // heat map: relative standard deviation of one sample (fireflies are red)
 #define WB_VIEW_NAN_SOURCE 9u  // heat map: lowest bounce where a sample became NaN/Inf; elsewhere the dimmed image
-#define WB_VIEW_COUNT 10u
+#define WB_VIEW_COST 10u       // heat map: shader clocks per sample (the cost variant), full scale costFull
+#define WB_VIEW_INEFFICIENCY 11u  // heat map: relative variance x clocks per sample, full scale inefficiencyFull
+#define WB_VIEW_COUNT 12u
 
 // Tonemappers, in the order of eval::Tonemap.
 #define WB_TONEMAP_CLAMP 0u
@@ -42,6 +45,9 @@ struct DisplayPush {
   uint tracedRows;     // rows [0, tracedRows) hold the current sample; the rest show the preview
   float sceneScale;    // scene bounding radius (depth view)
   float maxVertices;   // bounce heat map full scale (max bounces + 1)
+  float costFull;      // cost view: clocks per sample at the top of the ramp (0: no cost data, the dimmed image)
+  float inefficiencyFull;  // inefficiency view: relative variance x clocks at the top of the ramp
+  uint costMedian;     // 1: a pixel's cost is its running median (the cost AOV's a), 0: its mean (r)
   float pad0;
 };
 

@@ -3,6 +3,7 @@
 #ifndef WB_TONEMAP_GLSL
 #define WB_TONEMAP_GLSL
 #include "display_types.h"
+#include "../shared/heat_ramp.h"  // heatRamp
 
 float tonemapChannel(float v, uint op) {
   // As src/eval/image.cpp: NaN is black; +inf and huge values are white (the curves would overflow to NaN).
@@ -26,16 +27,5 @@ float linearToSrgb(float v) {
 }
 
 vec3 linearToSrgb(vec3 v) { return vec3(linearToSrgb(v.r), linearToSrgb(v.g), linearToSrgb(v.b)); }
-
-// A perceptual blue -> green -> yellow -> red ramp for heat maps (t in [0, 1]).
-vec3 heatRamp(float t) {
-  t = clamp(t, 0.0, 1.0);
-  const vec3 c0 = vec3(0.05, 0.05, 0.35), c1 = vec3(0.0, 0.6, 0.9), c2 = vec3(0.2, 0.85, 0.3);
-  const vec3 c3 = vec3(1.0, 0.85, 0.1), c4 = vec3(0.95, 0.1, 0.05);
-  if (t < 0.25) return mix(c0, c1, t * 4.0);
-  if (t < 0.5) return mix(c1, c2, (t - 0.25) * 4.0);
-  if (t < 0.75) return mix(c2, c3, (t - 0.5) * 4.0);
-  return mix(c3, c4, (t - 0.75) * 4.0);
-}
 
 #endif

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#define WB_STAGE WB_STAGE_CLOSEST_HIT
 // All surface shading: material evaluation, next-event estimation (directional lights, with MIS when they have an
 // angular size; environment and area lights with MIS), BRDF sampling of the continuation ray, handed back to
 // raygen through the payload together with the shadow rays that decide the light samples (raygen traces them: see
@@ -18,6 +19,10 @@ layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
 hitAttributeEXT vec2 attribs;
 
 void main() {
+#if WB_TIMED
+  const uint shadeStart = wbClock();  // the cost variants: this shading's clocks go back in the payload
+#endif
+  wbDebugAtBounce(payload.bounce);
   initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, pc.sampleIndex);
   const GeometryInfo g = hitGeometry();
   const Material m = materials[g.materialIndex];
@@ -300,10 +305,16 @@ void main() {
 #endif
   if (s.pdf <= 0.0 || dot(s.wi, ng) <= 0.0) {
     payload.status = PAYLOAD_ABSORBED;  // below the geometric surface: would leak light through it
+#if WB_TIMED
+    payload.shadeClocks = wbClock() - shadeStart;
+#endif
     return;
   }
   payload.status = PAYLOAD_CONTINUE;
   payload.weight = s.weight;
   payload.pdf = s.pdf;
   payload.direction = s.wi;
+#if WB_TIMED
+  payload.shadeClocks = wbClock() - shadeStart;
+#endif
 }

@@ -4,6 +4,16 @@
 
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
+// WB_CLOCK (the host defines it in the cost and inspecting variants where the device has VK_KHR_shader_clock):
+// 1 the subgroup clock, 2 the device clock (WB_CLOCK_* in shared/pathtracer_types.h).
+#ifndef WB_CLOCK
+#define WB_CLOCK 0
+#endif
+#if WB_CLOCK == 1
+#extension GL_ARB_shader_clock : require
+#elif WB_CLOCK == 2
+#extension GL_EXT_shader_realtime_clock : require
+#endif
 
 #include "../shared/bindings.h"
 #include "../shared/pathtracer_types.h"
@@ -57,5 +67,30 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 #if WB_INSPECT
 #include "inspect.glsl"
 #endif
+
+// WB_COST=1: the cost variant, which measures every sample with the shader clock into the cost AOV
+// (WB_BIND_AOV_COST). It and the inspecting variant time the trace calls and the shading (WB_TIMED): the hit and
+// miss shaders hand their own time back in the payload.
+#ifndef WB_COST
+#define WB_COST 0
+#endif
+#if (WB_COST != 0 || WB_INSPECT != 0) && WB_CLOCK != 0
+#define WB_TIMED 1
+#else
+#define WB_TIMED 0
+#endif
+#if WB_COST || WB_INSPECT
+// The low 32 bits of the clock: a sample's or a call's span fits them, and unsigned subtraction survives a wrap.
+#if WB_CLOCK == 1
+uint wbClock() { return clock2x32ARB().x; }
+#elif WB_CLOCK == 2
+uint wbClock() { return clockRealtime2x32EXT().x; }
+#else
+uint wbClock() { return 0u; }
+#endif
+#endif
+
+// wbPrint / wbAssert (shared/debug_print.h), recorded in the inspecting and asserts variants (debug.glsl).
+#include "debug.glsl"
 
 #endif

@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#define WB_STAGE WB_STAGE_MISS
 // Environment miss: the radiance of the environment along the ray, MIS-weighted against environment NEE, and of
 // the disc of every sun of angular size the ray points into, MIS-weighted against the sun's cone sample.
 #include "common.glsl"
@@ -10,6 +11,10 @@
 layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
 
 void main() {
+#if WB_TIMED
+  const uint shadeStart = wbClock();  // the cost variants: this shading's clocks go back in the payload
+#endif
+  wbDebugAtBounce(payload.bounce);
   const vec3 dir = gl_WorldRayDirectionEXT;
   // A BRDF-sampled ray (pdf > 0) that escapes is the second strategy for the lights NEE sampled (MIS), or, with
   // light sampling only, reaches them through NEE alone (weight 0). Camera rays and BRDF sampling alone: weight 1.
@@ -46,4 +51,7 @@ void main() {
   payload.albedo = vec3(0.0);
   payload.normal = vec3(0.0);
   payload.geoNormal = vec3(0.0);
+#if WB_TIMED
+  payload.shadeClocks = wbClock() - shadeStart;
+#endif
 }

@@ -38,7 +38,11 @@ struct PathPayload {
   vec3 albedo;     // out at bounce 0: base colour (AOV)
   uint shadowRequestCount; // out: valid entries of shadowRequests
   vec3 normal;     // out at bounce 0: shading normal (AOV)
+#if WB_TIMED
+  uint shadeClocks;  // out: the clocks closest-hit or the environment miss shader spent (the cost variants)
+#else
   float pad;
+#endif
   vec3 geoNormal;  // out at bounce 0: geometric normal, facing the ray (AOV)
   float pad2;
   ShadowRequest shadowRequests[WB_SHADOW_REQUESTS];  // out: NEE shadow rays, all leaving from origin

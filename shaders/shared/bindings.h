@@ -31,6 +31,17 @@
 #define WB_BIND_INSPECT_HEADER 17    // storage buffer InspectHeader: which pixel and how many records
 #define WB_BIND_INSPECT_SAMPLES 18   // storage buffer InspectSample[]: one per recorded sample
 #define WB_BIND_INSPECT_VERTICES 19  // storage buffer InspectVertex[]: vertexCapacity per recorded sample
+// The cost variant's AOV (WB_COST, shaders/pathtracer/raygen.rgen), rgba32f storage image in the shader clock's
+// units per sample: means over the accumulated samples of r = the whole sample, g = its trace calls less the hit
+// and miss shaders they ran (traversal, any-hit), b = closest-hit and environment miss shading; a = a running
+// median of the whole sample (robust to preempted invocations on a CPU device)
+#define WB_BIND_AOV_COST 21
+// wbPrint's records in the WB_INSPECT build (shaders/pathtracer/debug.glsl): storage buffer PrintRecord[],
+// WB_PRINTS_PER_SAMPLE per recorded sample
+#define WB_BIND_INSPECT_PRINTS 22
+// wbAssert's failures in the WB_ASSERTS build: storage buffers AssertHeader and AssertRecord[]
+#define WB_BIND_ASSERT_HEADER 23
+#define WB_BIND_ASSERT_RECORDS 24
 
 // ---- the hybrid modes (G-buffer raster, shadow/AO and reflection ray tracing, composite compute) ----
 #define WB_BIND_HYBRID_FRAME 40      // uniform buffer HybridUniforms

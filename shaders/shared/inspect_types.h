@@ -64,7 +64,7 @@ struct InspectHeader {
   uint firstSample;     // WB_INSPECT_FIRST: the first sample recorded
   uint sampleCapacity;  // InspectSample records
   uint vertexCapacity;  // InspectVertex records per sample (vertices beyond are traced, not recorded)
-  uint pad0;
+  uint clock;           // which shader clock the cost fields count (WB_CLOCK_*); written by the host
   uint pad1;
 };
 
@@ -115,7 +115,14 @@ struct InspectVertex {
   uint lightSamples;     // light samples taken (records: at most WB_INSPECT_MAX_LIGHT_SAMPLES)
   vec3 added;            // raygen: what it added to the sample at this vertex: throughputIn * (the payload's
                          // radiance + the radiance of every shadow request that reached its light)
+  // raygen, in the shader clock's units (0 where the device has none: InspectHeader.clock): the cost of the
+  // vertex. shadeClocks: closest-hit's shading here; traceClocks: the trace call that found the vertex less
+  // that shading (traversal, any-hit); shadowClocks: the trace calls of its shadow rays.
+  uint shadeClocks;
+  uint traceClocks;
+  uint shadowClocks;
   uint pad0;
+  uint pad1;
   InspectLightSample lights[WB_INSPECT_MAX_LIGHT_SAMPLES];
 };
 
@@ -137,12 +144,12 @@ struct InspectSample {
   vec3 escapeEnvironment;  // miss shader: environment radiance along escapeDirection (no weight)
   float pad0;
   vec3 escapeThroughput;   // the throughput of the escaping ray
-  float pad1;
+  uint prints;             // wbPrint calls the sample made (records: at most WB_PRINTS_PER_SAMPLE)
   vec3 escapeRadiance;     // escapeEnvironment * escapeMis + escapeSun: added times escapeThroughput
   float pad2;
   vec2 jitter;       // the sample's position in the pixel
-  float pad3;
-  float pad4;
+  uint clocks;       // raygen: the whole sample, in the shader clock's units (0 without one)
+  uint escapeClocks; // raygen: the trace call of the escaping ray, its miss shader included
   vec3 escapeSun;    // miss shader: the discs of suns of angular size along escapeDirection, MIS-weighted
   float pad5;
 };

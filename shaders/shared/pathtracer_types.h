@@ -16,6 +16,10 @@
 #ifndef WB_GENERIC_MAX_LIGHTS
 #define WB_GENERIC_MAX_LIGHTS 8u
 #endif
+// The shader clock a cost variant reads (VK_KHR_shader_clock; the host defines WB_CLOCK to one of them).
+#define WB_CLOCK_NONE 0u
+#define WB_CLOCK_SUBGROUP 1u  // GL_ARB_shader_clock: the subgroup's clock (GPU: the multiprocessor's cycles)
+#define WB_CLOCK_DEVICE 2u    // GL_EXT_shader_realtime_clock: the device's clock
 // The a channel of WB_BIND_AOV_STATS where no sample became NaN/Inf.
 #define WB_NO_NON_FINITE 1.0e30
 

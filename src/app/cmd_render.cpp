@@ -40,6 +40,9 @@ void RenderCommand::addFlags(CLI::App& cli) {
       "hold at --max-bounces; without --out only the pixel is traced)");
   cli.add_option("--inspect-out", inspectOut,
                  "path inspector: write the records as JSON (docs/path_inspector.md)");
+  cli.add_flag("--asserts", asserts,
+               "check wbAssert at every pixel (the path tracer's asserts variant): failures on stderr, in "
+               "--stats and marked in OUT.asserts.png; exit status 1 when one failed (docs/cost.md)");
 }
 
 void RenderCommand::finish() {
@@ -47,6 +50,7 @@ void RenderCommand::finish() {
   if (options.params.render.spp == 0) throw std::invalid_argument("--spp: at least 1 sample per pixel");
   inspectSamplesGiven = inspectSamplesOption && inspectSamplesOption->count() > 0;
   finishInspectFlags(*this);
+  finishDebugFlags(*this);
   const std::string ext = std::filesystem::path(out).extension().string();
   if (!out.empty() && ext != ".png" && ext != ".exr")
     throw std::invalid_argument("--out must end in .png or .exr, got '" + out + "'");
@@ -67,6 +71,7 @@ int RenderCommand::run() {
     if (ro.aovAlbedo) requireWritableFile(aovPath(outPath, "albedo"), "--aov albedo");
     if (ro.aovNormal) requireWritableFile(aovPath(outPath, "normal"), "--aov normal");
     if (!stats.empty()) requireWritableFile(stats, "--stats");
+    for (const auto& f : debugOutputs(*this)) requireWritableFile(f, asserts ? "--asserts" : "--aov cost");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench render: error: %s\n", e.what());
     return 2;
@@ -83,6 +88,7 @@ int RenderCommand::run() {
     render::RenderSession session(so);  // prints the scene's and environment's warnings
     if (!inspectOut.empty() && out.empty()) return runInspectOnly(*this, session);
     if (!inspectOut.empty()) startInspection(*this, session);
+    startDebugVariants(*this, session);
     // Ctrl-C stops after the sample in progress; what was accumulated is written, marked partial.
     InterruptRequest interrupt;
     ProgressLine progress("render");
@@ -109,8 +115,9 @@ int RenderCommand::run() {
     const double pixels = double(image.width) * image.height;
     for (double& m : mean) m /= pixels;
     const double samples = pixels * spp;
+    nlohmann::json j;
+    const uint32_t assertFailures = writeDebugOutputs(*this, session, spp, j);  // cost map, asserts, pass_ms
     if (!stats.empty()) {
-      nlohmann::json j;
       j["device"] = session.context().deviceName();
       j["driver"] = session.context().driverInfo();
       j["scene"] = session.scene().sourcePath.string();
@@ -174,6 +181,10 @@ int RenderCommand::run() {
       std::printf("workbench render: %u of %u spp were rendered before the interrupt\n", spp,
                   ro.params.render.spp);
       return 128 + interrupt.signal();
+    }
+    if (assertFailures > 0) {
+      std::fprintf(stderr, "workbench render: %u wbAssert failures\n", assertFailures);
+      return 1;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workbench render: error: %s\n", e.what());

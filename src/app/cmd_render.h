@@ -2,8 +2,11 @@
 // render to an image file; with --inspect-pixel X,Y --inspect-out FILE.json also (or, without --out, only)
 // the path inspector's records of that pixel's samples.
 #pragma once
+#include <filesystem>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "app/command.h"
 #include "app/render_options.h"
@@ -27,6 +30,7 @@ class RenderCommand : public Command {
   bool inspectSamplesGiven = false;
   CLI::Option* inspectSamplesOption = nullptr;
   uint32_t inspectX = 0, inspectY = 0;
+  bool asserts = false;  // --asserts: the path tracer's asserts variant
 };
 
 int runRenderCommand(const std::vector<std::string>& args);
@@ -42,5 +46,20 @@ void startInspection(const RenderCommand& c, render::RenderSession& session);
 void writeInspection(const RenderCommand& c, render::RenderSession& session, uint32_t spp);
 // Without --out: traces the pixel alone and writes --inspect-out. Returns the exit status.
 int runInspectOnly(const RenderCommand& c, render::RenderSession& session);
+
+// The cost and asserts variants (render_debug.cpp): `--aov cost` writes the cost map beside --out
+// (OUT.cost.png a heat map, OUT.cost.exr the clocks) and `cost` into --stats; `--asserts` checks wbAssert at
+// every pixel, says the first failures on stderr, writes OUT.asserts.png (the image with failing pixels
+// marked) and `asserts` into --stats. Refuses them outside the path tracer; throws std::invalid_argument
+// naming the flag.
+void finishDebugFlags(const RenderCommand& c);
+// Switches the session's path tracer to the variants the flags ask for.
+void startDebugVariants(const RenderCommand& c, render::RenderSession& session);
+// The files the variants write (checked before the render).
+std::vector<std::filesystem::path> debugOutputs(const RenderCommand& c);
+// After the render: writes the cost map and the marked image, adds `cost`, `asserts` and `pass_ms` to `stats`
+// (`spp`: samples rendered). Returns the asserts' failures (0 without --asserts).
+uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& session, uint32_t spp,
+                           nlohmann::json& stats);
 
 }  // namespace wb::app

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/debug_json.h"
+
 namespace wb::app {
 namespace {
 
@@ -37,7 +39,7 @@ json lightJson(const gpu::InspectLightSample& l) {
           {"visible", l.status == WB_INSPECT_NEE_TRACED && l.visible != 0}};
 }
 
-json vertexJson(const render::InspectedVertex& v, size_t bounce) {
+json vertexJson(const render::InspectedVertex& v, size_t bounce, uint32_t clock) {
   const auto& r = v.record;
   json lights = json::array();
   for (const auto& l : v.lights) lights.push_back(lightJson(l));
@@ -70,15 +72,22 @@ json vertexJson(const render::InspectedVertex& v, size_t bounce) {
             {"rr_outcome", render::inspectRrName(r.rrOutcome)},
             {"throughput", vec(r.throughput)},
             {"added", vec(v.added)}};
+  j["cost"] = clock == WB_CLOCK_NONE ? json(nullptr)
+                                     : json{{"trace_clocks", r.traceClocks},
+                                            {"shade_clocks", r.shadeClocks},
+                                            {"shadow_clocks", r.shadowClocks}};
   return j;
 }
 
 }  // namespace
 
-json inspectSampleJson(const render::InspectedSample& s) {
+json inspectSampleJson(const render::InspectedSample& s, const std::map<uint32_t, std::string>& labels,
+                       uint32_t clock) {
   const auto& r = s.record;
   json vertices = json::array();
-  for (size_t k = 0; k < s.vertices.size(); ++k) vertices.push_back(vertexJson(s.vertices[k], k));
+  for (size_t k = 0; k < s.vertices.size(); ++k) vertices.push_back(vertexJson(s.vertices[k], k, clock));
+  json prints = json::array();
+  for (const auto& p : s.prints) prints.push_back(printJson(p, labels));
   json escape = nullptr;
   if (r.escaped) {
     escape = {{"direction", vec(r.escapeDirection)},   {"environment", vec(r.escapeEnvironment)},
@@ -103,13 +112,17 @@ json inspectSampleJson(const render::InspectedSample& s) {
           {"vertices", vertices},
           {"escape", escape},
           {"sum_of_added", vec(s.sum)},
-          {"first_non_finite", nonFinite}};
+          {"first_non_finite", nonFinite},
+          {"clocks", clock == WB_CLOCK_NONE ? json(nullptr) : json(r.clocks)},
+          {"escape_clocks", clock == WB_CLOCK_NONE || !r.escaped ? json(nullptr) : json(r.escapeClocks)},
+          {"prints_made", r.prints},
+          {"prints", prints}};
 }
 
 json inspectJson(const InspectContext& c, const std::vector<render::InspectedSample>& samples) {
   const render::RunningEstimate e = render::estimateOf(samples);
   json list = json::array();
-  for (const auto& s : samples) list.push_back(inspectSampleJson(s));
+  for (const auto& s : samples) list.push_back(inspectSampleJson(s, c.labels, c.clock));
   return {{"schema", "workbench-path-inspector/1"},
           {"scene", c.scene},
           {"pixel", json::array({c.x, c.y})},
@@ -118,6 +131,7 @@ json inspectJson(const InspectContext& c, const std::vector<render::InspectedSam
           {"spp", c.spp},
           {"pixel_value", vec(glm::vec3(c.pixelValue))},
           {"pixel_samples", number(c.pixelValue.w)},
+          {"clock", render::clockName(c.clock)},
           {"estimate",
            {{"samples", e.count()},
             {"dropped", e.dropped()},

@@ -119,6 +119,8 @@ void writeInspection(const RenderCommand& c, render::RenderSession& session, uin
   const size_t i = (size_t(c.inspectY) * s.width + c.inspectX) * 4;
   ctx.pixelValue = glm::vec4(accum[i], accum[i + 1], accum[i + 2], accum[i + 3]);
   ctx.spp = spp;
+  ctx.clock = tracer.clock();
+  ctx.labels = tracer.debugLabels();
   auto j = inspectJson(ctx, samples);
   j["parameters"] = parametersJson(c.options.params);
   j["device"] = session.context().deviceName();

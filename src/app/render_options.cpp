@@ -13,7 +13,8 @@ namespace wb::app {
 void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("scene", o.scene, "glTF scene (.gltf/.glb); default: assets/default_scene.gltf");
   app.add_option("--size", o.size, "image size WxH")->capture_default_str();
-  app.add_option("--aov", o.aov, "write AOVs: albedo,normal (beside --out)");
+  app.add_option("--aov", o.aov,
+                 "write AOVs beside --out: albedo, normal, cost (the shader clock per sample, path tracer)");
   app.add_option("--device", o.device, "Vulkan device name (substring)");
   app.add_option("--tile", o.tile, "trace each sample in tiles of WxH (dispatch-shape experiments)");
   app.add_option("--define", o.defines,
@@ -53,10 +54,10 @@ void finishRenderOptions(RenderOptions& o) {
     std::stringstream ss(o.aov);
     std::string part;
     while (std::getline(ss, part, ',')) {
-      if (part != "albedo" && part != "normal") {
-        throw std::invalid_argument("--aov: expected albedo and/or normal, got '" + part + "'");
+      if (part != "albedo" && part != "normal" && part != "cost") {
+        throw std::invalid_argument("--aov: expected albedo, normal and/or cost, got '" + part + "'");
       }
-      (part == "albedo" ? o.aovAlbedo : o.aovNormal) = true;
+      (part == "albedo" ? o.aovAlbedo : part == "normal" ? o.aovNormal : o.aovCost) = true;
     }
     s.aov = true;
   }

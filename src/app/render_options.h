@@ -17,8 +17,9 @@ struct RenderOptions {
   std::string size = "512x512";
   // Every parameter; its render settings also carry the launch options below once finished.
   render::Parameters params;
-  std::string aov;                            // "albedo,normal"
+  std::string aov;                            // "albedo,normal,cost"
   bool aovAlbedo = false, aovNormal = false;  // which --aov images to write
+  bool aovCost = false;                       // the path tracer's cost variant and its cost map
   std::vector<std::string> defines;           // --define K=V
   std::string device;
   std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)

@@ -123,6 +123,7 @@ void LiveSession::apply(bool waitForMode) {
   if (st.params.mode != applied_.params.mode) restart = true;
   applyMode(waitForMode);
   if (applyInspection()) restart = true;
+  if (instruments_.apply(tracer, st)) restart = true;  // the cost view's and the asserts' variants
   if (st.referencePath != referenceTried_) {
     referenceTried_ = st.referencePath;
     if (st.referencePath.empty()) {
@@ -315,12 +316,15 @@ void LiveSession::frameFinished(Clock::time_point frameBegin) {
     loop_->setAB(ab_.enabled);  // the comparison may have switched itself off
   }
   counters_ = session_->renderer().readCounters();
+  instruments_.submissionFinished(session_->renderer());
+  instruments_.frameFinished(*session_, !session_->hybrid());
   updateLiveError();
   updateInspection();
 }
 
 void LiveSession::traceOnlyFinished() {
   counters_ = session_->renderer().readCounters();
+  instruments_.submissionFinished(session_->renderer());
   updateLiveError();
 }
 
@@ -373,6 +377,7 @@ DisplayFrame LiveSession::displayFrame() const {
   d.normal = tracer.aovImage(render::Aov::Normal).view();
   d.info = tracer.aovImage(render::Aov::Info).view();
   d.stats = tracer.aovImage(render::Aov::Stats).view();
+  d.cost = tracer.aovImage(render::Aov::Cost).view();
   d.preview = progressive_->previewImage().view();
   d.maxVertices = float(tracer.settings().maxBounces + 1);
   if (const auto* h = session_->hybrid()) {

@@ -21,6 +21,7 @@
 #include "eval/live_error.h"
 #include "live/ab_state.h"
 #include "live/edit_loop.h"
+#include "live/instruments.h"
 #include "live/mode_switch_timer.h"
 #include "live/pixel_inspection.h"
 #include "live/session_state.h"
@@ -33,6 +34,7 @@ namespace wb::live {
 struct DisplayFrame {
   VkImageView radiance = VK_NULL_HANDLE;  // linear radiance of the mode shown
   VkImageView albedo = VK_NULL_HANDLE, normal = VK_NULL_HANDLE, info = VK_NULL_HANDLE, stats = VK_NULL_HANDLE;
+  VkImageView cost = VK_NULL_HANDLE;  // the path tracer's cost AOV
   VkImageView preview = VK_NULL_HANDLE;
   glm::uvec2 imageSize{1u};
   glm::uvec2 previewSize{0u};  // 0: no preview under the rows not traced yet
@@ -119,6 +121,8 @@ class LiveSession {
   const render::ProgressiveTracer& progressive() const { return *progressive_; }
   const render::HybridRenderer* hybrid() const { return session_->hybrid(); }
   const PixelInspection& inspection() const { return inspection_; }
+  // Per-pass GPU times of the last submission, the cost summary of the cost views, the asserts' failures.
+  const Instruments& instruments() const { return instruments_; }
   const eval::LiveError& liveError() const { return liveError_; }
   ABState& ab() { return ab_; }
   const ABState& ab() const { return ab_; }
@@ -157,6 +161,7 @@ class LiveSession {
   std::string modeSwitch_;
   ModeSwitchTimer modeSwitchTimer_;
   PixelInspection inspection_;
+  Instruments instruments_;
   eval::LiveError liveError_;
   std::string referenceTried_;
   uint64_t errorGeneration_ = ~0ull;

@@ -44,7 +44,7 @@ glm::vec3 toVec3(const std::string& name, const std::string& v) {
 const char* kWindowSettings =
     "scale, preview, budget_ms, vsync, panel, paused, reference PATH.exr (empty = noise estimate), "
     "sun_direction X,Y,Z, sun_intensity, material.N.roughness|metallic|base_color R,G,B, "
-    "inspect_pixel X,Y|off, inspect_samples N, inspect_on_click, inspect_all";
+    "inspect_pixel X,Y|off, inspect_samples N, inspect_on_click, inspect_all, asserts";
 
 // The window's own settings (not render parameters). False when `name` is none of them.
 bool applyWindowSetting(SessionState& st, const std::string& name, const std::string& value) {
@@ -84,6 +84,8 @@ bool applyWindowSetting(SessionState& st, const std::string& name, const std::st
     st.inspectOnClick = toBool(name, value);
   } else if (name == "inspect_all") {
     st.inspectAllSamples = toBool(name, value);
+  } else if (name == "asserts") {
+    st.asserts = toBool(name, value);
   } else if (name == "sun_direction" || name == "sun_intensity") {
     if (st.lights.empty()) throw std::invalid_argument(name + ": the scene has no directional light");
     auto& l = st.lights[0];

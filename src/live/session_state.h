@@ -43,6 +43,8 @@ struct SessionState {
   // A pixel was picked: the panel opens the Inspect section and scrolls to it for this many frames (the
   // panel's scroll range includes the section's contents from the frame after it opened).
   int inspectOpenPanel = 0;
+  // wbAssert checked at every pixel (the path tracer's asserts variant; restarts accumulation).
+  bool asserts = false;
 
   // One-shot requests (the frame loop clears them).
   bool resetAccumulation = false;

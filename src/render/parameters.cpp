@@ -95,8 +95,8 @@ ParameterInfo choice(std::string name, std::string group, std::string label, std
 }
 
 std::vector<std::string> viewNames() {
-  return {"beauty",  "albedo",  "shading_normal", "geometric_normal", "depth",
-          "bounces", "dropped", "rr_end",         "variance",         "nan_source"};
+  return {"beauty",  "albedo", "shading_normal", "geometric_normal", "depth", "bounces",
+          "dropped", "rr_end", "variance",       "nan_source",       "cost",  "inefficiency"};
 }
 
 std::vector<ParameterInfo> makeList() {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 
 #include "shared/brdf.h"
 
@@ -57,6 +59,10 @@ std::vector<InspectedSample> inspectedSamples(const InspectBuffers& b, uint32_t 
     if (!s.firstNonFinite) {
       if (auto term = firstTerm(rec.nonFinite)) s.firstNonFinite = NonFiniteSource{-1, *term};
     }
+    const size_t first = slot * WB_PRINTS_PER_SAMPLE;
+    const size_t kept = std::min<size_t>(rec.prints, WB_PRINTS_PER_SAMPLE);
+    if (first + kept <= b.prints.size())
+      s.prints.assign(b.prints.begin() + long(first), b.prints.begin() + long(first + kept));
     out.push_back(std::move(s));
   }
   std::sort(out.begin(), out.end(), [](const InspectedSample& a, const InspectedSample& b) {
@@ -169,6 +175,68 @@ const char* inspectNonFiniteName(uint32_t term) {
     default:
       return "unknown";
   }
+}
+
+const char* debugStageName(uint32_t stage) {
+  switch (stage) {
+    case WB_STAGE_RAYGEN:
+      return "raygen";
+    case WB_STAGE_CLOSEST_HIT:
+      return "closest_hit";
+    case WB_STAGE_ANY_HIT:
+      return "any_hit";
+    case WB_STAGE_MISS:
+      return "miss";
+    case WB_STAGE_SHADOW_MISS:
+      return "shadow_miss";
+    default:
+      return "unknown";
+  }
+}
+
+const char* clockName(uint32_t clock) {
+  return clock == WB_CLOCK_SUBGROUP ? "subgroup" : clock == WB_CLOCK_DEVICE ? "device" : "none";
+}
+
+std::string printValueText(const gpu::PrintRecord& p) {
+  const uint32_t n = std::clamp(p.components, 1u, 4u);
+  std::string out = n > 1 ? "(" : "";
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t bits = p.bits[int(i)];
+    char buf[48];
+    switch (p.type) {
+      case WB_PRINT_FLOAT: {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        if (std::isnan(f)) {
+          std::snprintf(buf, sizeof buf, "nan");
+        } else if (std::isinf(f)) {
+          std::snprintf(buf, sizeof buf, f > 0 ? "inf" : "-inf");
+        } else {
+          std::snprintf(buf, sizeof buf, "%.9g", double(f));
+        }
+        break;
+      }
+      case WB_PRINT_INT:
+        std::snprintf(buf, sizeof buf, "%d", int32_t(bits));
+        break;
+      case WB_PRINT_BOOL:
+        std::snprintf(buf, sizeof buf, "%s", bits ? "true" : "false");
+        break;
+      default:
+        std::snprintf(buf, sizeof buf, "%u", bits);
+    }
+    out += (i ? ", " : "") + std::string(buf);
+  }
+  return n > 1 ? out + ")" : out;
+}
+
+std::string debugLabelText(uint32_t label, const std::map<uint32_t, std::string>& labels) {
+  const auto it = labels.find(label);
+  if (it != labels.end()) return it->second;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "#%08x", label);
+  return buf;
 }
 
 }  // namespace wb::render

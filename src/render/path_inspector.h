@@ -1,11 +1,13 @@
 // The path inspector's records made sense of on the host: the samples of the inspected pixel in order, each
 // with its vertices, what every vertex and the escaping ray added to the sample, the first NaN/Inf and the
 // term that produced it, and the pixel's estimate from the recorded samples. The shaders write the records
-// (shaders/pathtracer/inspect.glsl, structs in shaders/shared/inspect_types.h); PathTracer::readInspection reads
-// them.
+// (shaders/pathtracer/inspect.glsl, structs in shaders/shared/inspect_types.h); PathTracer::readInspection
+// reads them.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -35,6 +37,9 @@ struct InspectedSample {
   glm::vec3 escapeAdded{0.0f};            // escapeThroughput * escapeRadiance when the path escaped
   glm::vec3 sum{0.0f};  // every vertex's `added` plus escapeAdded: the sample's value up to float rounding
   std::optional<NonFiniteSource> firstNonFinite;
+  // wbPrint's records of the sample, in the order it made them (record.prints made; at most
+  // WB_PRINTS_PER_SAMPLE kept).
+  std::vector<gpu::PrintRecord> prints;
 };
 
 // The written samples of `buffers` whose index is below `sampleLimit` (the samples whose traces finished), by
@@ -69,5 +74,12 @@ const char* inspectLightKindName(uint32_t kind);  // "directional" | "environmen
 const char* inspectLightStatusName(
     uint32_t status);                             // "traced" | "no_sample" | "below_surface" | "zero_brdf"
 const char* inspectNonFiniteName(uint32_t term);  // "shading_normal", "emission", ...
+const char* debugStageName(uint32_t stage);       // "raygen", "closest_hit", "any_hit", "miss", "shadow_miss"
+const char* clockName(uint32_t clock);            // "none", "subgroup", "device"
+// A print's value as text ("0.5", "(1, 2, 3)", "true"): floats with 9 significant digits (they read back
+// exactly), NaN and Inf by name.
+std::string printValueText(const gpu::PrintRecord& p);
+// A print's or an assert's label: its text (`labels`: shader::debugLabelsOf), or "#" and its id in hex.
+std::string debugLabelText(uint32_t label, const std::map<uint32_t, std::string>& labels);
 
 }  // namespace wb::render

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <glm/gtc/matrix_transform.hpp>
@@ -11,22 +12,35 @@
 #include "common/half.h"
 #include "common/paths.h"
 #include "render/sample_tables.h"
+#include "shader/debug_labels.h"
 
 namespace wb::render {
 namespace {
 
-constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
+constexpr uint32_t kMaxRecursion = 1;             // raygen traces every ray (shadow rays too: payload.glsl)
+constexpr uint32_t kDefaultAssertRecords = 1024;  // the asserts variant's first failures kept
 
 }  // namespace
 
+uint32_t PathTracer::clockOf(const vk::Context& ctx) {
+  return ctx.shaderClock().subgroup ? WB_CLOCK_SUBGROUP
+         : ctx.shaderClock().device ? WB_CLOCK_DEVICE
+                                    : WB_CLOCK_NONE;
+}
+
 std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
-                                                     bool inspect) {
+                                                     bool inspect, const Instrumentation& instrumentation,
+                                                     uint32_t clock) {
   const auto dir = shaderDir() / "pathtracer";
   auto defines = scene::featureDefines(features);
   const bool userChose = std::any_of(features.extraDefines.begin(), features.extraDefines.end(),
                                      [](const shader::Define& d) { return d.name == "WB_CPU_DEVICE"; });
   if (cpuDeviceCode && !userChose) defines.insert(defines.begin(), {"WB_CPU_DEVICE", "1"});
   if (inspect) defines.push_back({"WB_INSPECT", "1"});
+  if (instrumentation.cost) defines.push_back({"WB_COST", "1"});
+  if (instrumentation.asserts) defines.push_back({"WB_ASSERTS", "1"});
+  if ((inspect || instrumentation.cost) && clock != WB_CLOCK_NONE)
+    defines.push_back({"WB_CLOCK", std::to_string(clock)});
   std::vector<shader::ShaderKey> keys = {
       {dir / "raygen.rgen", std::nullopt, defines},
       {dir / "miss.rmiss", std::nullopt, defines},
@@ -44,7 +58,8 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
       gpuScene_(r.gpuScene),
       env_(&r.environment),
       settings_(settings),
-      cpuDeviceCode_(r.ctx.policy().cpuShapedShaderCode) {
+      cpuDeviceCode_(r.ctx.policy().cpuShapedShaderCode),
+      clock_(clockOf(r.ctx)) {
   if (ctx_.policy().pipelineLibraries) libraries_ = std::make_unique<vk::RtLibraryCache>(ctx_);
   RayTracingRecipe recipe;
   // The any-hit stage is there when some material is not opaque (stageKeys).
@@ -57,6 +72,7 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   pass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer", std::move(recipe));
   pass_->setPushConstantBytes(sizeof(gpu::PushConstants));
   pass_->setOnInstall([this] { sampleIndex_ = 0; });
+  timer_ = std::make_unique<PassTimer>(ctx_);
   frameUniforms_ = vk::Buffer(ctx_, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
@@ -70,6 +86,7 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
     std::memcpy(lightBuffer_.mapped(), shaded.data(), shaded.size() * sizeof(gpu::DirectionalLight));
   createImages();
   createInspectBuffers();
+  createAssertBuffers(kDefaultAssertRecords);
   bindResources();
   setFeatures(features);
 }
@@ -83,7 +100,9 @@ bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
 void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) {
   std::string name = features.generic ? "pathtracer" : "pathtracer (specialised)";
   if (inspect) name += " (inspect)";
-  pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect));
+  if (instrumentation_.cost) name += " (cost)";
+  if (instrumentation_.asserts) name += " (asserts)";
+  pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect, instrumentation_, clock_));
   features_ = features;
   featuresSet_ = true;
   inspectVariant_ = inspect;
@@ -99,6 +118,51 @@ bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
   if (request.has_value() == inspectVariant_) return false;
   useVariant(features_, request.has_value());
   return true;
+}
+
+bool PathTracer::setInstrumentation(const Instrumentation& instrumentation) {
+  if (instrumentation == instrumentation_) return false;
+  ctx_.waitIdle();
+  instrumentation_ = instrumentation;
+  sampleIndex_ = 0;
+  useVariant(features_, inspectVariant_);
+  return true;
+}
+
+void PathTracer::setAssertCapacity(uint32_t records) {
+  ctx_.waitIdle();  // the buffers may be in flight
+  createAssertBuffers(std::max(records, 1u));
+  bindResources();
+}
+
+void PathTracer::createAssertBuffers(uint32_t records) {
+  assertHeader_ = vk::Buffer(ctx_, sizeof(gpu::AssertHeader),
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  assertRecords_ = vk::Buffer(ctx_, VkDeviceSize(records) * sizeof(gpu::AssertRecord),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  gpu::AssertHeader h{};
+  h.capacity = records;
+  std::memcpy(assertHeader_.mapped(), &h, sizeof(h));
+  std::memset(assertRecords_.mapped(), 0, size_t(records) * sizeof(gpu::AssertRecord));
+}
+
+AssertReport PathTracer::readAsserts() const {
+  gpu::AssertHeader h{};
+  std::memcpy(&h, assertHeader_.mapped(), sizeof(h));
+  AssertReport r;
+  r.failures = h.failures;
+  r.records.resize(std::min(h.failures, h.capacity));
+  std::memcpy(r.records.data(), assertRecords_.mapped(), r.records.size() * sizeof(gpu::AssertRecord));
+  return r;
+}
+
+std::map<uint32_t, std::string> PathTracer::debugLabels() const {
+  std::vector<std::filesystem::path> files;
+  for (const auto& stage : pass_->installed().build.stages)
+    if (stage) files.insert(files.end(), stage->files.begin(), stage->files.end());
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return shader::debugLabelsOf(files);
 }
 
 void PathTracer::createInspectBuffers() {
@@ -119,6 +183,9 @@ void PathTracer::createInspectBuffers() {
   inspectSamples_ = vk::Buffer(ctx_, samples * sizeof(gpu::InspectSample),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   inspectVertices_ = vk::Buffer(ctx_, vertexBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  const size_t printBytes = size_t(samples) * WB_PRINTS_PER_SAMPLE * sizeof(gpu::PrintRecord);
+  inspectPrints_ = vk::Buffer(ctx_, printBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  std::memset(inspectPrints_.mapped(), 0, printBytes);
   gpu::InspectHeader h{};
   if (inspection_) {
     h.pixel = glm::uvec2(inspection_->x, inspection_->y);
@@ -126,6 +193,7 @@ void PathTracer::createInspectBuffers() {
     h.sampleCapacity = samples;
   }
   h.vertexCapacity = vertices;
+  h.clock = clock_;
   std::memcpy(inspectHeader_.mapped(), &h, sizeof(h));
   std::memset(inspectSamples_.mapped(), 0xff, samples * sizeof(gpu::InspectSample));  // WB_INSPECT_NO_SAMPLE
   std::memset(inspectVertices_.mapped(), 0, vertexBytes);
@@ -139,6 +207,8 @@ InspectBuffers PathTracer::readInspection() const {
   std::memcpy(b.samples.data(), inspectSamples_.mapped(), b.samples.size() * sizeof(gpu::InspectSample));
   b.vertices.resize(inspectVertices_.size() / sizeof(gpu::InspectVertex));
   std::memcpy(b.vertices.data(), inspectVertices_.mapped(), b.vertices.size() * sizeof(gpu::InspectVertex));
+  b.prints.resize(inspectPrints_.size() / sizeof(gpu::PrintRecord));
+  std::memcpy(b.prints.data(), inspectPrints_.mapped(), b.prints.size() * sizeof(gpu::PrintRecord));
   if (b.header.sampleCapacity == 0) b.samples.clear();
   return b;
 }
@@ -150,8 +220,8 @@ PathTracer::~PathTracer() {
 void PathTracer::createImages() {
   constexpr size_t kSpareSets = 2;
   const uint32_t w = settings_.width, h = settings_.height;
-  ImageSet current{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
-                   std::move(stats_)};
+  ImageSet current{std::move(accum_), std::move(albedo_), std::move(normal_),
+                   std::move(info_),  std::move(stats_),  std::move(cost_)};
   auto spare = std::find_if(spareImages_.begin(), spareImages_.end(),
                             [&](const ImageSet& s) { return s.accum.width() == w && s.accum.height() == h; });
   const bool fresh = spare == spareImages_.end();
@@ -161,6 +231,7 @@ void PathTracer::createImages() {
     normal_ = std::move(spare->normal);
     info_ = std::move(spare->info);
     stats_ = std::move(spare->stats);
+    cost_ = std::move(spare->cost);
     spareImages_.erase(spare);
   } else {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -170,6 +241,7 @@ void PathTracer::createImages() {
     normal_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
     info_ = vk::Image(ctx_, w, h, VK_FORMAT_R16G16B16A16_SFLOAT, usage);
     stats_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+    cost_ = vk::Image(ctx_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
     ++imageSetsAllocated_;
   }
   if (current.accum.handle()) {
@@ -177,7 +249,7 @@ void PathTracer::createImages() {
     if (spareImages_.size() > kSpareSets) spareImages_.pop_back();
   }
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_, &stats_}) {
+    for (const vk::Image* img : {&accum_, &albedo_, &normal_, &info_, &stats_, &cost_}) {
       if (fresh) vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
       VkClearColorValue zero{};
       VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -197,6 +269,7 @@ void PathTracer::bindResources() {
   p.setStorageImage("normalImage", normal_.view());
   p.setStorageImage("infoImage", info_.view());
   p.setStorageImage("statsImage", stats_.view());
+  p.setStorageImage("costImage", cost_.view());  // the cost variant's
   p.setBuffer("FrameBlock", frameUniforms_);
   p.setBuffer("CounterBlock", counters_);
   p.setBuffer("BlueNoiseBlock", blueNoise_);
@@ -205,6 +278,10 @@ void PathTracer::bindResources() {
   p.setBuffer("InspectHeaderBlock", inspectHeader_);
   p.setBuffer("InspectSampleBlock", inspectSamples_);
   p.setBuffer("InspectVertexBlock", inspectVertices_);
+  p.setBuffer("InspectPrintBlock", inspectPrints_);
+  // Used by the WB_ASSERTS variant only.
+  p.setBuffer("AssertHeaderBlock", assertHeader_);
+  p.setBuffer("AssertRecordBlock", assertRecords_);
 }
 
 std::unique_ptr<Renderer> PathTracer::makeLike(const RendererResources& resources,
@@ -289,6 +366,11 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
     vkCmdFillBuffer(cmd, inspectSamples_.handle(), 0, VK_WHOLE_SIZE, WB_INSPECT_NO_SAMPLE);
     vk::memoryBarrier(cmd);
   }
+  // A restart counts the asserts' failures anew.
+  if (instrumentation_.asserts && sampleIndex_ == 0 && r.x == 0 && r.y == 0) {
+    vkCmdFillBuffer(cmd, assertHeader_.handle(), 0, sizeof(uint32_t), 0);
+    vk::memoryBarrier(cmd);
+  }
   lastRecordedSample_ = sampleIndex_;
   gpu::PushConstants pc{};
   pc.sampleIndex = sampleIndex_;
@@ -306,6 +388,7 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   pc.tileOffset = glm::uvec2(r.x, r.y);
   pc.imageSize = glm::uvec2(settings_.width, settings_.height);
 
+  PassTimer::Scope timed(timer_.get(), cmd, "pathtracer");
   pass_->bind(cmd);
   pass_->push(cmd, pc);
   pass_->traceRays(cmd, r.width, r.height);
@@ -356,7 +439,7 @@ std::vector<float> PathTracer::readAccumulation() const {
 
 std::vector<float> PathTracer::readAov(Aov aov) const {
   const auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
-  if (aov != Aov::Stats) return halvesToFloats(bytes);
+  if (aov != Aov::Stats && aov != Aov::Cost) return halvesToFloats(bytes);
   std::vector<float> out(bytes.size() / sizeof(float));
   std::memcpy(out.data(), bytes.data(), bytes.size());
   return out;

@@ -1,8 +1,10 @@
 // The progressive path tracer pass: the ray tracing pipeline (raygen path loop, closest-hit shading, any-hit
 // alpha, environment and shadow miss), its accumulation and AOV images, and hot-swappable pipelines.
 #pragma once
+#include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "render/renderer.h"
@@ -13,8 +15,22 @@
 namespace wb::render {
 
 // The AOV images the path tracer keeps when settings.aov is on (see shared/bindings.h for their channels);
-// Stats holds the heat maps' data (rgba32f).
-enum class Aov { Albedo, Normal, Info, Stats };
+// Stats holds the heat maps' data (rgba32f); Cost the cost variant's clocks per sample (rgba32f).
+enum class Aov { Albedo, Normal, Info, Stats, Cost };
+
+// The path tracer's measuring and checking variants, each a define compiled in only while asked for (the
+// default variant's SPIR-V has none of their code). Any combination, with the inspecting variant too.
+struct Instrumentation {
+  bool cost = false;     // WB_COST: the shader clock per sample (trace calls, shading) into the Cost AOV
+  bool asserts = false;  // WB_ASSERTS: wbAssert checked at every pixel, the first failures recorded
+  bool operator==(const Instrumentation&) const = default;
+};
+
+// The asserts variant's failures as read back: every failure counted, the first `capacity` recorded.
+struct AssertReport {
+  uint32_t failures = 0;
+  std::vector<gpu::AssertRecord> records;  // min(failures, capacity), in the order they were seen
+};
 
 struct PixelRegion {
   uint32_t x = 0, y = 0, width = 0, height = 0;
@@ -36,6 +52,7 @@ struct InspectBuffers {
   gpu::InspectHeader header{};
   std::vector<gpu::InspectSample> samples;   // header.sampleCapacity slots
   std::vector<gpu::InspectVertex> vertices;  // header.vertexCapacity per slot
+  std::vector<gpu::PrintRecord> prints;      // WB_PRINTS_PER_SAMPLE per slot (InspectSample.prints made)
 };
 
 class PathTracer final : public Renderer {
@@ -47,9 +64,16 @@ class PathTracer final : public Renderer {
   // Shader stages of the path tracer for a feature set: no any-hit stage when every material is opaque.
   // cpuDeviceCode defines WB_CPU_DEVICE=1: code shaped for a driver that JIT-compiles every inlined copy of a
   // function at the first trace (shaders/pathtracer/common.glsl).
-  // inspect defines WB_INSPECT=1: the path inspector's variant.
+  // inspect defines WB_INSPECT=1: the path inspector's variant; `instrumentation` WB_COST / WB_ASSERTS; both
+  // measuring variants read the shader clock `clock` (WB_CLOCK_*: WB_CLOCK=N; none: left undefined).
   static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
-                                                  bool inspect = false);
+                                                  bool inspect = false,
+                                                  const Instrumentation& instrumentation = {},
+                                                  uint32_t clock = 0);
+  // The shader clock this device's cost variants read (WB_CLOCK_*): the subgroup clock where there is one,
+  // else the device clock, else none (their costs read 0).
+  static uint32_t clockOf(const vk::Context& ctx);
+  uint32_t clock() const { return clock_; }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
   shader::ShaderLibrary::ProgramId program() const { return pass_->program(); }
@@ -67,6 +91,18 @@ class PathTracer final : public Renderer {
   // The records so far (reads host-visible memory: call when the traces that wrote them finished).
   InspectBuffers readInspection() const;
 
+  // The cost and asserts variants (switching restarts accumulation; the asserts' records are cleared at
+  // every restart). Returns true when the program changed.
+  bool setInstrumentation(const Instrumentation& instrumentation);
+  const Instrumentation& instrumentation() const { return instrumentation_; }
+  // Failure records the asserts variant keeps (the buffer is remade: call between frames).
+  void setAssertCapacity(uint32_t records);
+  // The asserts variant's failures since the accumulation restarted (host-visible memory: call when the
+  // traces finished).
+  AssertReport readAsserts() const;
+  // wbPrint / wbAssert labels by id, from the installed pipeline's sources (shader/debug_labels.h).
+  std::map<uint32_t, std::string> debugLabels() const;
+
   // Renderer
   RenderMode mode() const override { return RenderMode::PathTrace; }
   vk::Context& context() const override { return ctx_; }
@@ -83,6 +119,7 @@ class PathTracer final : public Renderer {
   const vk::Image& outputImage() const override { return accum_; }
   eval::ImageRGBA readImage() const override;
   std::vector<Pass*> passes() const override { return {pass_.get()}; }
+  PassTimer* passTimer() const override { return timer_.get(); }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   gpu::Counters readCounters() const override;
@@ -106,7 +143,11 @@ class PathTracer final : public Renderer {
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
   std::vector<float> readAov(Aov aov) const;    // RGBA, from the AOV images
   const vk::Image& aovImage(Aov aov) const {
-    return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : aov == Aov::Info ? info_ : stats_;
+    return aov == Aov::Albedo   ? albedo_
+           : aov == Aov::Normal ? normal_
+           : aov == Aov::Info   ? info_
+           : aov == Aov::Stats  ? stats_
+                                : cost_;
   }
   const vk::Image& accumulationImage() const { return accum_; }
   // Image sets allocated so far (one per new size: a size used before reuses its set).
@@ -118,8 +159,10 @@ class PathTracer final : public Renderer {
   // Sets every resource the path tracer binds on its pass.
   void bindResources();
   void updateFrameUniforms();
-  // Makes the program for (features, inspect) current, registering it on first use; rebuilds the pipeline.
+  // Makes the program for (features, inspect, instrumentation_) current, registering it on first use;
+  // rebuilds the pipeline.
   void useVariant(const scene::SceneFeatures& features, bool inspect);
+  void createAssertBuffers(uint32_t records);
   void createInspectBuffers();
   // Writes the lights as the shaders shade them (the sun angle of the settings applied) when they changed.
   void uploadLights();
@@ -135,24 +178,28 @@ class PathTracer final : public Renderer {
   bool cpuDeviceCode_ = false;
   std::optional<InspectRequest> inspection_;
   bool inspectVariant_ = false;  // the current program is the WB_INSPECT build
+  Instrumentation instrumentation_;
+  uint32_t clock_ = 0;  // WB_CLOCK_* of the cost variants
   // Sample index of the last region recorded: a restart after sample 0 clears the inspector's sample slots.
   uint32_t lastRecordedSample_ = 0;
   uint64_t emitterVersion_ = 0;  // the scene's emitter buffers the pass points at
   // Before pass_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<Pass> pass_;
-  vk::Image accum_, albedo_, normal_, info_, stats_;
+  std::unique_ptr<PassTimer> timer_;
+  vk::Image accum_, albedo_, normal_, info_, stats_, cost_;
   // The image sets of the last sizes left (a preview's, the full one's): going back to a size reuses its
   // memory, already touched, instead of allocating anew (lavapipe: ~25 ms at 440x360, the first touch).
   struct ImageSet {
-    vk::Image accum, albedo, normal, info, stats;
+    vk::Image accum, albedo, normal, info, stats, cost;
   };
   std::vector<ImageSet> spareImages_;
   uint32_t imageSetsAllocated_ = 0;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   std::vector<gpu::DirectionalLight> lights_;  // the scene's lights, or the session's edits of them
   vk::Buffer lightBuffer_;                     // lights_ with settings_.sunAngleDeg (scene::withSunAngle)
-  vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_;
+  vk::Buffer inspectHeader_, inspectSamples_, inspectVertices_, inspectPrints_;
+  vk::Buffer assertHeader_, assertRecords_;
   uint32_t sampleIndex_ = 0;
 };
 

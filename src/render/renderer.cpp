@@ -20,6 +20,7 @@ std::vector<double> Renderer::render(uint32_t samples, const Progress& progress)
   for (uint32_t i = 0; i < samples; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
+    if (PassTimer* timer = passTimer()) timer->collect();
     advance();
     const auto t1 = std::chrono::steady_clock::now();
     seconds.push_back(std::chrono::duration<double>(t1 - t0).count());

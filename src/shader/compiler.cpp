@@ -1,5 +1,6 @@
 #include "shader/compiler.h"
 
+#include "shader/debug_labels.h"
 #include "shader/hash.h"
 #include "shader/includer.h"
 
@@ -169,8 +170,11 @@ CompileOutput compileGlsl(const CompileInput& in) {
     preamble += "#define " + d.name + (d.value.empty() ? "" : " " + d.value) + "\n";
 
   auto shader = std::make_unique<glslang::TShader>(lang);
-  const char* strings[] = {in.source.c_str()};
-  const int lengths[] = {static_cast<int>(in.source.size())};
+  // wbPrint / wbAssert labels become ids (shader/debug_labels.h); the includer does the same to every
+  // include.
+  const std::string source = replaceDebugLabels(in.source);
+  const char* strings[] = {source.c_str()};
+  const int lengths[] = {static_cast<int>(source.size())};
   const char* names[] = {mainName.c_str()};
   shader->setStringsWithLengthsAndNames(strings, lengths, names, 1);
   shader->setPreamble(preamble.c_str());

@@ -1,5 +1,6 @@
 #include "shader/includer.h"
 
+#include "shader/debug_labels.h"
 #include "shader/hash.h"
 
 #include <algorithm>
@@ -71,7 +72,8 @@ glslang::TShader::Includer::IncludeResult* Includer::include(const char* headerN
     texts_.push_back(*data);
     includedBy_.try_emplace(canon, Edge{includer, headerName});
     textOf_.try_emplace(canon, *data);
-    auto* owned = new Owned{canon.string(), std::move(*data)};
+    // glslang reads the file with its wbPrint / wbAssert labels as ids (shader/debug_labels.h).
+    auto* owned = new Owned{canon.string(), replaceDebugLabels(*data)};
     return new IncludeResult(owned->name, owned->data.data(), owned->data.size(), owned);
   }
   std::string searched;

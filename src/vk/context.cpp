@@ -290,12 +290,25 @@ void Context::pickDevice(const ContextOptions& options) {
   deviceName_ = candidates[*choice.index].name;
   for (const auto& e : candidates[*choice.index].extensions) {
     if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
+    if (e == VK_KHR_SHADER_CLOCK_EXTENSION_NAME) shaderClockExtension_ = true;
+  }
+  // The shader clocks, queried only where the extension is (its feature structure is valid only then).
+  ShaderClock clocks;
+  if (shaderClockExtension_) {
+    VkPhysicalDeviceShaderClockFeaturesKHR clock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.pNext = &clock;
+    vkGetPhysicalDeviceFeatures2(physical_, &f2);
+    clocks.subgroup = clock.shaderSubgroupClock;
+    clocks.device = clock.shaderDeviceClock;
   }
   DeviceTraits traits;
   traits.cpuImplementation = candidates[*choice.index].cpu;
   traits.pipelineLibrarySupported = pipelineLibrary_;
   traits.deferredHostOpsSupported = true;  // VK_KHR_deferred_host_operations is a required extension
+  traits.shaderClockSupported = clocks.any();
   policy_ = resolveDevicePolicy(traits, PolicyOverrides::fromEnvironment());
+  if (policy_.shaderClock) shaderClock_ = clocks;
 
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};
@@ -320,6 +333,13 @@ void Context::pickDevice(const ContextOptions& options) {
 
 void Context::createDevice(const ContextOptions& options) {
   queueFamily_ = graphicsComputeQueueFamily(physical_, deviceName_);
+  {
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> families(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &n, families.data());
+    timestampValidBits_ = families.at(queueFamily_).timestampValidBits;
+  }
   // Selection already refused devices without the essentials; the optional ones are enabled where present.
   const SupportedFeatures have(physical_);
   std::string missing;
@@ -331,6 +351,16 @@ void Context::createDevice(const ContextOptions& options) {
   for (const auto& e : requiredDeviceExtensions()) extensions.push_back(e.c_str());
   if (pipelineLibrary_) extensions.push_back(VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME);
   if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  // The shader clocks, optional: enabled where the device has them and the policy wants them.
+  VkPhysicalDeviceShaderClockFeaturesKHR clock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
+  const void* chain = &features.base;
+  if (shaderClock_.any()) {
+    extensions.push_back(VK_KHR_SHADER_CLOCK_EXTENSION_NAME);
+    clock.shaderSubgroupClock = shaderClock_.subgroup;
+    clock.shaderDeviceClock = shaderClock_.device;
+    clock.pNext = const_cast<void*>(chain);
+    chain = &clock;
+  }
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -338,7 +368,7 @@ void Context::createDevice(const ContextOptions& options) {
   qci.queueCount = 1;
   qci.pQueuePriorities = &priority;
   VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  dci.pNext = &features.base;
+  dci.pNext = chain;
   dci.queueCreateInfoCount = 1;
   dci.pQueueCreateInfos = &qci;
   dci.enabledExtensionCount = static_cast<uint32_t>(extensions.size());

@@ -23,6 +23,14 @@ struct ContextOptions {
       pipelineCacheDir;  // where the VkPipelineCache persists (a file per device); empty = memory only
 };
 
+// The shader clocks of VK_KHR_shader_clock the device was created with (none unless
+// DevicePolicy::shaderClock).
+struct ShaderClock {
+  bool subgroup = false;  // shaderSubgroupClock (GLSL clockARB: on GPUs the multiprocessor's cycle counter)
+  bool device = false;    // shaderDeviceClock (GLSL clockRealtimeEXT)
+  bool any() const { return subgroup || device; }
+};
+
 struct RayTracingProperties {
   uint32_t handleSize = 0;
   uint32_t handleAlignment = 0;
@@ -52,6 +60,9 @@ class Context {
   // What this device needs done differently (vk/driver_policy.h), resolved when the device is made.
   const DevicePolicy& policy() const { return policy_; }
   float timestampPeriodNs() const { return timestampPeriod_; }
+  // Bits of a timestamp the queue writes (0: the queue has no timestamps).
+  uint32_t timestampValidBits() const { return timestampValidBits_; }
+  const ShaderClock& shaderClock() const { return shaderClock_; }
   // The pipeline cache every pipeline is created with (persisted at exit when a directory was given).
   VkPipelineCache pipelineCache() const { return pipelineCache_ ? pipelineCache_->handle() : VK_NULL_HANDLE; }
   PipelineCache* pipelineCacheObject() { return pipelineCache_.get(); }
@@ -116,6 +127,9 @@ class Context {
   bool pipelineLibrary_ = false;
   DevicePolicy policy_;
   float timestampPeriod_ = 1.0f;
+  uint32_t timestampValidBits_ = 0;
+  ShaderClock shaderClock_;
+  bool shaderClockExtension_ = false;  // the device lists VK_KHR_shader_clock
   std::atomic<uint32_t> validationErrors_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

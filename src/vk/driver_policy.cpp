@@ -27,6 +27,7 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   o.pipelineLibraries = env::choice("WB_PIPELINE_LIBRARY");
   if (env::choice("WB_DEFERRED_HOST_OPS") == false) o.deferredHostOps = false;
   o.cpuShapedShaderCode = env::choice("WB_CPU_DEVICE_CODE");
+  if (env::choice("WB_SHADER_CLOCK") == false) o.shaderClock = false;
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   return o;
@@ -56,6 +57,8 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
     p.watchRestRatio = p.windowRestRatio = restRatio(kLoopShareWhileCompiling);
   }
   p.windowTraceShareWhileCompiling = cpu ? kLoopShareWhileCompiling : 1.0;
+  p.shaderClock = device.shaderClockSupported && overrides.shaderClock.value_or(true);
+  p.costByMedian = cpu;
   return p;
 }
 

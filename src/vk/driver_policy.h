@@ -18,6 +18,7 @@ struct DeviceTraits {
   bool cpuImplementation = false;  // VK_PHYSICAL_DEVICE_TYPE_CPU
   bool pipelineLibrarySupported = false;
   bool deferredHostOpsSupported = false;
+  bool shaderClockSupported = false;  // VK_KHR_shader_clock with the subgroup or the device clock
 };
 
 // The environment's overrides (unset: the default for the device). Each maps to a variable of
@@ -28,6 +29,7 @@ struct PolicyOverrides {
   std::optional<bool> deferredHostOps;      // WB_DEFERRED_HOST_OPS=0 (on by default where supported)
   std::optional<bool> cpuShapedShaderCode;  // WB_CPU_DEVICE_CODE=0|1
   std::optional<double> rebuildRestRatio;   // WB_REBUILD_YIELD=R (0 .. 1000)
+  std::optional<bool> shaderClock;          // WB_SHADER_CLOCK=0 (on by default where supported)
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -56,6 +58,14 @@ struct DevicePolicy {
   double windowRestRatio = 0.0;
   // ... and the window traces with this share of its per-frame budget meanwhile.
   double windowTraceShareWhileCompiling = 1.0;
+  // VK_KHR_shader_clock is enabled, for the path tracer's cost variants (the cost heat maps, the inspector's
+  // per-vertex cost): wherever the device has it, unless WB_SHADER_CLOCK=0 (a device without one, for
+  // testing, or a driver whose clock misbehaves).
+  bool shaderClock = false;
+  // The cost views and maps read each pixel's running median of a sample's clocks rather than its mean: on a
+  // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would
+  // set the means (lavapipe on a busy machine: a preempted group of pixels at 100x the others).
+  bool costByMedian = false;
 };
 
 DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides);

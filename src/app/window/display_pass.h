@@ -14,7 +14,7 @@ namespace wb::app {
 // The storage images the display reads (all in GENERAL layout).
 struct DisplaySources {
   VkImageView accum = VK_NULL_HANDLE, albedo = VK_NULL_HANDLE, normal = VK_NULL_HANDLE, info = VK_NULL_HANDLE,
-              preview = VK_NULL_HANDLE, stats = VK_NULL_HANDLE;
+              preview = VK_NULL_HANDLE, stats = VK_NULL_HANDLE, cost = VK_NULL_HANDLE;
   bool operator==(const DisplaySources&) const = default;
 };
 

@@ -168,6 +168,8 @@ void writeInspection(live::LiveSession& session, const std::string& path) {
     const size_t i = (size_t(ctx.y) * s.width + ctx.x) * 4;
     if (i + 3 < accum.size()) ctx.pixelValue = glm::vec4(accum[i], accum[i + 1], accum[i + 2], accum[i + 3]);
     ctx.spp = tracer.samplesAccumulated();
+    ctx.clock = tracer.clock();
+    ctx.labels = tracer.debugLabels();
     j = inspectJson(ctx, inspection.samples());
     const auto& e = inspection.estimate();
     j["running_estimate"] = {{"samples", e.count()},

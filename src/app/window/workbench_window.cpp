@@ -247,7 +247,7 @@ void WorkbenchWindow::drawFrame(float dt) {
   }
   session_->beginFrame();
   const live::DisplayFrame d = session_->displayFrame();
-  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats});
+  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.cost});
 
   const Rect image = imageRect(view);
   gpu::DisplayPush push{};
@@ -261,6 +261,11 @@ void WorkbenchWindow::drawFrame(float dt) {
   push.tracedRows = d.tracedRows;
   push.sceneScale = sceneRadius(session_->render().scene());
   push.maxVertices = d.maxVertices;
+  if (const auto& cost = session_->instruments().cost(); cost && cost->valid()) {
+    push.costFull = float(cost->p95);
+    push.inefficiencyFull = float(cost->inefficiencyP95);
+    push.costMedian = cost->estimate == eval::CostEstimate::Median ? 1u : 0u;
+  }
 
   const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
   std::string screenshot;

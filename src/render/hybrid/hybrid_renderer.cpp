@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <utility>
 
 #include "common/half.h"
@@ -41,6 +42,19 @@ const char* HybridRenderer::passName(HybridPass p) {
       return "hybrid reflections (ray tracing)";
     default:
       return "hybrid composite (compute)";
+  }
+}
+
+const char* HybridRenderer::passKey(HybridPass p) {
+  switch (p) {
+    case HybridPass::GBuffer:
+      return "gbuffer";
+    case HybridPass::ShadowAo:
+      return "shadow_ao";
+    case HybridPass::Reflection:
+      return "reflections";
+    default:
+      return "composite";
   }
 }
 
@@ -131,6 +145,7 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
   }
   static const char* programNames[kPassCount] = {"hybrid-gbuffer", "hybrid-shadow-ao", "hybrid-reflections",
                                                  "hybrid-composite"};
+  timer_ = std::make_unique<PassTimer>(ctx_);
   for (size_t i = 0; i < kPassCount; ++i) {
     const HybridPass id = static_cast<HybridPass>(i);
     if (!hasPass(id)) continue;
@@ -336,6 +351,8 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
   const uint32_t w = settings_.width, h = settings_.height;
 
   // 1. G-buffer (dynamic rendering). The previous contents are discarded.
+  std::optional<PassTimer::Scope> timed;  // each pass's GPU time
+  timed.emplace(timer_.get(), cmd, passKey(HybridPass::GBuffer));
   for (const vk::Image* img : {&albedo_, &normal_, &emissive_}) {
     vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   }
@@ -387,12 +404,16 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
   // 2. Shadows + AO, 3. reflections (ray tracing pipelines, launched over the image).
   for (HybridPass id : {HybridPass::ShadowAo, HybridPass::Reflection}) {
     if (!hasPass(id)) continue;
+    timed.reset();
+    timed.emplace(timer_.get(), cmd, passKey(id));
     pass(id).bind(cmd);
     pass(id).traceRays(cmd, w, h);
     vk::memoryBarrier(cmd);
   }
 
   // 4. Composite.
+  timed.reset();
+  timed.emplace(timer_.get(), cmd, passKey(HybridPass::Composite));
   pass(HybridPass::Composite).bind(cmd);
   pass(HybridPass::Composite).dispatch(cmd, (w + 7) / 8, (h + 7) / 8);
   vk::memoryBarrier(cmd);

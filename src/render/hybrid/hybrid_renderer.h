@@ -25,6 +25,8 @@ class HybridRenderer final : public Renderer {
  public:
   static constexpr size_t kPassCount = 4;
   static const char* passName(HybridPass p);
+  // Its key in per-pass timings (PassTimer, `pass_ms`): "gbuffer", "shadow_ao", "reflections", "composite".
+  static const char* passKey(HybridPass p);
 
   // `shaderRoot` is the shaders/ folder (tests point it at a temporary copy); the library's include roots
   // should contain it.
@@ -62,6 +64,7 @@ class HybridRenderer final : public Renderer {
   const vk::Image& outputImage() const override { return output_; }
   eval::ImageRGBA readImage() const override;
   std::vector<Pass*> passes() const override;
+  PassTimer* passTimer() const override { return timer_.get(); }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   void matchCompiledParameters(const Renderer& other) override;
@@ -112,6 +115,7 @@ class HybridRenderer final : public Renderer {
   bool hasSun_ = false;
   std::vector<Draw> draws_;
   std::array<std::unique_ptr<Pass>, kPassCount> passes_;  // null where !hasPass()
+  std::unique_ptr<PassTimer> timer_;
   vk::Image albedo_, normal_, emissive_, depth_, shadowMask_, aoMask_, history_, reflection_, output_;
   VkSampler nearest_ = VK_NULL_HANDLE;
   vk::Buffer uniforms_;

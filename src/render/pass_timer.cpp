@@ -1,0 +1,94 @@
+#include "render/pass_timer.h"
+
+#include <algorithm>
+
+namespace wb::render {
+
+PassTimer::PassTimer(vk::Context& ctx, uint32_t maxScopes) : ctx_(ctx) {
+  if (ctx.timestampValidBits() == 0 || maxScopes == 0) return;
+  capacity_ = 2 * maxScopes;
+  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  qi.queryCount = capacity_;
+  WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &pool_));
+}
+
+PassTimer::~PassTimer() {
+  if (pool_) vkDestroyQueryPool(ctx_.device(), pool_, nullptr);
+}
+
+void PassTimer::begin(VkCommandBuffer cmd, const std::string& pass) {
+  open_ = false;
+  if (!pool_ || used_ + 2 > capacity_) return;
+  if (!resetRecorded_) {
+    vkCmdResetQueryPool(cmd, pool_, 0, capacity_);
+    resetRecorded_ = true;
+  }
+  // Bottom of pipe: written once the commands before it completed, so the scope starts where the pass does.
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, used_);
+  pending_.push_back({pass, used_});
+  used_ += 2;
+  open_ = true;
+}
+
+void PassTimer::end(VkCommandBuffer cmd) {
+  if (!open_) return;
+  vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, pending_.back().query + 1);
+  open_ = false;
+}
+
+const std::vector<PassTime>& PassTimer::collect() {
+  last_.clear();
+  if (pool_ && used_ > 0) {
+    struct Result {
+      uint64_t value, available;
+    };
+    std::vector<Result> results(used_);
+    const VkResult r =
+        vkGetQueryPoolResults(ctx_.device(), pool_, 0, used_, results.size() * sizeof(Result), results.data(),
+                              sizeof(Result), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+    if (r == VK_SUCCESS || r == VK_NOT_READY) {
+      const uint32_t bits = ctx_.timestampValidBits();
+      const uint64_t mask = bits >= 64 ? ~0ull : (1ull << bits) - 1;
+      const double msPerTick = double(ctx_.timestampPeriodNs()) * 1e-6;
+      for (const auto& p : pending_) {
+        const Result& a = results[p.query];
+        const Result& b = results[p.query + 1];
+        if (!a.available || !b.available) continue;
+        const double ms = double((b.value - a.value) & mask) * msPerTick;
+        auto it =
+            std::find_if(last_.begin(), last_.end(), [&](const PassTime& t) { return t.pass == p.pass; });
+        if (it == last_.end()) it = last_.insert(last_.end(), PassTime{p.pass, 0.0, 0});
+        it->ms += ms;
+        ++it->scopes;
+      }
+    }
+  }
+  for (const auto& t : last_) {
+    auto it =
+        std::find_if(totals_.begin(), totals_.end(), [&](const PassTime& x) { return x.pass == t.pass; });
+    if (it == totals_.end()) it = totals_.insert(totals_.end(), PassTime{t.pass, 0.0, 0});
+    it->ms += t.ms;
+    it->scopes += t.scopes;
+  }
+  if (!last_.empty()) ++rounds_;
+  pending_.clear();
+  used_ = 0;
+  resetRecorded_ = false;
+  open_ = false;
+  return last_;
+}
+
+void PassTimer::resetTotals() {
+  totals_.clear();
+  rounds_ = 0;
+}
+
+std::vector<std::pair<std::string, double>> passMsPer(const std::vector<PassTime>& times, double divisor) {
+  std::vector<std::pair<std::string, double>> out;
+  if (divisor <= 0) return out;
+  for (const auto& t : times) out.emplace_back(t.pass, t.ms / divisor);
+  return out;
+}
+
+}  // namespace wb::render
