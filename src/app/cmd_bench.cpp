@@ -14,7 +14,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_cost.h"
 #include "app/bench_window.h"
+#include "app/debug_json.h"
 #include "app/process.h"
 #include "app/progress.h"
 #include "common/env.h"
@@ -119,6 +121,7 @@ json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h,
   j["blas_build_ms"] = s.gpuScene().accel().blasBuildMs();
   j["tlas_build_ms"] = s.gpuScene().accel().tlasBuildMs();
   j["scene_device_bytes"] = s.gpuScene().deviceBytes();
+  j["pass_ms"] = passMsJson(s.renderer().passTimer(), spp);  // GPU ms per sample, the last run's
   return j;
 }
 
@@ -426,13 +429,19 @@ void printSummary(const json& result, const std::string& cmdline) {
   if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
   if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
   if (result.contains("window")) std::printf("window: %s\n", jsonText(result["window"]).c_str());
+  if (result.contains("cost")) {
+    for (const auto& r : result["cost"]["variants"])
+      std::printf("variant %-8s %10.4g s/sample  overhead %+6.1f%%  path tracer GPU %+6.1f%%\n",
+                  r["variant"].get<std::string>().c_str(), r["seconds_per_sample"].get<double>(),
+                  100.0 * r["overhead"].get<double>(), 100.0 * r["pathtracer_gpu_overhead"].get<double>());
+  }
   std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
 }
 
 }  // namespace
 
 const std::vector<std::string>& BenchCommand::sectionNames() {
-  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes", "window"};
+  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes", "window", "cost"};
   return names;
 }
 
@@ -448,7 +457,7 @@ void BenchCommand::addFlags(CLI::App& cli) {
       "under load (default 5, 2 with --quick)");
   cli.add_flag("--no-load", noLoad, "window: skip the edits with two busy loops in another session");
   cli.add_option("--only", sections,
-                 "sections to run, comma or space separated: pathtracer,startup,reload,modes,window")
+                 "sections to run, comma or space separated: pathtracer,startup,reload,modes,window,cost")
       ->delimiter(',')
       ->check(CLI::IsMember(sectionNames()));
 }
@@ -505,7 +514,7 @@ int BenchCommand::run() {
   wo.device = device;
   const int steps = int(ptScenes.size()) * 2 + (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) +
                     (has("modes") ? int(mScenes.size()) * 4 + 3 : 0) +
-                    (has("window") ? windowBenchSteps(wo) : 0);
+                    (has("window") ? windowBenchSteps(wo) : 0) + (has("cost") ? 1 : 0);
   StepProgress progress("bench", steps);
   try {
     if (has("pathtracer")) {
@@ -538,6 +547,13 @@ int BenchCommand::run() {
       result["window"] = benchWindow(wo, work, ownMesaCache, progress);
       result["device"] = result["window"]["device"];
       result["driver"] = result["window"]["driver"];
+    }
+    if (has("cost")) {
+      progress.step("cost, inspect and asserts variants");
+      std::string deviceName, driver;
+      result["cost"] = benchCostVariants(w, h, spp, quick ? 2 : repeats + 2, device, deviceName, driver);
+      result["device"] = deviceName;
+      result["driver"] = driver;
     }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {

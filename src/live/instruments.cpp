@@ -32,8 +32,14 @@ bool Instruments::apply(render::PathTracer& tracer, const SessionState& state) {
 void Instruments::submissionFinished(render::Renderer& renderer) {
   render::PassTimer* timer = renderer.passTimer();
   if (!timer) return;
-  passTimes_ = timer->collect();
+  const auto& round = timer->collect();
+  if (round.empty()) return;  // a submission that recorded no pass keeps the last times
+  passTimes_ = round;
   ++passTimesSerial_;
+  float total = 0;
+  for (const auto& t : passTimes_) total += float(t.ms);
+  passHistory_.push_back(total);
+  if (passHistory_.size() > kHistory) passHistory_.pop_front();
 }
 
 void Instruments::frameFinished(render::RenderSession& session, bool pathTracerShown) {

@@ -4,6 +4,7 @@
 // toggle is on, with their failures. LiveSession drives it at frame boundaries.
 #pragma once
 #include <chrono>
+#include <deque>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,6 +32,10 @@ class Instruments {
 
   const std::vector<render::PassTime>& passTimes() const { return passTimes_; }
   uint64_t passTimesSerial() const { return passTimesSerial_; }  // bumped by every submission timed
+  // The GPU milliseconds of the last kHistory timed submissions, all passes summed, oldest first (the
+  // panel's GPU time graph).
+  static constexpr size_t kHistory = 240;
+  const std::deque<float>& passHistory() const { return passHistory_; }
   const std::optional<eval::CostSummary>& cost() const { return cost_; }
   bool costOn() const { return costOn_; }
   const render::AssertReport& asserts() const { return asserts_; }
@@ -40,6 +45,7 @@ class Instruments {
   bool costOn_ = false, assertsOn_ = false;
   std::vector<render::PassTime> passTimes_;
   uint64_t passTimesSerial_ = 0;
+  std::deque<float> passHistory_;
   std::optional<eval::CostSummary> cost_;
   Clock::time_point lastCostRead_{}, lastLabelsRead_{};
   render::AssertReport asserts_;

@@ -11,6 +11,7 @@
 #include "common/paths.h"
 #include "display/display_types.h"
 #include "shader/library.h"
+#include "shared/debug_types.h"
 #include "shared/hybrid_types.h"
 #include "shared/inspect_types.h"
 #include "shared/pathtracer_types.h"
@@ -112,4 +113,18 @@ TEST(GpuTypesLayout, PathInspectorBlocksMatchTheHostStructs) {
   EXPECT_TRUE(raygen.count("InspectSampleBlock") && raygen.count("InspectHeaderBlock"));
   // The normal build declares none of them.
   EXPECT_FALSE(moduleBlocks("pathtracer/raygen.rgen").count("InspectSampleBlock"));
+}
+
+TEST(GpuTypesLayout, DebugPrintAndAssertBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  // wbPrint records in the inspecting variant, wbAssert failures in the asserts variant (raygen holds both
+  // kinds of call: its own wbAssert, and inspect.glsl's reset of the print count).
+  const auto inspect = moduleBlocks("pathtracer/closesthit.rchit", {{"WB_INSPECT", "1"}});
+  ASSERT_TRUE(inspect.count("InspectPrintBlock"));
+  EXPECT_EQ(inspect.at("InspectPrintBlock"), sizeof(PrintRecord));
+  const auto asserts = moduleBlocks("pathtracer/raygen.rgen", {{"WB_ASSERTS", "1"}});
+  ASSERT_TRUE(asserts.count("AssertHeaderBlock") && asserts.count("AssertRecordBlock"));
+  EXPECT_EQ(asserts.at("AssertHeaderBlock"), sizeof(AssertHeader));
+  EXPECT_EQ(asserts.at("AssertRecordBlock"), sizeof(AssertRecord));
+  EXPECT_FALSE(moduleBlocks("pathtracer/raygen.rgen").count("AssertRecordBlock"));
 }

@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app/window/instruments_panel.h"
 #include "app/window/parameter_panel.h"
 #include "common/paths.h"
 
@@ -71,7 +72,10 @@ void inspectPanel(PanelContext& c) {
   } else {
     ImGui::TextDisabled("debug views are the path tracer's");
   }
+  drawCostLegend(c.session);
+  drawAssertsSection(c.session);
   drawInspectorSection(st, c.session.inspection(), debugViews);
+  drawPrintsSection(c.session);
   ImGui::Separator();
   ImGui::TextDisabled("hover the image to pick; click to pin");
   if (!c.pick) {
@@ -283,6 +287,7 @@ void statsPanel(PanelContext& c) {
                 c.frames.mean(), c.frames.max());
   ImGui::PlotLines("##frametimes", values.data(), int(values.size()), 0, overlay, 0.0f,
                    std::max(50.0f, c.frames.max() * 1.1f), ImVec2(ImGui::GetContentRegionAvail().x, 60));
+  drawPassTimes(c.session, c.displayGpuMs);
   errorSection(c);
   ImGui::TextDisabled("%s", c.session.render().context().deviceName().c_str());
 }
@@ -343,6 +348,7 @@ void drawOverlays(PanelContext& c, const Rect& view) {
         0.5f * glm::length(c.session.render().scene().bounds.max - c.session.render().scene().bounds.min);
     drawInspectorOverlay(c.session.state(), c.session.inspection(), c.camera.state(), c.session.imageWidth(),
                          c.session.imageHeight(), view, std::max(radius, 1e-3f));
+    drawAssertMarks(c.session, view);
   }
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   char status[192];

@@ -24,6 +24,7 @@ struct PanelContext {
   const FrameStats& frames;
   std::string presentMode;
   std::string lastSaved;
+  double displayGpuMs = 0;  // the display pass's GPU time in the last frame
 };
 
 // The side panel's width in a window of that width (when shown).

@@ -130,6 +130,7 @@ void vertexTooltip(const render::InspectedVertex& iv) {
     ImGui::Text("  Le %s  contribution %s", vec3Text(l.radiance).c_str(), vec3Text(l.contribution).c_str());
   }
   ImGui::Text("added to the sample %s", vec3Text(iv.added).c_str());
+  ImGui::Text("clocks: trace %u  shading %u  shadow rays %u", v.traceClocks, v.shadeClocks, v.shadowClocks);
   ImGui::EndTooltip();
 }
 
@@ -256,8 +257,8 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
                                 ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollY;
   const float height =
       std::min(12.0f, float(s->vertices.size()) + 1.5f) * ImGui::GetTextLineHeightWithSpacing();
-  if (ImGui::BeginTable("inspect_vertices", 8, flags, ImVec2(0.0f, height))) {
-    for (const char* h : {"#", "mat", "dist", "lobe p", "pdf", "thru", "RR", "NEE"})
+  if (ImGui::BeginTable("inspect_vertices", 9, flags, ImVec2(0.0f, height))) {
+    for (const char* h : {"#", "mat", "dist", "lobe p", "pdf", "thru", "RR", "NEE", "clocks"})
       ImGui::TableSetupColumn(h);
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableHeadersRow();
@@ -288,6 +289,13 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
         nee += l.status != WB_INSPECT_NEE_TRACED ? '.' : l.visible ? '+' : 'x';
       }
       ImGui::Text("%s", nee.empty() ? "-" : nee.c_str());
+      ImGui::TableNextColumn();  // the vertex's trace call, shading and shadow rays (0: no shader clock)
+      const double clocks = double(v.traceClocks) + v.shadeClocks + v.shadowClocks;
+      if (clocks > 0) {
+        ImGui::Text("%.3g", clocks);
+      } else {
+        ImGui::TextUnformatted("-");
+      }
       if (hovered) vertexTooltip(iv);
     }
     ImGui::EndTable();

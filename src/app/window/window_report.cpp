@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "app/debug_json.h"
 #include "app/hybrid_json.h"
 #include "app/inspect_json.h"
 #include "app/parameter_json.h"
@@ -90,6 +91,12 @@ nlohmann::json sessionStatsJson(live::LiveSession& session) {
   j["delivered_paths_per_second"] = wall > 0 ? counters.pathCount / wall : 0.0;
   j["rays_per_second"] = counters.rayCount / secs;
   j["nan_inf_dropped"] = counters.droppedSamples;
+  // The instruments: the last timed submission's GPU ms per pass, the cost views' summary, the asserts.
+  const auto& in = session.instruments();
+  j["pass_ms"] = nlohmann::json::object();
+  for (const auto& t : in.passTimes()) j["pass_ms"][t.pass] = t.ms;
+  j["cost"] = in.cost() ? costJson(*in.cost()) : nlohmann::json(nullptr);
+  j["asserts"] = state.asserts ? assertsJson(in.asserts(), in.labels()) : nlohmann::json(nullptr);
   const auto& hot = session.loop().hot();
   const std::string err = hot.currentError();
   j["shader_error"] = err;

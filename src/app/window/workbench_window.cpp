@@ -218,6 +218,7 @@ void WorkbenchWindow::drawFrame(float dt) {
   const auto& sc = presenter_->swapchain();
   PanelContext pc{*session_, input_->camera(), input_->pick(), frames_, vk::presentModeName(sc.presentMode()),
                   lastSaved_};
+  pc.displayGpuMs = presenter_->displayMs();
   const float W = float(sc.extent().width), H = float(sc.extent().height);
   const float panelWidth = drawSidePanel(pc, W, H);
   const Rect view{panelWidth, 0.0f, std::max(W - panelWidth, 1.0f), H};
