@@ -50,8 +50,8 @@ json benchCostVariants(uint32_t width, uint32_t height, uint32_t spp, int repeat
   for (int r = 0; r < repeats; ++r) {
     for (auto& v : variants) {
       v.seconds.push_back(v.session->render(spp) / spp);
-      const auto ms = render::passMsPer(v.session->renderer().passTimer()->totals(), spp);
-      v.pathtracerMs.push_back(ms.empty() ? 0.0 : ms.front().second);
+      const auto ms = v.session->renderer().passTimer()->medians();
+      v.pathtracerMs.push_back(ms.empty() ? 0.0 : ms.front().ms);
     }
   }
   const double base = median(variants.front().seconds);
@@ -62,15 +62,15 @@ json benchCostVariants(uint32_t width, uint32_t height, uint32_t spp, int repeat
     json row = {{"variant", v.name},
                 {"seconds_per_sample", s},
                 {"overhead", base > 0 ? s / base - 1.0 : 0.0},
-                {"pass_ms", passMsJson(v.session->renderer().passTimer(), spp)},
+                {"pass_ms", passMsJson(v.session->renderer().passTimer())},
                 {"pathtracer_gpu_overhead", baseGpu > 0 ? gpu / baseGpu - 1.0 : 0.0}};
     if (std::string(v.name) == "cost") {
       auto& t = v.session->pathTracer();
-      const auto estimate = v.session->context().policy().costByMedian ? eval::CostEstimate::Median
-                                                                        : eval::CostEstimate::Mean;
-      row["cost"] = costJson(eval::summarizeCost(t.readAccumulation(), t.readAov(render::Aov::Stats),
-                                                 t.readAov(render::Aov::Cost), width, height, t.clock(),
-                                                 estimate));
+      const auto estimate =
+          v.session->context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
+      row["cost"] =
+          costJson(eval::summarizeCost(t.readAccumulation(), t.readAov(render::Aov::Stats),
+                                       t.readAov(render::Aov::Cost), width, height, t.clock(), estimate));
     }
     rows.push_back(row);
   }

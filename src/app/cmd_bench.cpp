@@ -121,7 +121,7 @@ json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h,
   j["blas_build_ms"] = s.gpuScene().accel().blasBuildMs();
   j["tlas_build_ms"] = s.gpuScene().accel().tlasBuildMs();
   j["scene_device_bytes"] = s.gpuScene().deviceBytes();
-  j["pass_ms"] = passMsJson(s.renderer().passTimer(), spp);  // GPU ms per sample, the last run's
+  j["pass_ms"] = passMsJson(s.renderer().passTimer());  // GPU ms per sample, the last run's
   return j;
 }
 
@@ -441,7 +441,8 @@ void printSummary(const json& result, const std::string& cmdline) {
 }  // namespace
 
 const std::vector<std::string>& BenchCommand::sectionNames() {
-  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes", "window", "cost"};
+  static const std::vector<std::string> names = {"pathtracer", "startup", "reload",
+                                                 "modes",      "window",  "cost"};
   return names;
 }
 

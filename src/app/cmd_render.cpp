@@ -116,7 +116,7 @@ int RenderCommand::run() {
     for (double& m : mean) m /= pixels;
     const double samples = pixels * spp;
     nlohmann::json j;
-    const uint32_t assertFailures = writeDebugOutputs(*this, session, spp, j);  // cost map, asserts, pass_ms
+    const uint32_t assertFailures = writeDebugOutputs(*this, session, j);  // cost map, asserts, pass_ms
     if (!stats.empty()) {
       j["device"] = session.context().deviceName();
       j["driver"] = session.context().driverInfo();

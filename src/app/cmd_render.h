@@ -57,9 +57,8 @@ void finishDebugFlags(const RenderCommand& c);
 void startDebugVariants(const RenderCommand& c, render::RenderSession& session);
 // The files the variants write (checked before the render).
 std::vector<std::filesystem::path> debugOutputs(const RenderCommand& c);
-// After the render: writes the cost map and the marked image, adds `cost`, `asserts` and `pass_ms` to `stats`
-// (`spp`: samples rendered). Returns the asserts' failures (0 without --asserts).
-uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& session, uint32_t spp,
-                           nlohmann::json& stats);
+// After the render: writes the cost map and the marked image, adds `cost`, `asserts` and `pass_ms` (GPU ms
+// per sample, the median) to `stats`. Returns the asserts' failures (0 without --asserts).
+uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& session, nlohmann::json& stats);
 
 }  // namespace wb::app

@@ -7,10 +7,10 @@ namespace wb::app {
 
 using nlohmann::json;
 
-json passMsJson(const render::PassTimer* timer, double divisor) {
+json passMsJson(const render::PassTimer* timer) {
   json j = json::object();
   if (!timer) return j;
-  for (const auto& [pass, ms] : render::passMsPer(timer->totals(), divisor)) j[pass] = ms;
+  for (const auto& t : timer->medians()) j[t.pass] = t.ms;
   return j;
 }
 

@@ -13,8 +13,9 @@
 
 namespace wb::app {
 
-// {"pass": ms, ...}: the timer's totals divided by `divisor` (samples or frames rendered); {} without times.
-nlohmann::json passMsJson(const render::PassTimer* timer, double divisor);
+// {"pass": ms, ...}: each pass's GPU ms per round (a sample or a frame of the render), the median over the
+// rounds since the render began; {} without times.
+nlohmann::json passMsJson(const render::PassTimer* timer);
 // The cost summary: clock, units, clocks per sample (mean, p50, p99, max), the frame's clocks, the shares of
 // trace calls, shading and raygen, the inefficiency's mean and p99.
 nlohmann::json costJson(const eval::CostSummary& s);

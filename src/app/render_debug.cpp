@@ -55,9 +55,8 @@ void startDebugVariants(const RenderCommand& c, render::RenderSession& session) 
                  session.context().policy().shaderClock ? "" : ", or WB_SHADER_CLOCK=0");
 }
 
-uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& session, uint32_t spp,
-                           nlohmann::json& stats) {
-  stats["pass_ms"] = passMsJson(session.renderer().passTimer(), double(spp));
+uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& session, nlohmann::json& stats) {
+  stats["pass_ms"] = passMsJson(session.renderer().passTimer());
   if (!c.options.aovCost && !c.asserts) return 0;
   auto& tracer = session.pathTracer();
   const auto& s = tracer.settings();

@@ -67,9 +67,13 @@ const std::vector<PassTime>& PassTimer::collect() {
   for (const auto& t : last_) {
     auto it =
         std::find_if(totals_.begin(), totals_.end(), [&](const PassTime& x) { return x.pass == t.pass; });
-    if (it == totals_.end()) it = totals_.insert(totals_.end(), PassTime{t.pass, 0.0, 0});
+    if (it == totals_.end()) {
+      it = totals_.insert(totals_.end(), PassTime{t.pass, 0.0, 0});
+      roundMs_.emplace_back();
+    }
     it->ms += t.ms;
     it->scopes += t.scopes;
+    roundMs_[size_t(it - totals_.begin())].push_back(t.ms);
   }
   if (!last_.empty()) ++rounds_;
   pending_.clear();
@@ -81,13 +85,17 @@ const std::vector<PassTime>& PassTimer::collect() {
 
 void PassTimer::resetTotals() {
   totals_.clear();
+  roundMs_.clear();
   rounds_ = 0;
 }
 
-std::vector<std::pair<std::string, double>> passMsPer(const std::vector<PassTime>& times, double divisor) {
-  std::vector<std::pair<std::string, double>> out;
-  if (divisor <= 0) return out;
-  for (const auto& t : times) out.emplace_back(t.pass, t.ms / divisor);
+std::vector<PassTime> PassTimer::medians() const {
+  std::vector<PassTime> out;
+  for (size_t i = 0; i < totals_.size(); ++i) {
+    std::vector<double> v = roundMs_[i];
+    std::sort(v.begin(), v.end());
+    out.push_back({totals_[i].pass, v.empty() ? 0.0 : v[v.size() / 2], totals_[i].scopes});
+  }
   return out;
 }
 

@@ -2,8 +2,9 @@
 // before and after its commands); once the submission has finished, collect() reads the round back: the GPU
 // milliseconds of each pass, the scopes of one pass summed (the path tracer's strips of one frame). Any pass
 // a renderer records gets timed this way: the path tracer, each hybrid pass, the denoiser when it lands (the
-// window's display pass is timed by its Presenter). The totals over rounds give `--stats`' and `bench`'s
-// `pass_ms`.
+// window's display pass is timed by its Presenter). The medians over rounds (a round: one sample or frame of
+// Renderer::render) give `--stats`' and `bench`'s `pass_ms`: the first round, which carries the driver's
+// compile of a new pipeline on some devices, does not set them.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -59,6 +60,8 @@ class PassTimer {
   // The sums of the rounds collected since resetTotals(); rounds() counts the rounds that timed anything.
   const std::vector<PassTime>& totals() const { return totals_; }
   uint32_t rounds() const { return rounds_; }
+  // Each pass's median round since resetTotals() (ms: the median of its rounds' times).
+  std::vector<PassTime> medians() const;
   void resetTotals();
 
  private:
@@ -74,10 +77,8 @@ class PassTimer {
   bool open_ = false;  // a scope began and was timed
   std::vector<Pending> pending_;
   std::vector<PassTime> last_, totals_;
+  std::vector<std::vector<double>> roundMs_;  // per pass of totals_, each round's ms
   uint32_t rounds_ = 0;
 };
-
-// `times` as {pass: ms / divisor}, for JSON (divisor: rounds or samples; 0 gives an empty list).
-std::vector<std::pair<std::string, double>> passMsPer(const std::vector<PassTime>& times, double divisor);
 
 }  // namespace wb::render

@@ -62,7 +62,8 @@ TEST(DebugPrint, UnusedCallsLeaveTheDefaultSpirvUnchanged) {
       "  wbPrint(\"one float\", 1.5);\n  wbPrint(\"a vector\", vec3(gl_LaunchIDEXT));\n"
       "  wbPrint(\"a uint\", gl_LaunchIDEXT.x);\n  wbPrint(\"a bool\", gl_LaunchIDEXT.y > 3u);\n"
       "  wbAssert(gl_LaunchIDEXT.x < 100000u, \"in range\");\n";
-  for (const std::string stage : {"raygen.rgen", "closesthit.rchit", "miss.rmiss", "shadow.rmiss", "anyhit.rahit"}) {
+  for (const std::string stage :
+       {"raygen.rgen", "closesthit.rchit", "miss.rmiss", "shadow.rmiss", "anyhit.rahit"}) {
     SCOPED_TRACE(stage);
     const fs::path file = root / "pathtracer" / stage;
     const std::string original = readAll(file);

@@ -776,3 +776,30 @@ TEST(Window, HybridModesRecordThePixelsRays) {
   EXPECT_EQ(j["ao"]["rays"].size(), 4u);
   EXPECT_TRUE(j["shadow"]["ray"].contains("visible"));
 }
+
+// The cost views: the cost variant runs while one is shown and the legend's summary reaches --stats; the pass
+// table's times too; the asserts toggle switches the asserts variant on (the unedited shaders pass).
+TEST(Window, CostViewsPassTimesAndTheAssertsToggle) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("cost");
+  const std::string d = dir.string() + "/";
+  writeFile(dir / "s.txt",
+            "set view cost\nwait_samples 3 300\nframes 2\nstats " + d + "cost.json\nscreenshot " + d +
+                "cost.png\nframes 1\nset view inefficiency\nframes 2\nscreenshot " + d +
+                "inefficiency.png\nframes 1\nset view beauty\nset asserts 1\nwait_samples 2 300\n"
+                "frames 1\nstats " +
+                d + "asserts.json\n");
+  auto r = runWindow("--spp 4 --script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto cost = readJson(dir / "cost.json");
+  ASSERT_TRUE(cost["cost"].is_object()) << cost.dump();
+  EXPECT_NE(cost["cost"]["clock"], "none") << "lavapipe has a shader clock";
+  EXPECT_GT(cost["cost"]["frame_clocks"].get<double>(), 0.0);
+  EXPECT_GT(cost["cost"]["clocks_per_sample"]["p95"].get<double>(), 0.0);
+  EXPECT_GT(cost["pass_ms"]["pathtracer"].get<double>(), 0.0);
+  EXPECT_GT(imageAreaDifference(dir / "cost.png", dir / "inefficiency.png", 144), 2.0);
+  const auto asserts = readJson(dir / "asserts.json");
+  ASSERT_TRUE(asserts["asserts"].is_object()) << asserts.dump();
+  EXPECT_EQ(asserts["asserts"]["failures"], 0);
+  EXPECT_TRUE(asserts["cost"].is_null()) << "the cost variant is off with the beauty view";
+}

@@ -113,8 +113,8 @@ void drawCostLegend(const live::LiveSession& session) {
     ImGui::Text("full scale = %.3g%% of the frame, %.2fx the mean pixel", 100.0 * c.p95 / c.frame,
                 c.mean > 0 ? c.p95 / c.mean : 0.0);
     ImGui::Text("mean %.4g  p50 %.4g  p99 %.4g  max %.4g", c.mean, c.p50, c.p99, c.max);
-    ImGui::Text("trace calls %.0f%%  shading %.0f%%  raygen %.0f%%", 100.0 * c.traceShare, 100.0 * c.shadeShare,
-                100.0 * c.raygenShare);
+    ImGui::Text("trace calls %.0f%%  shading %.0f%%  raygen %.0f%%", 100.0 * c.traceShare,
+                100.0 * c.shadeShare, 100.0 * c.raygenShare);
   } else {
     ImGui::TextUnformatted("relative variance x clocks per sample (1 / efficiency)");
     std::snprintf(low, sizeof low, "0");
@@ -158,7 +158,8 @@ void drawPrintsSection(const live::LiveSession& session) {
   ImGui::Text("wbPrint: %u%s", made, made > s->prints.size() ? " (the first ones kept)" : "");
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_Borders |
                                 ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollY;
-  const float height = std::min(10.0f, float(s->prints.size()) + 1.5f) * ImGui::GetTextLineHeightWithSpacing();
+  const float height =
+      std::min(10.0f, float(s->prints.size()) + 1.5f) * ImGui::GetTextLineHeightWithSpacing();
   if (!ImGui::BeginTable("inspect_prints", 4, flags, ImVec2(0.0f, height))) return;
   for (const char* h : {"#", "stage", "label", "value"}) ImGui::TableSetupColumn(h);
   ImGui::TableSetupScrollFreeze(0, 1);
