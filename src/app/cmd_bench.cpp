@@ -339,7 +339,8 @@ json benchModes(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, u
       speed.push_back({{"mode", render::renderModeName(mode)},
                        {"size", speedSize},
                        {"seconds_per_frame", median(t)},
-                       {"repeats", repeats}});
+                       {"repeats", repeats},
+                       {"pass_ms", passMsJson(s.renderer().passTimer())}});  // the last frame's passes
     }
   }
   return {{"error", rows}, {"speed", speed}};

@@ -104,23 +104,24 @@ void drawCostLegend(const live::LiveSession& session) {
   const std::string units = eval::clockUnits(c.clock);
   char low[64], high[96];
   if (view == WB_VIEW_COST) {
-    ImGui::Text("%s clock, %s per sample (%s of each pixel)", render::clockName(c.clock), units.c_str(),
-                eval::costEstimateName(c.estimate));
+    ImGui::TextWrapped("%s per sample (%s clock, each pixel's %s)", units.c_str(), render::clockName(c.clock),
+                       eval::costEstimateName(c.estimate));
     std::snprintf(low, sizeof low, "0");
     std::snprintf(high, sizeof high, "%.4g %s (p95)", c.p95, units.c_str());
     rampBar(low, high);
     // A pixel at full scale: its share of the frame's clocks, and against the mean pixel.
-    ImGui::Text("full scale = %.3g%% of the frame, %.2fx the mean pixel", 100.0 * c.p95 / c.frame,
-                c.mean > 0 ? c.p95 / c.mean : 0.0);
-    ImGui::Text("mean %.4g  p50 %.4g  p99 %.4g  max %.4g", c.mean, c.p50, c.p99, c.max);
-    ImGui::Text("trace calls %.0f%%  shading %.0f%%  raygen %.0f%%", 100.0 * c.traceShare,
-                100.0 * c.shadeShare, 100.0 * c.raygenShare);
+    ImGui::TextWrapped("full scale: %.2fx the mean pixel, %.3g%% of the frame's clocks",
+                       c.mean > 0 ? c.p95 / c.mean : 0.0, 100.0 * c.p95 / c.frame);
+    ImGui::TextWrapped("mean %.4g  p50 %.4g  p99 %.4g  max %.4g", c.mean, c.p50, c.p99, c.max);
+    ImGui::TextWrapped("frame: trace calls %.0f%%, shading %.0f%%, raygen %.0f%%", 100.0 * c.traceShare,
+                       100.0 * c.shadeShare, 100.0 * c.raygenShare);
   } else {
-    ImGui::TextUnformatted("relative variance x clocks per sample (1 / efficiency)");
+    ImGui::TextWrapped("relative variance x %s per sample (1 / efficiency: noisy and expensive)",
+                       units.c_str());
     std::snprintf(low, sizeof low, "0");
     std::snprintf(high, sizeof high, "%.4g (p95)", c.inefficiencyP95);
     rampBar(low, high);
-    ImGui::Text("mean %.4g  p99 %.4g  (%s)", c.inefficiencyMean, c.inefficiencyP99, units.c_str());
+    ImGui::Text("mean %.4g  p99 %.4g", c.inefficiencyMean, c.inefficiencyP99);
   }
 }
 
