@@ -30,6 +30,8 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   if (env::choice("WB_SHADER_CLOCK") == false) o.shaderClock = false;
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
+  o.trialRuns = env::choice("WB_TRIAL_RUN");
+  o.hangSeconds = env::number("WB_HANG_SECONDS");
   return o;
 }
 
@@ -57,6 +59,8 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
     p.watchRestRatio = p.windowRestRatio = restRatio(kLoopShareWhileCompiling);
   }
   p.windowTraceShareWhileCompiling = cpu ? kLoopShareWhileCompiling : 1.0;
+  p.trialRuns = overrides.trialRuns.value_or(true);
+  if (overrides.hangSeconds) p.hangSeconds = *overrides.hangSeconds;
   p.shaderClock = device.shaderClockSupported && overrides.shaderClock.value_or(true);
   p.costByMedian = cpu;
   return p;
