@@ -192,7 +192,7 @@ TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
                      "#ifdef WB_EXPENSIVE_MATERIAL\n"
                      "  if (g.materialIndex == WB_EXPENSIVE_MATERIAL) {\n"
                      "    float x = gl_HitTEXT;\n"
-                     "    for (int i = 0; i < 4000; ++i) x = sin(x) * 1.0001 + 0.5;\n"
+                     "    for (int i = 0; i < 8000; ++i) x = sin(x) * 1.0001 + 0.5;\n"
                      "    if (x == 1234.5) payload.status = PAYLOAD_ABSORBED;  // keeps the loop\n"
                      "  }\n"
                      "#endif\n"}});

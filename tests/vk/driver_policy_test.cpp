@@ -153,3 +153,23 @@ TEST(DriverPolicy, LlvmpipeVectorWidthIsOneItCompiles) {
     ::unsetenv("LP_NATIVE_VECTOR_WIDTH");
   }
 }
+
+// The shader clock (the cost variants): enabled wherever the device has it unless WB_SHADER_CLOCK=0; a CPU
+// device's costs are read as medians (its clock counts the time the OS ran other threads).
+TEST(DriverPolicy, TheShaderClockIsOnWhereSupportedUnlessSwitchedOff) {
+  DeviceTraits withClock = gpu();
+  withClock.shaderClockSupported = true;
+  EXPECT_TRUE(resolveDevicePolicy(withClock, {}).shaderClock);
+  EXPECT_FALSE(resolveDevicePolicy(gpu(), {}).shaderClock);
+  PolicyOverrides off;
+  off.shaderClock = false;
+  EXPECT_FALSE(resolveDevicePolicy(withClock, off).shaderClock);
+  EXPECT_FALSE(resolveDevicePolicy(withClock, {}).costByMedian);
+  EXPECT_TRUE(resolveDevicePolicy(cpu(), {}).costByMedian);
+  ::setenv("WB_SHADER_CLOCK", "0", 1);
+  EXPECT_EQ(PolicyOverrides::fromEnvironment().shaderClock, false);
+  ::setenv("WB_SHADER_CLOCK", "maybe", 1);
+  EXPECT_THROW(PolicyOverrides::fromEnvironment(), std::invalid_argument);
+  ::unsetenv("WB_SHADER_CLOCK");
+  EXPECT_FALSE(PolicyOverrides::fromEnvironment().shaderClock.has_value());
+}
