@@ -17,6 +17,16 @@ uint32_t debugLabelId(std::string_view text) {
 
 namespace {
 
+// Whether `out` ends with "debugPrintfEXT(" (spaces allowed): its format string stays a string.
+bool afterDebugPrintf(const std::string& out) {
+  size_t end = out.find_last_not_of(" \t");
+  if (end == std::string::npos || out[end] != '(') return false;
+  end = out.find_last_not_of(" \t", end - 1);
+  constexpr std::string_view kName = "debugPrintfEXT";
+  return end != std::string::npos && end + 1 >= kName.size() &&
+         std::string_view(out).substr(end + 1 - kName.size(), kName.size()) == kName;
+}
+
 void addLabel(std::map<uint32_t, std::string>& labels, uint32_t id, const std::string& text) {
   auto [it, added] = labels.try_emplace(id, text);
   if (added || it->second == text) return;
@@ -90,7 +100,7 @@ std::string replaceDebugLabels(std::string_view s, std::map<uint32_t, std::strin
         }
         text += s[j++];
       }
-      if (closed) {
+      if (closed && !afterDebugPrintf(out)) {
         const uint32_t id = debugLabelId(text);
         char literal[16];
         std::snprintf(literal, sizeof literal, "0x%08xu", id);

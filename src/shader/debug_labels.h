@@ -1,9 +1,9 @@
 // The labels of wbPrint("label", value) and wbAssert(condition, "label") (shaders/shared/debug_print.h).
-// GLSL has no strings: before glslang sees a shader, every string literal of its code (outside comments and
-// preprocessor lines, whose #include "file" keeps its quotes) becomes the label's id, a uint literal with the
-// 32-bit FNV-1a hash of its text. The id is the same in every stage and file, so the host maps the ids a
-// shader recorded back to texts by reading the same sources again (debugLabelsOf). Lines are kept: a
-// diagnostic's line is the source's.
+// GLSL has no strings: before glslang sees a shader, every string literal of its code (outside comments,
+// preprocessor lines, whose #include "file" keeps its quotes, and debugPrintfEXT's format) becomes the
+// label's id, a uint literal with the 32-bit FNV-1a hash of its text. The id is the same in every stage and
+// file, so the host maps the ids a shader recorded back to texts by reading the same sources again
+// (debugLabelsOf). Lines are kept: a diagnostic's line is the source's.
 #pragma once
 #include <cstdint>
 #include <filesystem>

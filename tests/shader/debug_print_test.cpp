@@ -23,7 +23,8 @@ TEST(DebugLabels, StringLiteralsBecomeIdsOutsideCommentsAndDirectives) {
       "// wbPrint(\"in a comment\", x);\n"
       "/* \"block\"\n \"comment\" */\n"
       "#define M(x) wbPrint(\"in a macro\", x)\n"
-      "void f() { wbPrint(\"pdf\", p); wbAssert(p > 0.0, \"a \\\"quoted\\\" word\"); }\n";
+      "void f() { wbPrint(\"pdf\", p); wbAssert(p > 0.0, \"a \\\"quoted\\\" word\"); }\n"
+      "void g() { debugPrintfEXT( \"x %f\", p); }\n";
   std::map<uint32_t, std::string> labels;
   const std::string out = replaceDebugLabels(src, &labels);
   char pdf[16], quoted[16];
@@ -35,6 +36,7 @@ TEST(DebugLabels, StringLiteralsBecomeIdsOutsideCommentsAndDirectives) {
   EXPECT_NE(out.find("\"block\"\n \"comment\""), std::string::npos);
   EXPECT_NE(out.find("\"in a macro\""), std::string::npos) << "a preprocessor line keeps its strings";
   EXPECT_NE(out.find(quoted), std::string::npos) << out;
+  EXPECT_NE(out.find("debugPrintfEXT( \"x %f\", p)"), std::string::npos) << "its format stays a string";
   EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), std::count(src.begin(), src.end(), '\n'))
       << "lines are kept (diagnostics name the source's lines)";
   ASSERT_EQ(labels.size(), 2u);
