@@ -830,7 +830,7 @@ TEST(Window, CostViewsPassTimesAndTheAssertsToggle) {
   writeFile(dir / "s.txt",
             "set view cost\nwait_samples 3 300\nframes 2\nstats " + d + "cost.json\nscreenshot " + d +
                 "cost.png\nframes 1\nset view inefficiency\nframes 2\nscreenshot " + d +
-                "inefficiency.png\nframes 1\nset view beauty\nset asserts 1\nwait_samples 2 300\n"
+                "inefficiency.png\nframes 1\nset view beauty\nset asserts 1\nframes 1\nwait_samples 2 300\n"
                 "frames 1\nstats " +
                 d + "asserts.json\n");
   auto r = runWindow("--spp 4 --script " + (dir / "s.txt").string());
@@ -846,4 +846,51 @@ TEST(Window, CostViewsPassTimesAndTheAssertsToggle) {
   ASSERT_TRUE(asserts["asserts"].is_object()) << asserts.dump();
   EXPECT_EQ(asserts["asserts"]["failures"], 0);
   EXPECT_TRUE(asserts["cost"].is_null()) << "the cost variant is off with the beauty view";
+}
+
+// With a zero-pdf bug injected into a copy of the shaders (the image's first 8 columns), the asserts toggle
+// lists the failures there and nowhere else, and marks them on the image in magenta.
+TEST(Window, TheAssertsToggleMarksTheFailingPixels) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("assert_marks");
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::create_directory_symlink(fs::path(WB_SOURCE_DIR) / "assets", root / "assets");
+  const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
+  std::string text = readFile(chit);
+  const std::string line = "  payload.pdf = s.pdf;";
+  ASSERT_NE(text.find(line), std::string::npos);
+  text.replace(text.find(line), line.size(),
+               "  payload.pdf = gl_LaunchIDEXT.x + pc.tileOffset.x < 8u ? 0.0 : s.pdf;");
+  writeFile(chit, text);
+  const std::string d = dir.string() + "/";
+  writeFile(dir / "s.txt", "wait_samples 1 300\nframes 1\nscreenshot " + d +
+                               "off.png\nframes 1\nset asserts 1\n"
+                               "frames 1\nwait_samples 1 300\nframes 2\nstats " +
+                               d + "on.json\nscreenshot " + d + "on.png\nframes 1\n");
+  auto r = runWindow("--spp 1 --script " + (dir / "s.txt").string(),
+                     "WB_ROOT=" + root.string() + " WB_SHADER_CACHE_DIR=" + (root / "cache").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto a = readJson(dir / "on.json")["asserts"];
+  ASSERT_TRUE(a.is_object());
+  EXPECT_GT(a["failures"].get<int>(), 0);
+  for (const auto& f : a["first"]) {
+    EXPECT_LT(f["pixel"][0].get<int>(), 8) << f.dump();
+    EXPECT_EQ(f["label"], "pdf > 0");
+  }
+  auto magenta = [](const fs::path& png) {
+    int w = 0, h = 0, n = 0;
+    unsigned char* px = stbi_load(png.c_str(), &w, &h, &n, 4);
+    size_t count = 0;
+    for (int y = 0; px && y < h - 24; ++y)
+      for (int x = 148; x < w; ++x) {
+        const unsigned char* p = px + 4 * (size_t(y) * w + x);
+        count += p[0] > 235 && p[1] < 40 && p[2] > 235;
+      }
+    stbi_image_free(px);
+    return count;
+  };
+  EXPECT_EQ(magenta(dir / "off.png"), 0u);
+  EXPECT_GT(magenta(dir / "on.png"), 20u);
 }
