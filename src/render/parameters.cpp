@@ -111,14 +111,15 @@ std::vector<ParameterInfo> makeList() {
                           "samples per pixel (the window: stop there; 0 = keep refining)", 0, 1u << 20, 0, 0,
                           kAllModes, [](P& p) -> uint32_t& { return p.render.spp; }));
   l.back().resetsAccumulation = false;
-  l.push_back(unsignedInt("max_bounces", "Render", "max bounces", "maximum path bounces", 0, 1024, 0, 32,
-                          kPathTraceMode, [](P& p) -> uint32_t& { return p.render.maxBounces; }));
+  l.push_back(unsignedInt("max_bounces", "Render", "max bounces",
+                          "last bounce of a path (0 = the camera ray's hit)", 0, 1024, 0, 32, kPathTraceMode,
+                          [](P& p) -> uint32_t& { return p.render.maxBounces; }));
   l.push_back(boolean("russian_roulette", "--no-rr", false, "Render", "Russian roulette",
                       "Russian roulette (--no-rr: disable)", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.russianRoulette; }));
   l.push_back(unsignedInt("rr_start", "Render", "RR start bounce",
-                          "first bounce where Russian roulette may end a path", 0, 1024, 0, 16,
-                          kPathTraceMode, [](P& p) -> uint32_t& { return p.render.rrStart; }));
+                          "first bounce where Russian roulette may end a path (0 = the camera ray's hit)", 0,
+                          1024, 0, 16, kPathTraceMode, [](P& p) -> uint32_t& { return p.render.rrStart; }));
   l.push_back(real("rr_min", "Render", "RR min", "lowest Russian roulette survival probability", 0, 1, 0.01,
                    1, kPathTraceMode, [](P& p) -> float& { return p.render.rrMin; }));
   l.push_back(real("rr_max", "Render", "RR max", "highest Russian roulette survival probability", 0, 1, 0.01,

@@ -25,9 +25,9 @@ struct RenderSettings {
   uint32_t width = 512, height = 512;
   uint32_t spp = 16;
   uint32_t maxBounces = 8;
-  // First bounce at which Russian roulette may end a path (the defaults' choice:
-  // docs/reports/error_per_sample.md).
-  uint32_t rrStart = 3;
+  // First bounce at which Russian roulette may end a path, bounce 0 being the camera ray's hit (the numbering
+  // of docs/path_inspector.md; the defaults' choice: docs/reports/error_per_sample.md).
+  uint32_t rrStart = 2;
   float rrMin = 0.05f, rrMax = 0.95f;
   // Survival probability = clamp(max throughput component ^ rrExponent, rrMin, rrMax): 1 is proportional to
   // the throughput, 0.5 its square root (Cycles), which ends paths later for less variance per sample.
