@@ -18,6 +18,7 @@ LiveSession::LiveSession(Options o) : state_(std::move(o.state)) {
   EditLoopOptions lo;
   lo.watchDirs = o.watchDirs;
   lo.ab = ab_.enabled;
+  lo.adaptiveBudget = true;  // a comparison costs at most ABBudgetPlanner::kMaxCostRatio of its edit
   loop_ = std::make_unique<EditLoop>(*session_, lo);  // every renderer, the modes made later too
   progressive_ = std::make_unique<render::ProgressiveTracer>(session_->context(), session_->pathTracer());
   state_.materials = session_->scene().materials;
@@ -219,23 +220,19 @@ bool LiveSession::applyInspection() {
     if (pixel != hybrid->inspectPixel()) hybrid->setInspectPixel(pixel);
   }
   if (want == tracer.inspection()) return false;
-  tracer.setInspection(want);
   state_.inspectShown = -1;
-  return true;
+  // Another pixel keeps the accumulation (the image does not change); switching the variant restarts it.
+  return tracer.setInspection(want);
 }
 
 void LiveSession::applyAB() {
   if (ab_.revertRequested && !ab_.decided && !ab_.installed.empty()) {
     loop_->revert(ab_.installed);
-    ab_.note = "reverted to the old pipeline (the file on disk is unchanged)";
-    ab_.decided = true;
+    ab_.decide("reverted to the old pipeline (the file on disk is unchanged)");
     std::printf("workbench: A/B revert: old pipeline reinstalled\n");
     std::fflush(stdout);
   }
-  if (ab_.acceptRequested && !ab_.decided) {
-    ab_.note = "accepted";
-    ab_.decided = true;
-  }
+  if (ab_.acceptRequested && !ab_.decided) ab_.decide("accepted");
   ab_.revertRequested = ab_.acceptRequested = false;
   loop_->setAB(ab_.enabled);
 }
@@ -304,6 +301,7 @@ void LiveSession::traceTimed(uint64_t pixels, double ms) {
 }
 
 void LiveSession::frameFinished(Clock::time_point frameBegin) {
+  loop_->setABRateHint(progressive_->pixelsPerMs());  // the comparison's first guess of this machine
   loop_->frameFinished(frameBegin);
   for (auto& c : loop_->takeCompleted()) {
     if (!c.abError.empty()) {
@@ -311,8 +309,7 @@ void LiveSession::frameFinished(Clock::time_point frameBegin) {
       continue;
     }
     if (c.ab.empty()) continue;
-    ab_.set(c.ab, c.installed, c.event.abMs, c.event.editToFirstFrameMs);
-    loop_->setAB(ab_.enabled);  // the comparison may have switched itself off
+    ab_.set(c.ab, c.installed, c.abPlan, c.event.abMs, c.event.editToFirstFrameMs);
   }
   counters_ = session_->renderer().readCounters();
   updateLiveError();
@@ -351,6 +348,11 @@ bool LiveSession::tracing() const {
     return !state_.paused &&
            (state_.params.render.spp == 0 || h->samplesAccumulated() < state_.params.render.spp);
   return !state_.paused && !progressive_->done();
+}
+
+bool LiveSession::imageStarted() const {
+  if (const auto* h = session_->hybrid()) return h->samplesAccumulated() > 0;
+  return progressive_->samples() > 0 || progressive_->cursorRow() > 0 || progressive_->previewValid();
 }
 
 bool LiveSession::busy() const {
@@ -416,7 +418,13 @@ void LiveSession::updateInspection() {
   // The frame's traces have finished: every sample below the count is complete. The preview's samples are of
   // another resolution: none count.
   const uint32_t finished = progressive_->inPreview() ? 0 : progressive_->samples();
-  inspection_.update(session_->pathTracer(), finished, progressive_->generation());
+  inspection_.update(session_->pathTracer(), finished, progressive_->generation(), state_.inspectShown);
+  // The first sample to arrive is held (the table does not follow the newest under the mouse); the user picks
+  // another, or a new pixel starts over.
+  if (state_.inspectShown < 0 && !inspection_.samples().empty()) {
+    state_.inspectShown = int(inspection_.samples().back().record.sampleIndex);
+    inspection_.hold(state_.inspectShown);
+  }
   const auto* hybrid = session_->hybrid();
   inspection_.updateHybrid(hybrid && hybrid->inspectPixel() ? std::optional(hybrid->readInspection())
                                                             : std::nullopt);

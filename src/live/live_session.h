@@ -111,7 +111,10 @@ class LiveSession {
   bool previews() const { return !session_->hybrid(); }
   bool inPreview() const;
   bool tracing() const;  // there is something left to trace (not paused, target not reached)
-  bool busy() const;     // a reload or a mode switch is in progress
+  // The image shown has something traced (a sample's strips, a preview, a hybrid frame): a frame may be drawn
+  // without tracing.
+  bool imageStarted() const;
+  bool busy() const;  // a reload or a mode switch is in progress
   double secondsSinceReset() const;
   uint64_t resets() const;
   double gpuTraceSeconds() const { return traceSeconds_; }  // since the last restart

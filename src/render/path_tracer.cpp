@@ -95,7 +95,8 @@ bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
   inspection_ = request;
   createInspectBuffers();
   bindResources();
-  sampleIndex_ = 0;
+  // The same variant goes on accumulating (the records start with the next sample traced); another variant
+  // restarts with its install.
   if (request.has_value() == inspectVariant_) return false;
   useVariant(features_, request.has_value());
   return true;

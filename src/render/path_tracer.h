@@ -60,8 +60,8 @@ class PathTracer final : public Renderer {
 
   // Path inspector: with a request the tracer switches to its WB_INSPECT variant (registered once, cached
   // like the scene variants; the images it renders are the same) and records the paths of the requested
-  // pixel; nullopt switches back. Returns true when the program changed.
-  // Restarts accumulation.
+  // pixel; nullopt switches back. Returns true when the program changed (its install restarts accumulation;
+  // another pixel with the same variant goes on accumulating, its records starting with the next sample).
   bool setInspection(const std::optional<InspectRequest>& request);
   const std::optional<InspectRequest>& inspection() const { return inspection_; }
   // The records so far (reads host-visible memory: call when the traces that wrote them finished).

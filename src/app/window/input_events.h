@@ -36,11 +36,14 @@ class InputEvents {
   std::vector<ButtonChange> takeButtonChanges();
   // Whether any input (key, button, scroll, cursor motion) arrived since the last call.
   bool takeActivity();
+  // Whether a discrete input (key, button, scroll: not cursor motion) arrived since the last call: the window
+  // redraws at once, without waiting for a trace.
+  bool takeDiscrete();
 
   // The callbacks' entry points (public for the C callbacks).
   void onKey(int key, int action, int mods);
   void onButton(int button, int action);
-  void onActivity();
+  void onActivity(bool discrete = false);
 
  private:
   GLFWwindow* window_;
@@ -48,6 +51,7 @@ class InputEvents {
   std::vector<KeyPress> keys_;
   std::vector<ButtonChange> buttons_;
   bool activity_ = false;
+  bool discrete_ = false;
 };
 
 }  // namespace wb::app

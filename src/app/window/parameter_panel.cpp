@@ -6,6 +6,8 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app/window/widget_rects.h"
+
 namespace wb::app {
 
 bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
@@ -50,6 +52,7 @@ bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
             next = c;
             changed = true;
           }
+          widgetRects().noteLastItem("param." + p.name + "." + c);
         }
         ImGui::EndCombo();
       }
@@ -70,6 +73,7 @@ bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
       break;
     }
   }
+  widgetRects().noteLastItem("param." + p.name);
   if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s", p.help.c_str());
   if (changed) p.put(values, next);
   ImGui::PopID();

@@ -71,6 +71,9 @@ class WorkbenchWindow : public ScriptHost {
   bool traceOnlyAllowed(Clock::time_point now) const;
   // Whether the next frame has nothing new to show.
   bool nothingToDo() const;
+  // Takes the input events' flags: true when any input arrived (the user is interacting); a click or a key
+  // makes the next frames redraw without tracing.
+  bool takeInput();
   // The window's requests that are not the session's: a camera reset, vsync, a save.
   void applyWindowRequests();
   Rect imageRect(const Rect& view) const;
@@ -85,12 +88,14 @@ class WorkbenchWindow : public ScriptHost {
   bool vsync_ = true;
   Script script_;
   bool hasScript_ = false;
+  float panelWidth_ = 0;  // the side panel's width (0: its default); the user resizes it
   std::string screenshotPath_;
   std::string lastSaved_;
   std::string fatalScriptError_;
   FrameStats frames_;
   uint64_t frameCount_ = 0;
   uint64_t traceOnlySubmits_ = 0;
+  int redrawOnlyFrames_ = 0;
   Clock::time_point lastPresent_ = Clock::now();
   Clock::time_point lastInput_ = Clock::now();
 };
