@@ -14,27 +14,16 @@ Pass::~Pass() {
   current_ = {};
 }
 
-Pass::ProgramId Pass::programFor(const std::string& programName, const std::vector<shader::ShaderKey>& stages) {
+bool Pass::useProgram(const std::string& programName, const std::vector<shader::ShaderKey>& stages) {
   auto it =
       std::find_if(variants_.begin(), variants_.end(), [&](const auto& v) { return v.first == stages; });
-  if (it != variants_.end()) return it->second;
-  const ProgramId id = library_.registerProgram(programName, stages);
-  variants_.emplace_back(stages, id);
-  return id;
-}
-
-bool Pass::switchTo(PassPipeline pipeline) {
-  const bool known = std::any_of(variants_.begin(), variants_.end(),
-                                 [&](const auto& v) { return v.second == pipeline.program; });
-  if (!pipeline || !known) return false;
-  program_ = pipeline.program;
-  hasProgram_ = true;
-  install(std::move(pipeline));
-  return true;
-}
-
-bool Pass::useProgram(const std::string& programName, const std::vector<shader::ShaderKey>& stages) {
-  const ProgramId id = programFor(programName, stages);
+  ProgramId id = 0;
+  if (it != variants_.end()) {
+    id = it->second;
+  } else {
+    id = library_.registerProgram(programName, stages);
+    variants_.emplace_back(stages, id);
+  }
   const bool changed = !hasProgram_ || id != program_;
   program_ = id;
   hasProgram_ = true;

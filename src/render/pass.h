@@ -81,12 +81,6 @@ class Pass final : public ReloadTarget {
   // The program: `stages` registered with the library under `programName` on first use (each variant's keys
   // once). Returns true when the program changed; rebuild() then makes its pipeline.
   bool useProgram(const std::string& programName, const std::vector<shader::ShaderKey>& stages);
-  // The program of a variant, registered on first use, without switching to it (a pipeline of it can then be
-  // built on any thread and installed with switchTo()).
-  ProgramId programFor(const std::string& programName, const std::vector<shader::ShaderKey>& stages);
-  // Switches to `pipeline`'s program (one programFor() gave) and installs it: no compile on this thread.
-  // False when the pipeline is empty or of a program this pass never registered.
-  bool switchTo(PassPipeline pipeline);
   // A new recipe (a specialisation constant changed); rebuild() then makes a pipeline with it.
   void setRecipe(PipelineRecipe recipe);
   // The bytes of push constants the pass pushes (record's push()): a program declaring more is refused.
