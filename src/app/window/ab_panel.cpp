@@ -34,9 +34,16 @@ void drawABPanel(live::ABState& v, const std::string& mode, float viewRight, flo
   ImGui::SetNextWindowPos(ImVec2(viewRight - panelW - 10, viewBottom - 40), ImGuiCond_FirstUseEver,
                           ImVec2(0, 1));
   ImGui::SetNextWindowSize(ImVec2(panelW, 0), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("A/B: old vs new", &v.open)) {  // collapsed
+  const bool expanded = ImGui::Begin("A/B: old vs new", &v.open);
+  {
+    // The panel and its title bar's close button (the rightmost square of the title bar).
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    const ImVec2 pad = ImGui::GetStyle().FramePadding;
+    const float button = ImGui::GetFontSize() + 2.0f * pad.x, title = ImGui::GetFontSize() + 2.0f * pad.y;
     widgetRects().note("ab_panel", Rect{pos.x, pos.y, size.x, size.y});
+    widgetRects().note("ab.close", Rect{pos.x + size.x - button, pos.y, button, title});
+  }
+  if (!expanded) {  // collapsed
     ImGui::End();
     return;
   }
@@ -119,8 +126,6 @@ void drawABPanel(live::ABState& v, const std::string& mode, float viewRight, flo
     if (ImGui::Button("Accept")) v.acceptRequested = true;
     widgetRects().noteLastItem("ab.accept");
   }
-  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-  widgetRects().note("ab_panel", Rect{pos.x, pos.y, size.x, size.y});
   ImGui::End();
 }
 

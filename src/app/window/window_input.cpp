@@ -59,6 +59,9 @@ void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
   // from there), and a click shorter than a frame still counts.
   const bool overPanel = io.WantCaptureMouse;
   bool clicked = false;
+  // A drag that ended this frame still moves the camera up to where its button went up.
+  std::optional<int> endedDrag;
+  glm::vec2 dragEnd(0.0f);
   for (const ButtonChange& b : events_.takeButtonChanges()) {
     if (b.pressed) {
       if (!dragging_ && view.contains(b.position.x, b.position.y) && !overPanel) {
@@ -68,20 +71,23 @@ void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
       }
     } else if (dragging_ && b.button == dragButton_) {
       dragging_ = false;
+      endedDrag = b.button;
+      dragEnd = b.position;
       if (glm::length(b.position - pressMouse_) < 3.0f && b.button == GLFW_MOUSE_BUTTON_LEFT) clicked = true;
     }
   }
-  const glm::vec2 delta = lastMouse_.x < 0 ? glm::vec2(0.0f) : mouse - lastMouse_;
+  const glm::vec2 delta = lastMouse_.x < 0 ? glm::vec2(0.0f) : (endedDrag ? dragEnd : mouse) - lastMouse_;
   const bool overView = view.contains(mouse.x, mouse.y) && !overPanel;
 
   CameraInput in;
   in.dt = dt;
   in.fast = shift;
   in.viewSize = viewSize_ = glm::vec2(img.w, img.h);
-  if (dragging_) {
+  if (dragging_ || endedDrag) {
+    const int button = endedDrag ? *endedDrag : dragButton_;
     const bool orbit = camera_.mode() == CameraMode::Orbit;
-    const bool left = dragButton_ == GLFW_MOUSE_BUTTON_LEFT, right = dragButton_ == GLFW_MOUSE_BUTTON_RIGHT;
-    const bool middle = dragButton_ == GLFW_MOUSE_BUTTON_MIDDLE;
+    const bool left = button == GLFW_MOUSE_BUTTON_LEFT, right = button == GLFW_MOUSE_BUTTON_RIGHT;
+    const bool middle = button == GLFW_MOUSE_BUTTON_MIDDLE;
     if ((orbit && left && !shift) || (!orbit && right)) in.dragRotate = delta;
     if ((orbit && (middle || right || (left && shift))) || (!orbit && middle)) in.dragPan = delta;
   }

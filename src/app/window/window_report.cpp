@@ -123,6 +123,9 @@ nlohmann::json sessionStatsJson(live::LiveSession& session) {
                            {"allowed_ms", ab.plan.allowedMs}, {"estimated_ms", ab.plan.estimatedMs},
                            {"summary", ab.plan.summary()}};
   // The path inspector's held sample (-1: none yet) and whether it is still among the kept ones.
+  j["inspect_pixel"] = state.inspectPixel
+                           ? nlohmann::json::array({state.inspectPixel->x, state.inspectPixel->y})
+                           : nlohmann::json(nullptr);
   j["inspect_shown"] = state.inspectShown;
   const auto* shown = session.inspection().shown(state.inspectShown);
   bool kept = false;

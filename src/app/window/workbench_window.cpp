@@ -119,6 +119,9 @@ void WorkbenchWindow::writeStats(const std::string& path) {
   j["trace_only_submits"] = traceOnlySubmits_;  // trace submissions between presents while converging
   j["key_presses"] = input_->keyPresses();      // the window's keys (F5, F12, Tab, Home) acted on
   j["panel_visible"] = session_->state().showPanel;
+  j["preview_enabled"] = session_->state().preview;  // the "preview after changes" checkbox
+  j["clicks_presented"] = clickScreenNs_.size();
+  j["click_screen_ns"] = clickScreenNs_;  // when each click's frame finished (steady clock, ns)
   nlohmann::json widgets = nlohmann::json::object();
   for (const auto& [name, r] : widgetRects().rects()) widgets[name] = {r.x, r.y, r.w, r.h};
   j["widgets"] = widgets;  // where the last frame drew them (framebuffer pixels)
@@ -153,6 +156,9 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
 
 bool WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
   if (!presenter_->finish()) return false;
+  const int64_t now =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+  for (; clicksInFlight_ > 0; --clicksInFlight_) clickScreenNs_.push_back(now);
   session_->traceTimed(presenter_->tracedPixels(), presenter_->traceMs());
   session_->frameFinished(frameBegin);
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
@@ -235,6 +241,8 @@ void WorkbenchWindow::applyWindowRequests() {
 void WorkbenchWindow::drawFrame(float dt) {
   if (!presenter_->beginFrame()) return;
   widgetRects().beginFrame();
+  // A click's release reaches ImGui in this frame: its widget acts now, and the frame shows it.
+  const int clicks = ImGui::GetIO().MouseReleased[ImGuiMouseButton_Left] ? 1 : 0;
   auto& st = session_->state();
   const auto& sc = presenter_->swapchain();
   PanelContext pc{*session_,          input_->camera(), input_->hover(),
@@ -302,6 +310,7 @@ void WorkbenchWindow::drawFrame(float dt) {
                            screenshot))
     return;
   screenshotPath_.clear();
+  clicksInFlight_ += clicks;
   lastPresent_ = Clock::now();
   ++frameCount_;
 }

@@ -57,6 +57,7 @@ class WorkbenchWindow : public ScriptHost {
   bool modeSwitchPending() const override { return !session_->modeSwitch().empty(); }
   size_t reloadCount() const override { return session_->loop().hot().history().size(); }
   uint32_t samples() const override { return session_->inPreview() ? 0 : session_->samples(); }
+  uint64_t clicksPresented() const override { return clickScreenNs_.size(); }
 
  private:
   // The frame loop's parts: waiting for the frame in flight (false: none was); tracing without presenting
@@ -96,6 +97,11 @@ class WorkbenchWindow : public ScriptHost {
   uint64_t frameCount_ = 0;
   uint64_t traceOnlySubmits_ = 0;
   int redrawOnlyFrames_ = 0;
+  // Left clicks (releases ImGui saw) drawn by the frame in flight, and when each click's frame finished
+  // (steady clock, ns since its epoch: the same clock in every process on Linux, so that a program sending
+  // synthetic clicks can time them to the screen).
+  int clicksInFlight_ = 0;
+  std::vector<int64_t> clickScreenNs_;
   Clock::time_point lastPresent_ = Clock::now();
   Clock::time_point lastInput_ = Clock::now();
 };
