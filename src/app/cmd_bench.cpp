@@ -446,6 +446,10 @@ void BenchCommand::addFlags(CLI::App& cli) {
       "--edits", edits,
       "reload: number of closest-hit edits (default 20, 4 with --quick); window: edits timed idle and "
       "under load (default 5, 2 with --quick)");
+  cli.add_option(
+      "--clicks", clicks,
+      "window: synthetic clicks on widgets timed to the screen, idle and under load (default 12, 8 "
+      "with --quick; 0: none)");
   cli.add_flag("--no-load", noLoad, "window: skip the edits with two busy loops in another session");
   cli.add_option("--only", sections,
                  "sections to run, comma or space separated: pathtracer,startup,reload,modes,window")
@@ -456,6 +460,7 @@ void BenchCommand::addFlags(CLI::App& cli) {
 void BenchCommand::finish() {
   if (size.empty()) size = quick ? "128x128" : "512x512";
   if (repeats <= 0) repeats = quick ? 1 : 3;
+  if (clicks < -1 || clicks > 10000) throw std::invalid_argument("--clicks: expected 0 .. 10000");
   unsigned w = 0, h = 0;
   if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h)
     throw std::invalid_argument("--size: expected WxH, got '" + size + "'");
@@ -502,6 +507,7 @@ int BenchCommand::run() {
   wo.samples = quick ? 3 : 8;
   wo.edits = edits > 0 ? edits : quick ? 2 : 5;
   wo.underLoad = !noLoad;
+  wo.clicks = clicks >= 0 ? clicks : quick ? 8 : 12;
   wo.device = device;
   const int steps = int(ptScenes.size()) * 2 + (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) +
                     (has("modes") ? int(mScenes.size()) * 4 + 3 : 0) +

@@ -25,6 +25,7 @@ class BenchCommand : public Command {
   int repeats = 0;
   int edits = 0;
   bool noLoad = false;
+  int clicks = -1;  // window: synthetic clicks (-1: the default)
   std::vector<std::string> sections = sectionNames();
 };
 

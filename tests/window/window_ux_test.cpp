@@ -1,8 +1,8 @@
 // The window as a user lives in it, driven with synthetic X input (xdotool) on a virtual display: clicks on
 // real widgets land while the image converges, Tab gives the image the whole window, Esc and Ctrl+Q quit,
 // the A/B panel is a window that closes and the comparison stays on, a click selects the object the material
-// editor edits, a drag across the image orbits by about 180 degrees, the wheel dollies, and the path
-// inspector holds the sample the user chose.
+// editor edits, a drag across the image orbits by about 180 degrees, the wheel dollies, the path inspector
+// holds the sample the user chose, and the heat-map views show their legend.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <stb_image.h>
 
 #include "live_window.h"
 
@@ -276,4 +277,43 @@ TEST(WindowUx, TheInspectorHoldsTheChosenSample) {
   EXPECT_EQ(c["inspect_shown"], chosen) << "the choice followed the newest sample";
   EXPECT_TRUE(c["inspect_shown_vertices"].is_number()) << "the chosen sample's record was dropped";
   EXPECT_EQ(c["inspect_shown_kept"], false) << "with 2 kept of 8 the chosen one has aged out";
+}
+
+// Every heat-map view shows its colour bar (the ramp from blue to red, with its scale) over the image; the
+// beauty view shows none.
+TEST(WindowUx, HeatMapViewsShowALegend) {
+  REQUIRE_TOOLS();
+  const auto dir = tempDir("legend");
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  std::string script = "wait_samples 1 600\n";
+  for (const char* view : {"bounces", "rr_end", "variance", "nan_source", "beauty"}) {
+    script += std::string("set view ") + view + "\nframes 2\nstats " + p(std::string(view) + ".json") +
+              "\nscreenshot " + p(std::string(view) + ".png") + "\nframes 1\n";
+  }
+  writeFile(dir / "s.txt", script + "quit\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
+  const auto r = w.finish();
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* view : {"bounces", "rr_end", "variance", "nan_source"}) {
+    const auto j = awaitJson(dir / (std::string(view) + ".json"), 1);
+    ASSERT_TRUE(j["widgets"].contains("legend")) << view << " has no legend";
+    const auto& l = j["widgets"]["legend"];
+    int width = 0, height = 0, n = 0;
+    unsigned char* px = stbi_load(p(std::string(view) + ".png").c_str(), &width, &height, &n, 4);
+    ASSERT_NE(px, nullptr);
+    size_t blue = 0, red = 0;
+    for (int y = int(l[1].get<double>()); y < int(l[1].get<double>() + l[3].get<double>()) && y < height;
+         ++y) {
+      for (int x = int(l[0].get<double>()); x < int(l[0].get<double>() + l[2].get<double>()) && x < width;
+           ++x) {
+        const unsigned char* c = px + 4 * (size_t(y) * width + x);
+        blue += c[2] > c[0] + 40 && c[2] > c[1] + 40;
+        red += c[0] > 180 && c[1] < 100 && c[2] < 80;
+      }
+    }
+    stbi_image_free(px);
+    EXPECT_GT(blue, 10u) << view << ": no blue end of the ramp in the legend";
+    EXPECT_GT(red, 10u) << view << ": no red end of the ramp in the legend";
+  }
+  EXPECT_FALSE(awaitJson(dir / "beauty.json", 1)["widgets"].contains("legend"));
 }

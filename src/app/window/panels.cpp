@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app/window/heat_legend.h"
 #include "app/window/parameter_panel.h"
 #include "app/window/widget_rects.h"
 #include "common/paths.h"
@@ -376,6 +377,11 @@ void drawOverlays(PanelContext& c, const Rect& view) {
     dl->AddRectFilled(ImVec2(at.x - 3, at.y - 2), ImVec2(at.x + ls.x + 3, at.y + ls.y + 2),
                       IM_COL32(0, 0, 0, 170), 3.0f);
     dl->AddText(at, IM_COL32(255, 255, 255, 255), label.c_str());
+  }
+  // A heat-map view's colour bar: what the colours mean, in which unit and scale.
+  if (const live::DisplayFrame d = c.session.displayFrame(); d.debugViews) {
+    if (const auto legend = heatLegend(c.session.state().params.display.view, d.maxVertices))
+      widgetRects().note("legend", drawHeatLegend(*legend, view));
   }
   char status[192];
   const bool done = !c.session.tracing() && !c.session.state().paused;
