@@ -216,6 +216,7 @@ std::string editScript(const PrivateRoot& pr, int first, int count) {
 struct ClickFigures {
   std::vector<double> ms;
   int sent = 0, lost = 0;
+  json perClick = json::array();  // what each click hit, its time to the screen, whether it landed
 };
 
 ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<std::string>& deviceArgs,
@@ -293,6 +294,8 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
           landed = after["inspect_pixel"].is_array() && after["inspect_pixel"] != last["inspect_pixel"];
       }
       f.lost += landed ? 0 : 1;
+      static const char* kWhat[] = {"checkbox", "combo", "combo item", "image"};
+      f.perClick.push_back({{"what", kWhat[i % 4]}, {"ms", f.ms.back()}, {"landed", landed}});
     }
   });
   return f;
@@ -304,6 +307,7 @@ void putClickFigures(json& result, const ClickFigures& f, const std::string& suf
   result["click_to_screen_max_ms" + suffix] = *std::max_element(f.ms.begin(), f.ms.end());
   result["clicks_sent" + suffix] = f.sent;
   result["clicks_lost" + suffix] = f.lost;
+  result["clicks" + suffix] = f.perClick;
 }
 
 }  // namespace

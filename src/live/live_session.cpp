@@ -121,8 +121,9 @@ void LiveSession::apply(bool waitForMode) {
     session_->setHybridSettings(st.params.hybrid);
     restart = true;
   }
-  if (st.params.mode != applied_.params.mode) restart = true;
+  const render::RenderMode shownBefore = session_->mode();
   applyMode(waitForMode);
+  const render::RenderMode shown = session_->mode();
   if (applyInspection()) restart = true;
   if (st.referencePath != referenceTried_) {
     referenceTried_ = st.referencePath;
@@ -152,8 +153,15 @@ void LiveSession::apply(bool waitForMode) {
   // A rebuild compiling gets the share of the cores the device's policy gives it.
   if (loop_->compiling())
     opts.budgetMs = st.budgetMs * session_->context().policy().windowTraceShareWhileCompiling;
-  if (restart) {
-    progressive_->invalidate();
+  // The path tracer's accumulation stays while another mode is shown: going back to it resumes the image
+  // unless something that alters it changed meanwhile. A hybrid mode restarts with each switch to it.
+  const bool pathTracing = shown == render::RenderMode::PathTrace;
+  if (!pathTracing && restart) pathTracerStale_ = true;
+  const bool restartPathTracer = restart || (pathTracing && shownBefore != shown && pathTracerStale_);
+  if (pathTracing) pathTracerStale_ = false;
+  const bool restartHybridMode = restart || (!pathTracing && shownBefore != shown);
+  if (restartPathTracer) progressive_->invalidate();
+  if (restartHybridMode) {
     if (auto* h = session_->hybrid()) {
       h->resetAccumulation();
       ++hybridResets_;
@@ -362,6 +370,10 @@ bool LiveSession::busy() const {
 double LiveSession::secondsSinceReset() const {
   if (session_->hybrid()) return std::chrono::duration<double>(Clock::now() - hybridReset_).count();
   return progressive_->secondsSinceReset();
+}
+
+uint32_t LiveSession::pathTracerSamplesKept() const {
+  return session_->mode() != render::RenderMode::PathTrace && !pathTracerStale_ ? progressive_->samples() : 0;
 }
 
 uint64_t LiveSession::resets() const {

@@ -115,6 +115,9 @@ class LiveSession {
   // without tracing.
   bool imageStarted() const;
   bool busy() const;  // a reload or a mode switch is in progress
+  // While another mode is shown: the path tracer's samples that going back to it resumes (0: none, or its
+  // image is out of date).
+  uint32_t pathTracerSamplesKept() const;
   double secondsSinceReset() const;
   uint64_t resets() const;
   double gpuTraceSeconds() const { return traceSeconds_; }  // since the last restart
@@ -147,6 +150,7 @@ class LiveSession {
   std::unique_ptr<EditLoop> loop_;
   std::unique_ptr<render::ProgressiveTracer> progressive_;
   bool cameraChanged_ = false;
+  bool pathTracerStale_ = false;  // something that alters its image changed while another mode was shown
   render::CameraState camera_;
   // The hybrid modes' accumulation: restarts (a changed generation restarts the running error), when the
   // last one was, and how many frames the last check saw (fewer: a pipeline install restarted it).

@@ -317,3 +317,33 @@ TEST(WindowUx, HeatMapViewsShowALegend) {
   }
   EXPECT_FALSE(awaitJson(dir / "beauty.json", 1)["widgets"].contains("legend"));
 }
+
+// A mode round trip keeps the path tracer's samples: switching to a hybrid mode and back resumes its image
+// (its samples go on from where they were), unless something that alters it changed meanwhile.
+TEST(WindowUx, AModeRoundTripResumesThePathTracersSamples) {
+  REQUIRE_TOOLS();
+  const auto dir = tempDir("roundtrip");
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  writeFile(dir / "s.txt", "wait_samples 3 600\nstats " + p("before.json") +
+                               "\nswitch_mode hybrid\nwait_mode 600\nframes 3\nstats " + p("hybrid.json") +
+                               "\nswitch_mode pathtrace\nwait_mode 600\nframes 1\nstats " + p("back.json") +
+                               "\nswitch_mode hybrid\nwait_mode 600\nset max_bounces 3\nframes 3\nstats " +
+                               p("changed.json") +
+                               "\nswitch_mode pathtrace\nwait_mode 600\nframes 1\nstats " + p("back2.json") +
+                               "\nquit\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
+  const auto r = w.finish();
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto before = awaitJson(dir / "before.json", 1), hybrid = awaitJson(dir / "hybrid.json", 1);
+  const auto back = awaitJson(dir / "back.json", 1), changed = awaitJson(dir / "changed.json", 1);
+  const auto back2 = awaitJson(dir / "back2.json", 1);
+  EXPECT_EQ(hybrid["mode"], "hybrid");
+  EXPECT_GE(hybrid["pathtrace_samples_kept"].get<int>(), before["samples"].get<int>())
+      << "the panel says what going back resumes";
+  EXPECT_EQ(back["mode"], "pathtrace");
+  EXPECT_GE(back["samples"].get<int>(), before["samples"].get<int>())
+      << "the path tracer's samples were lost";
+  // A change that alters the path tracer's image while the hybrid mode shows: going back restarts it.
+  EXPECT_EQ(changed["pathtrace_samples_kept"], 0);
+  EXPECT_LT(back2["samples"].get<int>(), before["samples"].get<int>());
+}

@@ -34,6 +34,8 @@ void renderPanel(PanelContext& c) {
   }
   if (const std::string inUse = c.session.modeInUse(); !inUse.empty())
     ImGui::TextDisabled("%s", inUse.c_str());
+  if (const uint32_t kept = c.session.pathTracerSamplesKept(); kept > 0)
+    ImGui::TextDisabled("pathtrace: %u samples kept, resumed on going back", kept);
   ImGui::Separator();
   if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
   ImGui::SameLine();

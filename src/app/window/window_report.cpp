@@ -60,6 +60,7 @@ nlohmann::json sessionStatsJson(live::LiveSession& session) {
   j["resets"] = session.resets();
   j["mode"] = render::renderModeName(session.mode());  // the mode shown (a switch may be in preparation)
   j["mode_switching_to"] = session.modeSwitch();       // empty: none
+  j["pathtrace_samples_kept"] = session.pathTracerSamplesKept();  // resumed on going back to pathtrace
   const auto& error = session.liveError();
   nlohmann::json le;
   le["reference"] = error.referenceName();
