@@ -211,8 +211,9 @@ std::string editScript(const PrivateRoot& pr, int first, int count) {
 // Clicks on real widgets while the image converges, each timed from just before xdotool starts to the end of
 // the frame that drew its effect (the window's click_screen_ns, on the same steady clock), and checked in the
 // state the window reports after it: the "preview after changes" checkbox, the tonemap combo and one of its
-// items, and a point of the image (the inspector's pixel), in turn. A click whose effect is missing is lost;
-// a click the window never draws fails the run (its script's wait_clicks times out).
+// items in turn, then points of the image (the inspector's pixel) for the last quarter of the clicks. A click
+// whose effect is missing is lost; a click the window never draws fails the run (its script's wait_clicks
+// times out).
 struct ClickFigures {
   std::vector<double> ms;
   int sent = 0, lost = 0;
@@ -227,6 +228,7 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
     script += "wait_clicks " + std::to_string(i) + " 120\nframes 2\nstats " + statsFile(i).string() + "\n";
   script += "quit\n";
   ClickFigures f;
+  const int imageClicks = std::max(1, clicks / 4);
   runWindow(pr, script, deviceArgs, log, [&](ChildProcess& child) {
     json last;
     std::string chosenTonemap;
@@ -246,7 +248,10 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
                                         std::to_string(int(r[1].get<double>() + r[3].get<double>() / 2))};
       };
       std::vector<std::string> at;
-      switch (i % 4) {
+      // The widgets in turn, then the image: a pick opens the Inspect section and scrolls the panel to it,
+      // so the widgets go first.
+      const int kind = i < clicks - imageClicks ? i % 3 : 3;
+      switch (kind) {
         case 0:
           at = centre("preview");
           break;
@@ -261,7 +266,7 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
         default: {
           // A point of the image, another each time.
           const auto& r = widgets["image"];
-          const double fx = 0.2 + 0.15 * double((i / 4) % 4);
+          const double fx = 0.2 + 0.15 * double((clicks - i) % 4);
           at = {std::to_string(int(r[0].get<double>() + fx * r[2].get<double>())),
                 std::to_string(int(r[1].get<double>() + 0.6 * r[3].get<double>()))};
         }
@@ -280,7 +285,7 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
       const json after = readJson(statsFile(i + 1));
       f.ms.push_back(double(after["click_screen_ns"][size_t(i)].get<int64_t>() - sent) / 1e6);
       bool landed = false;
-      switch (i % 4) {
+      switch (kind) {
         case 0:
           landed = after["preview_enabled"] != last["preview_enabled"];
           break;
@@ -295,7 +300,7 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
       }
       f.lost += landed ? 0 : 1;
       static const char* kWhat[] = {"checkbox", "combo", "combo item", "image"};
-      f.perClick.push_back({{"what", kWhat[i % 4]}, {"ms", f.ms.back()}, {"landed", landed}});
+      f.perClick.push_back({{"what", kWhat[kind]}, {"ms", f.ms.back()}, {"landed", landed}});
     }
   });
   return f;
