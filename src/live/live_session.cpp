@@ -236,17 +236,32 @@ bool LiveSession::applyInspection() {
 void LiveSession::applyAB() {
   if (ab_.revertRequested && !ab_.decided && !ab_.installed.empty()) {
     loop_->revert(ab_.installed);
-    ab_.decide("reverted to the old pipeline (the file on disk is unchanged)");
+    // The old pipeline's image is still valid: its accumulation goes on.
+    const uint32_t kept = progressive_->parkedSamples();
+    ab_.decide(progressive_->resumeParked() ? "reverted to the old pipeline and its " + std::to_string(kept) +
+                                                  " samples (the file on disk is unchanged)"
+                                            : "reverted to the old pipeline (the file on disk is unchanged)");
     std::printf("workbench: A/B revert: old pipeline reinstalled\n");
     std::fflush(stdout);
   }
-  if (ab_.acceptRequested && !ab_.decided) ab_.decide("accepted");
+  if (ab_.acceptRequested && !ab_.decided) {
+    progressive_->dropParked();
+    ab_.decide("accepted");
+  }
   ab_.revertRequested = ab_.acceptRequested = false;
   loop_->setAB(ab_.enabled);
 }
 
 void LiveSession::beginFrame() {
-  loop_->beginFrame();
+  const auto reload = loop_->beginFrame();
+  // A new path tracer pipeline while edits are compared: the old pipeline's accumulation is set aside until
+  // the comparison says what becomes of it (Revert or an identical image take it back).
+  if (reload && ab_.enabled && !session_->hybrid()) {
+    const auto& installed = loop_->hot().lastInstalled();
+    if (std::any_of(installed.begin(), installed.end(),
+                    [&](const auto& ip) { return ip.owner == &session_->pathTracer(); }))
+      progressive_->parkAccumulation();
+  }
   render::HybridRenderer* hybrid = session_->hybrid();
   if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||
                  hybrid->settings().height != progressive_->targetHeight())) {
@@ -318,6 +333,15 @@ void LiveSession::frameFinished(Clock::time_point frameBegin) {
     }
     if (c.ab.empty()) continue;
     ab_.set(c.ab, c.installed, c.abPlan, c.event.abMs, c.event.editToFirstFrameMs);
+    // The new path tracer renders the very same image as the old one: the old accumulation is its own.
+    bool identical = false, other = false;
+    for (const auto& o : c.ab) {
+      if (o.result.mode != render::renderModeName(render::RenderMode::PathTrace)) continue;
+      (o.result.image.verdict == eval::ImageVerdict::Identical ? identical : other) = true;
+    }
+    const uint32_t kept = progressive_->parkedSamples();
+    if (identical && !other && progressive_->resumeParked())
+      ab_.note = "identical image: its " + std::to_string(kept) + " samples go on";
   }
   counters_ = session_->renderer().readCounters();
   updateLiveError();

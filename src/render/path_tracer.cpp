@@ -16,6 +16,7 @@ namespace wb::render {
 namespace {
 
 constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
+constexpr size_t kSpareSets = 2;       // image sets of earlier sizes kept for reuse
 
 }  // namespace
 
@@ -148,8 +149,36 @@ PathTracer::~PathTracer() {
   ctx_.waitIdle();
 }
 
+void PathTracer::parkAccumulation(uint32_t samples) {
+  ctx_.waitIdle();
+  parked_ = ImageSet{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
+                     std::move(stats_)};
+  parkedSamples_ = samples;
+  createImages();
+  bindResources();
+}
+
+bool PathTracer::unparkAccumulation() {
+  if (!parked_) return false;
+  ctx_.waitIdle();
+  spareImages_.insert(spareImages_.begin(),
+                      ImageSet{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
+                               std::move(stats_)});
+  if (spareImages_.size() > kSpareSets) spareImages_.pop_back();
+  accum_ = std::move(parked_->accum);
+  albedo_ = std::move(parked_->albedo);
+  normal_ = std::move(parked_->normal);
+  info_ = std::move(parked_->info);
+  stats_ = std::move(parked_->stats);
+  parked_.reset();
+  settings_.width = accum_.width();
+  settings_.height = accum_.height();
+  sampleIndex_ = parkedSamples_;
+  bindResources();
+  return true;
+}
+
 void PathTracer::createImages() {
-  constexpr size_t kSpareSets = 2;
   const uint32_t w = settings_.width, h = settings_.height;
   ImageSet current{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
                    std::move(stats_)};

@@ -109,6 +109,14 @@ class PathTracer final : public Renderer {
     return aov == Aov::Albedo ? albedo_ : aov == Aov::Normal ? normal_ : aov == Aov::Info ? info_ : stats_;
   }
   const vk::Image& accumulationImage() const { return accum_; }
+  // The accumulation set aside (its images and finished samples) while another one renders, e.g. the old
+  // pipeline's while an edit's comparison is pending: park moves the current images aside (cleared ones take
+  // their place, sample 0), unpark swaps them back at their size with their samples (false: none parked),
+  // drop forgets them.
+  void parkAccumulation(uint32_t samples);
+  bool unparkAccumulation();
+  void dropParkedAccumulation() { parked_.reset(); }
+  bool hasParkedAccumulation() const { return parked_.has_value(); }
   // Image sets allocated so far (one per new size: a size used before reuses its set).
   uint32_t imageSetsAllocated() const { return imageSetsAllocated_; }
   const vk::PipelineLayout& layout() const { return pass_->layout(); }
@@ -148,6 +156,8 @@ class PathTracer final : public Renderer {
     vk::Image accum, albedo, normal, info, stats;
   };
   std::vector<ImageSet> spareImages_;
+  std::optional<ImageSet> parked_;
+  uint32_t parkedSamples_ = 0;
   uint32_t imageSetsAllocated_ = 0;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   std::vector<gpu::DirectionalLight> lights_;  // the scene's lights, or the session's edits of them

@@ -30,8 +30,7 @@ constexpr double kMinCoarsePixels = 256.0;
 
 }  // namespace
 
-ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, PathTracer& tracer)
-    : ctx_(ctx), tracer_(tracer) {
+ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, PathTracer& tracer) : ctx_(ctx), tracer_(tracer) {
   targetWidth_ = tracer.settings().width;
   targetHeight_ = tracer.settings().height;
   preview_ = makePreviewImage(ctx, 1, 1);
@@ -58,6 +57,29 @@ void ProgressiveTracer::setSettings(RenderSettings settings) {
 
 void ProgressiveTracer::invalidate() {
   pendingInvalidate_ = true;
+  tracer_.dropParkedAccumulation();
+}
+
+bool ProgressiveTracer::parkAccumulation() {
+  tracer_.dropParkedAccumulation();
+  if (inPreview_ || pendingInvalidate_ || expectedSamples_ == 0 || tracer_.settings().width != targetWidth_ ||
+      tracer_.settings().height != targetHeight_)
+    return false;
+  tracer_.parkAccumulation(expectedSamples_);
+  parkedSamples_ = expectedSamples_;
+  parkedRow_ = cursor_;
+  parkedResetTime_ = resetTime_;
+  return true;
+}
+
+bool ProgressiveTracer::resumeParked() {
+  if (!tracer_.unparkAccumulation()) return false;
+  inPreview_ = coarsePreview_ = pendingInvalidate_ = false;
+  cursor_ = parkedRow_;
+  expectedSamples_ = tracer_.samplesAccumulated();
+  resetTime_ = parkedResetTime_;
+  ++generation_;
+  return true;
 }
 
 void ProgressiveTracer::resize(uint32_t width, uint32_t height) {

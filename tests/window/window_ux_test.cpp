@@ -347,3 +347,43 @@ TEST(WindowUx, AModeRoundTripResumesThePathTracersSamples) {
   EXPECT_EQ(changed["pathtrace_samples_kept"], 0);
   EXPECT_LT(back2["samples"].get<int>(), before["samples"].get<int>());
 }
+
+// Samples are kept where they stay valid: while an edit's comparison is pending the old pipeline's
+// accumulation is set aside, so Revert goes on with it; a rebuild whose image is identical (a branch never
+// taken) keeps the accumulation too.
+TEST(WindowUx, RevertAndAnIdenticalRebuildKeepTheSamples) {
+  REQUIRE_TOOLS();
+  const auto dir = tempDir("kept");
+  const fs::path root = privateRoot(dir);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  const std::string original = readFile(watched);
+  const std::string needle = "  sm.baseColor = baseColor.rgb;";
+  ASSERT_NE(original.find(needle), std::string::npos);
+  std::string changed = original, identical = original;
+  changed.replace(changed.find(needle), needle.size(), "  sm.baseColor = baseColor.rgb * 1.05;");
+  identical.replace(identical.find(needle), needle.size(),
+                    needle + "\n  if (gl_LaunchIDEXT.x == 0xFFFFFFFFu) sm.baseColor = vec3(0.0);");
+  writeFile(dir / "changed.rchit", changed);
+  writeFile(dir / "identical.rchit", identical);
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  writeFile(dir / "s.txt", "wait_samples 4 600\nstats " + p("before.json") + "\ncopy " + p("changed.rchit") +
+                               " " + watched.string() + "\nwait_reload 600\nframes 3\nstats " +
+                               p("edited.json") + "\nab_revert\nframes 1\nstats " + p("reverted.json") +
+                               "\ncopy " + p("identical.rchit") + " " + watched.string() +
+                               "\nwait_reload 600\nframes 3\nstats " + p("identical.json") + "\nquit\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"), "WB_ROOT=" + root.string());
+  const auto r = w.finish();
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto before = awaitJson(dir / "before.json", 1), edited = awaitJson(dir / "edited.json", 1);
+  const auto reverted = awaitJson(dir / "reverted.json", 1), same = awaitJson(dir / "identical.json", 1);
+  ASSERT_TRUE(edited["ab"].is_object()) << edited.dump();
+  EXPECT_EQ(edited["ab"]["image_verdict"], "changed");
+  EXPECT_LT(edited["samples"].get<int>(), before["samples"].get<int>()) << "the edit's image starts over";
+  EXPECT_GE(reverted["samples"].get<int>(), before["samples"].get<int>())
+      << "Revert threw the old pipeline's samples away: " << reverted["ab_note"];
+  EXPECT_TRUE(reverted["reloads"].back()["reverted"].get<bool>());
+  ASSERT_TRUE(same["ab"].is_object()) << same.dump();
+  EXPECT_EQ(same["ab"]["image_verdict"], "identical") << same["ab"].dump();
+  EXPECT_GE(same["samples"].get<int>(), reverted["samples"].get<int>())
+      << "an identical rebuild threw the samples away: " << same["ab_note"];
+}
