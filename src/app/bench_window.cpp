@@ -300,7 +300,12 @@ ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<s
       }
       f.lost += landed ? 0 : 1;
       static const char* kWhat[] = {"checkbox", "combo", "combo item", "image"};
-      f.perClick.push_back({{"what", kWhat[kind]}, {"ms", f.ms.back()}, {"landed", landed}});
+      // The part of it the click waited for the window's loop to take it (a trace or a frame in flight).
+      const auto& events = after["click_event_ns"];
+      const double toEvent =
+          events.size() > size_t(i) ? double(events[size_t(i)].get<int64_t>() - sent) / 1e6 : -1.0;
+      f.perClick.push_back(
+          {{"what", kWhat[kind]}, {"ms", f.ms.back()}, {"to_event_ms", toEvent}, {"landed", landed}});
     }
   });
   return f;

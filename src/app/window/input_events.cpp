@@ -1,5 +1,7 @@
 #include "app/window/input_events.h"
 
+#include <chrono>
+
 #include <utility>
 
 #include <GLFW/glfw3.h>
@@ -50,6 +52,15 @@ void InputEvents::onButton(int button, int action) {
   std::lock_guard lock(mutex_);
   activity_ = discrete_ = true;
   buttons_.push_back({button, action == GLFW_PRESS, pos});
+  if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_RELEASE)
+    releaseNs_.push_back(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             std::chrono::steady_clock::now().time_since_epoch())
+                             .count());
+}
+
+std::vector<int64_t> InputEvents::leftReleaseTimes() const {
+  std::lock_guard lock(mutex_);
+  return releaseNs_;
 }
 
 void InputEvents::onActivity(bool discrete) {

@@ -121,7 +121,8 @@ void WorkbenchWindow::writeStats(const std::string& path) {
   j["panel_visible"] = session_->state().showPanel;
   j["preview_enabled"] = session_->state().preview;  // the "preview after changes" checkbox
   j["clicks_presented"] = clickScreenNs_.size();
-  j["click_screen_ns"] = clickScreenNs_;  // when each click's frame finished (steady clock, ns)
+  j["click_screen_ns"] = clickScreenNs_;              // when each click's frame finished (steady clock, ns)
+  j["click_event_ns"] = events_->leftReleaseTimes();  // when the loop received each click's release
   nlohmann::json widgets = nlohmann::json::object();
   for (const auto& [name, r] : widgetRects().rects()) widgets[name] = {r.x, r.y, r.w, r.h};
   j["widgets"] = widgets;  // where the last frame drew them (framebuffer pixels)
