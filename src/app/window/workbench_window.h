@@ -60,6 +60,7 @@ class WorkbenchWindow : public ScriptHost {
   uint64_t clicksPresented() const override { return clickScreenNs_.size(); }
 
  private:
+  int frameLoop();
   // The frame loop's parts: waiting for the frame in flight (false: none was); tracing without presenting
   // while converging untouched (false: quit); one script step (false: the session ends); laying out,
   // recording, submitting and presenting one frame.
