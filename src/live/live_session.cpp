@@ -53,6 +53,15 @@ void LiveSession::setCamera(const render::CameraState& camera) {
 }
 
 void LiveSession::setTraceSize(uint32_t width, uint32_t height) {
+  const uint32_t w0 = progressive_->targetWidth(), h0 = progressive_->targetHeight();
+  if (state_.inspectPixel && (width != w0 || height != h0) && w0 > 0 && h0 > 0) {
+    // The inspected pixel keeps its point of the scene: the camera's vertical field of view spans the height.
+    const double s = double(height) / double(h0);
+    const double x = (double(state_.inspectPixel->x) + 0.5 - 0.5 * w0) * s + 0.5 * width;
+    const double y = (double(state_.inspectPixel->y) + 0.5 - 0.5 * h0) * s + 0.5 * height;
+    if (x >= 0.0 && y >= 0.0 && x < double(width) && y < double(height))
+      state_.inspectPixel = glm::uvec2(uint32_t(x), uint32_t(y));
+  }
   progressive_->setTargetSize(width, height);
 }
 
@@ -254,13 +263,17 @@ void LiveSession::applyAB() {
 
 void LiveSession::beginFrame() {
   const auto reload = loop_->beginFrame();
-  // A new path tracer pipeline while edits are compared: the old pipeline's accumulation is set aside until
-  // the comparison says what becomes of it (Revert or an identical image take it back).
-  if (reload && ab_.enabled && !session_->hybrid()) {
-    const auto& installed = loop_->hot().lastInstalled();
-    if (std::any_of(installed.begin(), installed.end(),
-                    [&](const auto& ip) { return ip.owner == &session_->pathTracer(); }))
+  // A new path tracer pipeline: while edits are compared, the old pipeline's accumulation is set aside until
+  // the comparison says what becomes of it (Revert or an identical image take it back); otherwise nothing
+  // parked (another size's accumulation) belongs to the new pipeline.
+  const auto& installed = loop_->hot().lastInstalled();
+  if (reload && std::any_of(installed.begin(), installed.end(),
+                            [&](const auto& ip) { return ip.owner == &session_->pathTracer(); })) {
+    if (ab_.enabled && !session_->hybrid()) {
       progressive_->parkAccumulation();
+    } else {
+      progressive_->dropParked();
+    }
   }
   render::HybridRenderer* hybrid = session_->hybrid();
   if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||

@@ -117,10 +117,12 @@ TEST(WindowUx, ClicksOnWidgetsLandWhileTheImageConverges) {
 TEST(WindowUx, TabGivesTheImageTheWholeWindowAndEscQuits) {
   REQUIRE_TOOLS();
   const auto dir = tempDir("tab");
-  writeFile(dir / "s.txt", "wait_samples 1 600\nstats " + (dir / "a.json").string() + "\nwait_file " +
-                               (dir / "go").string() + " 600\nframes 3\nstats " + (dir / "b.json").string() +
-                               "\nwait_file " + (dir / "never").string() + " 300\n");
-  LiveWindow w(dir, "--window 640x480 --script " + (dir / "s.txt").string());
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  writeFile(dir / "s.txt", "wait_samples 2 600\nstats " + p("a.json") + "\nwait_file " + p("go") +
+                               " 600\nframes 3\nstats " + p("b.json") + "\nwait_file " + p("go2") +
+                               " 600\nframes 3\nstats " + p("c.json") + "\nwait_file " + p("never") +
+                               " 300\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
   const auto a = awaitJson(dir / "a.json");
   ASSERT_TRUE(a.is_object()) << w.finish().output;
   EXPECT_EQ(w.xdotool("mousemove 500 200 key Tab"), 0);
@@ -133,6 +135,14 @@ TEST(WindowUx, TabGivesTheImageTheWholeWindowAndEscQuits) {
   const double scale = a["target_height"].get<double>() / 480.0;
   EXPECT_NEAR(b["target_width"].get<double>(), 640.0 * scale, 2.0) << b.dump();
   EXPECT_LT(a["target_width"].get<double>(), 0.75 * b["target_width"].get<double>());
+  // Tab again: the panel and the image beside it come back with the samples it had.
+  EXPECT_EQ(w.xdotool("key Tab"), 0);
+  w.signal("go2");
+  const auto c = awaitJson(dir / "c.json");
+  ASSERT_TRUE(c.is_object()) << w.finish().output;
+  EXPECT_EQ(c["panel_visible"], true);
+  EXPECT_EQ(c["target_width"], a["target_width"]);
+  EXPECT_GE(c["samples"].get<int>(), a["samples"].get<int>()) << "going back to the size left restarted it";
   EXPECT_EQ(w.xdotool("key Escape"), 0);
   const auto r = w.finish();
   EXPECT_EQ(r.code, 0) << r.output;
@@ -198,14 +208,19 @@ TEST(WindowUx, ClickSelectsDragOrbitsWheelDolliesCtrlQQuits) {
   const auto dir = tempDir("select");
   auto p = [&](const std::string& name) { return (dir / name).string(); };
   std::string script = "wait_samples 1 600\nstats " + p("a.json") + "\n";
-  for (const char* step : {"b", "c", "d", "e"})
+  for (const char* step : {"a2", "b", "c", "d", "e"})
     script += "wait_file " + p(std::string("go_") + step) + " 600\nframes 3\nstats " +
               p(std::string(step) + ".json") + "\n";
   writeFile(dir / "s.txt", script + "wait_file " + p("never") + " 300\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
   const auto a = awaitJson(dir / "a.json");
   ASSERT_TRUE(a.is_object()) << w.finish().output;
-  // Click the middle of the image, then move to its left edge (another object: the red wall).
+  // Hover the left edge (the red wall), then click the middle of the image (the back wall): the click selects
+  // what is under it, and the name shown follows the cursor; then move back to the left edge.
+  EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.03, 0.5)), 0);
+  w.signal("go_a2");
+  const auto a2 = awaitJson(dir / "a2.json");
+  ASSERT_TRUE(a2.is_object()) << w.finish().output;
   EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.5, 0.5) + " click 1"), 0);
   w.signal("go_b");
   const auto b = awaitJson(dir / "b.json");
@@ -230,7 +245,10 @@ TEST(WindowUx, ClickSelectsDragOrbitsWheelDolliesCtrlQQuits) {
   EXPECT_EQ(r.code, 0) << r.output;
   EXPECT_EQ(r.output.find("wait_file"), std::string::npos) << "Ctrl+Q did not quit:\n" << r.output;
 
+  ASSERT_TRUE(a2["hover_object"].is_object()) << a2.dump();
   ASSERT_TRUE(b["selected_object"].is_object()) << b.dump();
+  EXPECT_NE(b["selected_object"]["material"], a2["hover_object"]["material"])
+      << "the middle is the back wall";
   EXPECT_EQ(b["selected_object"], b["hover_object"]) << "the click selects what is under the cursor";
   ASSERT_TRUE(c["hover_object"].is_object());
   EXPECT_NE(c["hover_object"]["material"], b["selected_object"]["material"])

@@ -247,6 +247,8 @@ void errorSection(PanelContext& c) {
   if (!last) {
     ImGui::TextDisabled(le.hasReference() ? "error vs reference: waiting for a sample"
                                           : "noise estimate: needs 2 samples (n vs n/2)");
+    // The plot's room stays: a restart does not move the sections below under the cursor.
+    ImGui::Dummy(ImVec2(ImGui::GetContentRegionAvail().x, 50));
     return;
   }
   ImGui::Text("%s at %u spp: RMSE %.4g  relMSE %.4g", last->estimated ? "noise est." : "error vs ref",
@@ -265,6 +267,8 @@ void errorSection(PanelContext& c) {
     std::snprintf(overlay, sizeof overlay, "log10 relMSE, %zu checkpoints", logRel.size());
     ImGui::PlotLines("##error", logRel.data(), int(logRel.size()), 0, overlay, FLT_MAX, FLT_MAX,
                      ImVec2(ImGui::GetContentRegionAvail().x, 50));
+  } else {
+    ImGui::Dummy(ImVec2(ImGui::GetContentRegionAvail().x, 50));
   }
 }
 

@@ -46,7 +46,8 @@ bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
     }
     case ParameterType::Choice: {
       const std::string& current = std::get<std::string>(v);
-      if (ImGui::BeginCombo(p.label.c_str(), current.c_str())) {
+      // Every choice shown at once (the debug views are ten): no scrolling inside the list.
+      if (ImGui::BeginCombo(p.label.c_str(), current.c_str(), ImGuiComboFlags_HeightLarge)) {
         for (const auto& c : p.choices) {
           if (ImGui::Selectable(c.c_str(), c == current) && c != current) {
             next = c;

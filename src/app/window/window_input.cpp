@@ -103,13 +103,16 @@ void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
     in.move = {key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
                key(GLFW_KEY_W) - key(GLFW_KEY_S)};
   }
-  if (camera_.update(in)) cameraMoved();
+  const bool moved = camera_.update(in);
+  if (moved) cameraMoved();
 
   // Hover: the CPU ray through the pixel under the cursor names what is there (it selects nothing).
   if (!overView || !img.contains(mouse.x, mouse.y)) {
     hover_.reset();
-  } else if (delta != glm::vec2(0.0f) || !hover_ || in.dragRotate != glm::vec2(0.0f)) {
+  } else if (mouse != hoverAt_ || !hover_ || moved) {
+    // The cursor moved since the last pick (a press resets the drag's origin, not this), or the camera did.
     hover_ = pickAt(img, mouse);
+    hoverAt_ = mouse;
   }
   lastMouse_ = mouse;
 

@@ -51,6 +51,7 @@ class WindowInput {
   std::optional<PickResult> hover_, selected_;
   glm::vec2 viewSize_{1000.0f};  // the image's size on screen at the last frame (the script's orbit uses it)
   glm::vec2 lastMouse_{-1.0f};
+  glm::vec2 hoverAt_{-1.0f};  // where the cursor was when hover_ was picked
   glm::vec2 pressMouse_{0.0f};
   bool dragging_ = false;
   int dragButton_ = -1;
