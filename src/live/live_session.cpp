@@ -54,13 +54,17 @@ void LiveSession::setCamera(const render::CameraState& camera) {
 
 void LiveSession::setTraceSize(uint32_t width, uint32_t height) {
   const uint32_t w0 = progressive_->targetWidth(), h0 = progressive_->targetHeight();
-  if (state_.inspectPixel && (width != w0 || height != h0) && w0 > 0 && h0 > 0) {
-    // The inspected pixel keeps its point of the scene: the camera's vertical field of view spans the height.
+  // A pixel clicked on the image keeps its point of the scene (the camera's vertical field of view spans the
+  // height); one given by number (--set, a script) stays as given.
+  if (picked_ && state_.inspectPixel == picked_->pixel && picked_->size == glm::uvec2(w0, h0) &&
+      (width != w0 || height != h0)) {
     const double s = double(height) / double(h0);
     const double x = (double(state_.inspectPixel->x) + 0.5 - 0.5 * w0) * s + 0.5 * width;
     const double y = (double(state_.inspectPixel->y) + 0.5 - 0.5 * h0) * s + 0.5 * height;
-    if (x >= 0.0 && y >= 0.0 && x < double(width) && y < double(height))
+    if (x >= 0.0 && y >= 0.0 && x < double(width) && y < double(height)) {
       state_.inspectPixel = glm::uvec2(uint32_t(x), uint32_t(y));
+      picked_ = Picked{*state_.inspectPixel, glm::uvec2(width, height)};
+    }
   }
   progressive_->setTargetSize(width, height);
 }
@@ -483,6 +487,7 @@ void LiveSession::inspectAt(glm::vec2 rel) {
   if (!state_.inspectOnClick) return;
   const glm::uvec2 size(progressive_->targetWidth(), progressive_->targetHeight());
   state_.inspectPixel = glm::min(glm::uvec2(glm::max(rel, glm::vec2(0.0f)) * glm::vec2(size)), size - 1u);
+  picked_ = Picked{*state_.inspectPixel, size};
   state_.inspectOpenPanel = 2;
 }
 

@@ -150,6 +150,11 @@ class LiveSession {
   std::unique_ptr<EditLoop> loop_;
   std::unique_ptr<render::ProgressiveTracer> progressive_;
   bool cameraChanged_ = false;
+  // The last pixel a click picked and the trace size it was picked at.
+  struct Picked {
+    glm::uvec2 pixel, size;
+  };
+  std::optional<Picked> picked_;
   bool pathTracerStale_ = false;  // something that alters its image changed while another mode was shown
   render::CameraState camera_;
   // The hybrid modes' accumulation: restarts (a changed generation restarts the running error), when the

@@ -405,3 +405,32 @@ TEST(WindowUx, RevertAndAnIdenticalRebuildKeepTheSamples) {
   EXPECT_GE(same["samples"].get<int>(), reverted["samples"].get<int>())
       << "an identical rebuild threw the samples away: " << same["ab_note"];
 }
+
+// A pixel picked by a click keeps its point of the scene when the image changes size (Tab): the middle of
+// the image stays the middle.
+TEST(WindowUx, APickedPixelFollowsTheImageThroughTab) {
+  REQUIRE_TOOLS();
+  const auto dir = tempDir("pickedtab");
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  writeFile(dir / "s.txt", "wait_samples 1 600\nstats " + p("a.json") +
+                               "\nwait_clicks 1 600\nframes 2\nstats " + p("b.json") + "\nwait_file " +
+                               p("go") + " 600\nframes 3\nstats " + p("c.json") + "\nquit\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
+  const auto a = awaitJson(dir / "a.json");
+  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.5, 0.5) + " click 1"), 0);
+  const auto b = awaitJson(dir / "b.json");
+  ASSERT_TRUE(b.is_object()) << w.finish().output;
+  EXPECT_EQ(w.xdotool("key Tab"), 0);
+  w.signal("go");
+  const auto r = w.finish();
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto c = awaitJson(dir / "c.json", 1);
+  ASSERT_TRUE(b["inspect_pixel"].is_array());
+  EXPECT_NEAR(b["inspect_pixel"][0].get<double>(), 0.5 * b["target_width"].get<double>(), 2.0);
+  ASSERT_GT(c["target_width"].get<int>(), b["target_width"].get<int>()) << "Tab did not widen the image";
+  EXPECT_NEAR(c["inspect_pixel"][0].get<double>(), 0.5 * c["target_width"].get<double>(), 2.0)
+      << c["inspect_pixel"];
+  EXPECT_NEAR(c["inspect_pixel"][1].get<double>(), 0.5 * c["target_height"].get<double>(), 2.0)
+      << c["inspect_pixel"];
+}
