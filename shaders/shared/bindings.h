@@ -45,4 +45,9 @@
 #define WB_BIND_HYBRID_OUTPUT 49     // rgba32f storage image: composited linear radiance
 #define WB_BIND_HYBRID_INSPECT 50    // storage buffer HybridInspectRecord: the rays of the inspected pixel
 
+// ---- the bare-ray roofline (shaders/roofline; the scene's TLAS and geometries at their path tracer bindings) ----
+#define WB_BIND_ROOFLINE_HITS 60     // rgba32f storage image: camera ray hit position, a = 1 hit, 0 miss
+#define WB_BIND_ROOFLINE_NORMALS 61  // rgba32f storage image: geometric normal at the hit, facing the camera
+#define WB_BIND_ROOFLINE_RESULT 62   // rgba32f storage image: what a launch found (keeps its rays from being unused)
+
 #endif
