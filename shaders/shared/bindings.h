@@ -27,6 +27,10 @@
 // of the bounce where it ended them (0 for the others: b / g is the mean over those it ended), a = the lowest
 // bounce at which a sample became NaN/Inf (WB_NO_NON_FINITE: none)
 #define WB_BIND_AOV_STATS 20
+#define WB_BIND_REFLECTORS 21   // storage buffer vec4[]: glossy reflectors' bounding spheres (xyz centre, w radius)
+// storage buffer vec4[]: the radiance of each sample of a launch of several (launch depth > 1), [z][y][x]; the resolve
+// pass (pathtracer/resolve.comp) accumulates them into WB_BIND_ACCUM in sample order
+#define WB_BIND_SAMPLE_SLOTS 22
 // The path inspector's buffers, declared only by the WB_INSPECT build of the path tracer (shaders/pathtracer/inspect.glsl).
 #define WB_BIND_INSPECT_HEADER 17    // storage buffer InspectHeader: which pixel and how many records
 #define WB_BIND_INSPECT_SAMPLES 18   // storage buffer InspectSample[]: one per recorded sample

@@ -29,10 +29,7 @@ GpuSampleTiming timePathTracerOnGpu(render::RenderSession& s, uint32_t samples) 
   render::Renderer& r = s.renderer();
   r.resetCounters();
   const double seconds = vk::gpuSeconds(s.context(), [&](VkCommandBuffer cmd) {
-    for (uint32_t i = 0; i < samples; ++i) {
-      r.record(cmd);
-      r.advance();
-    }
+    for (uint32_t i = 0; i < samples;) i += r.recordBatch(cmd, samples - i);
   });
   const auto c = r.readCounters();
   GpuSampleTiming t;

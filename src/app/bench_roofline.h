@@ -12,7 +12,8 @@ class RenderSession;
 
 namespace wb::app {
 
-// The path tracer of `s` timed on the device: `samples` samples recorded into one submission.
+// The path tracer of `s` timed on the device: `samples` samples recorded into one submission (in launches of
+// its samplesPerLaunch).
 struct GpuSampleTiming {
   uint32_t samples = 0;
   double secondsPerSample = 0;  // GPU time
