@@ -17,6 +17,17 @@ namespace {
 
 constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
 
+// `--define WB_SER=1` (raygen.rgen: shader execution reordering) compiles only for a device with
+// VK_NV_ray_tracing_invocation_reorder: refused by name on the others.
+void checkInvocationReorder(const vk::Context& ctx, const scene::SceneFeatures& features) {
+  for (const auto& d : features.extraDefines) {
+    if (d.name == "WB_SER" && d.value != "0" && !ctx.invocationReorderSupported())
+      throw std::invalid_argument(
+          "--define WB_SER=" + d.value + ": device '" + ctx.deviceName() +
+          "' lacks VK_NV_ray_tracing_invocation_reorder (shader execution reordering)");
+  }
+}
+
 }  // namespace
 
 std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
@@ -86,6 +97,7 @@ bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
 }
 
 void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) {
+  checkInvocationReorder(ctx_, features);
   std::string name = features.generic ? "pathtracer" : "pathtracer (specialised)";
   if (inspect) name += " (inspect)";
   pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect));
@@ -291,7 +303,7 @@ void PathTracer::updateFrameUniforms() {
 
 uint32_t PathTracer::samplesPerLaunch() const {
   if (settings_.aov || inspection_ || settings_.tileWidth || settings_.tileHeight) return 1;
-  if (settings_.samplesPerLaunch) return settings_.samplesPerLaunch;
+  if (settings_.samplesPerLaunch != 0) return settings_.samplesPerLaunch;
   if (ctx_.policy().compilesAtFirstDispatch) return 1;
   const uint64_t pixels = uint64_t(settings_.width) * settings_.height;
   return uint32_t(std::clamp<uint64_t>(((uint64_t(1) << 20) + pixels - 1) / pixels, 1, 16));

@@ -79,9 +79,9 @@ class PathTracer final : public Renderer {
   void record(VkCommandBuffer cmd) override;  // every tile of one sample (settings' tile size)
   void advance() override { ++sampleIndex_; }
   uint32_t recordBatch(VkCommandBuffer cmd, uint32_t samples) override;
-  // Samples one launch traces for a whole-image sample: settings' samplesPerLaunch, or by default 1 on a
-  // device that compiles at the first dispatch (a CPU is full at any size) and enough for ~2^20 invocations
-  // on a GPU (at most 16); always 1 with AOVs, the inspector or tiles.
+  // Samples one launch traces for a whole-image sample: settings' samplesPerLaunch (default 1), or for 0 (the
+  // device's choice) 1 on a device that compiles at the first dispatch (a CPU is full at any size) and enough
+  // for ~2^20 invocations on a GPU (at most 16); always 1 with AOVs, the inspector or tiles.
   uint32_t samplesPerLaunch() const;
   void recordCompileOnly(VkCommandBuffer cmd) override { recordRegion(cmd, PixelRegion{}); }
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
