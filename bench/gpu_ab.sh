@@ -38,9 +38,8 @@ configs=(
   "launch16|--samples-per-launch 16"
   "launch-auto|--samples-per-launch 0"
   "payload+128B|--define WB_PAYLOAD_PAD_VEC4=8"
-  "no-env-brdf|--define WB_ENV_BRDF_SAMPLING=0"
+  "guiding|--define WB_REFLECTOR_GUIDING=1"
 )
-if [ "${WB_AB_SER:-1}" = 1 ]; then configs+=("ser|--define WB_SER=1"); fi
 # name|scene arguments
 scenes=("default|" "sunlit|${sunlit[*]}")
 # size|spp per run (quick: a quarter)
@@ -85,7 +84,8 @@ echo "== 3. error per sample on the sunlit glossy scene"
 csize=256x256 cref=4096 cspp=256
 [ "$quick" = 1 ] && csize=64x64 cref=1024 cspp=64
 "$wb" converge "${sunlit[@]}" --size "$csize" --reference-spp "$cref" --seconds 3600 --max-spp "$cspp" --runs 3 \
-  --target-relmse 0.01 --config "default:" --config "no-env-brdf:--define WB_ENV_BRDF_SAMPLING=0" \
+  --target-relmse 0.01 --config "default:" --config "guiding:--define WB_REFLECTOR_GUIDING=1" \
+  --config "guiding0.5:--define WB_REFLECTOR_GUIDING=1 --define WB_REFLECTOR_FRACTION=0.5" \
   --out "$out/sunlit_converge"
 
 python3 - "$out" <<'EOF'

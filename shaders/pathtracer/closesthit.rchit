@@ -191,16 +191,9 @@ void main() {
         shadowDir = wi;
       } else if (uChoice < frame.envSelectProbability) {
 #if WB_ENV_MODE != WB_ENV_NONE
-        // Environment: importance sampled by its alias table, or, when it is constant, by the BRDF (environment.glsl).
+        // Environment: importance sampled by its alias table.
         float envPdfValue;
-        if (envSampledByBrdf()) {
-          const BrdfSample es = pathSample(sm, ns, wo, position, ng, ul);
-          wi = es.wi;
-          envPdfValue = es.pdf;
-          le = es.pdf > 0.0 ? envRadiance(wi) : vec3(0.0);
-        } else {
-          le = envSample(ul, wi, envPdfValue);
-        }
+        le = envSample(ul, wi, envPdfValue);
         shadowDir = wi;
         lightPdf = frame.envSelectProbability * envPdfValue;
         if (!(lightPdf > 0.0)) lightPdf = -1.0;
@@ -287,14 +280,13 @@ void main() {
   const BrdfSample s = pathSample(sm, ns, wo, position, ng, uBrdf);
 #if WB_INSPECT
   if (iv != WB_INSPECT_NONE) {
-    const float pDiffuse = brdfDiffuseProbability(sm, dot(ns, wo));
     const float cosine = dot(ns, s.wi);
     const vec3 fCos = brdfEval(sm, ns, wo, s.wi);
     inspectNan |= s.pdf > 0.0 ? inspectNonFinite(fCos, WB_INSPECT_NAN_BRDF) : 0u;
     inspectNan |= inspectNonFinite(s.pdf, WB_INSPECT_NAN_PDF) | inspectNonFinite(s.weight, WB_INSPECT_NAN_WEIGHT);
     inspectVertices[iv].lightSamples = inspectLights;
     inspectVertices[iv].lobe = s.lobe;
-    inspectVertices[iv].lobeProbability = s.lobe == WB_LOBE_DIFFUSE ? pDiffuse : 1.0 - pDiffuse;  // of the BRDF's part
+    inspectVertices[iv].lobeProbability = pathLobeProbability(sm, ns, wo, position, ng, s.lobe);
     inspectVertices[iv].direction = s.wi;
     inspectVertices[iv].pdf = s.pdf;
     inspectVertices[iv].weight = s.weight;

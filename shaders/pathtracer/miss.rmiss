@@ -19,9 +19,7 @@ void main() {
   if (lightSamplingOnly) {
     misWeight = 0.0;
   } else if (brdfSampled) {
-    // The environment's light sample had this ray's pdf when it is a BRDF sample too (environment.glsl).
-    const float envStrategyPdf = envSampledByBrdf() ? payload.pdf : envPdf(dir);
-    misWeight = powerHeuristic(1.0, payload.pdf, 1.0, frame.envSelectProbability * envStrategyPdf);
+    misWeight = powerHeuristic(1.0, payload.pdf, 1.0, frame.envSelectProbability * envPdf(dir));
   }
   payload.radiance = envRadiance(dir) * misWeight;
   vec3 sun = vec3(0.0);

@@ -17,17 +17,6 @@ namespace {
 
 constexpr uint32_t kMaxRecursion = 1;  // raygen traces every ray (shadow rays too: payload.glsl)
 
-// `--define WB_SER=1` (raygen.rgen: shader execution reordering) compiles only for a device with
-// VK_NV_ray_tracing_invocation_reorder: refused by name on the others.
-void checkInvocationReorder(const vk::Context& ctx, const scene::SceneFeatures& features) {
-  for (const auto& d : features.extraDefines) {
-    if (d.name == "WB_SER" && d.value != "0" && !ctx.invocationReorderSupported())
-      throw std::invalid_argument(
-          "--define WB_SER=" + d.value + ": device '" + ctx.deviceName() +
-          "' lacks VK_NV_ray_tracing_invocation_reorder (shader execution reordering)");
-  }
-}
-
 }  // namespace
 
 std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
@@ -97,7 +86,6 @@ bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
 }
 
 void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) {
-  checkInvocationReorder(ctx_, features);
   std::string name = features.generic ? "pathtracer" : "pathtracer (specialised)";
   if (inspect) name += " (inspect)";
   pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect));

@@ -290,7 +290,6 @@ void Context::pickDevice(const ContextOptions& options) {
   deviceName_ = candidates[*choice.index].name;
   for (const auto& e : candidates[*choice.index].extensions) {
     if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
-    if (e == VK_NV_RAY_TRACING_INVOCATION_REORDER_EXTENSION_NAME) invocationReorder_ = true;
   }
   DeviceTraits traits;
   traits.cpuImplementation = candidates[*choice.index].cpu;
@@ -326,23 +325,11 @@ void Context::createDevice(const ContextOptions& options) {
   std::string missing;
   for (const auto& m : have.missingEssentials()) missing += " " + m;
   if (!missing.empty()) throw VulkanError("device '" + deviceName_ + "' lacks features:" + missing);
-  EnabledFeatures features(have);
-  // Shader execution reordering (optional: `--define WB_SER=1` of the path tracer), where the device has it.
-  VkPhysicalDeviceRayTracingInvocationReorderFeaturesNV reorder{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_INVOCATION_REORDER_FEATURES_NV};
-  if (invocationReorder_) {
-    VkPhysicalDeviceFeatures2 query{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    query.pNext = &reorder;
-    vkGetPhysicalDeviceFeatures2(physical_, &query);
-    invocationReorder_ = reorder.rayTracingInvocationReorder == VK_TRUE;
-    reorder.pNext = features.base.pNext;
-    if (invocationReorder_) features.base.pNext = &reorder;
-  }
+  const EnabledFeatures features(have);
 
   std::vector<const char*> extensions;
   for (const auto& e : requiredDeviceExtensions()) extensions.push_back(e.c_str());
   if (pipelineLibrary_) extensions.push_back(VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME);
-  if (invocationReorder_) extensions.push_back(VK_NV_RAY_TRACING_INVOCATION_REORDER_EXTENSION_NAME);
   if (options.presentation) extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
 
   float priority = 1.0f;

@@ -50,8 +50,6 @@ class Context {
   const RayTracingProperties& rayTracing() const { return rt_; }
   bool validationEnabled() const { return validation_; }
   bool pipelineLibrarySupported() const { return pipelineLibrary_; }
-  // VK_NV_ray_tracing_invocation_reorder (shader execution reordering) is enabled: the device has it.
-  bool invocationReorderSupported() const { return invocationReorder_; }
   // What this device needs done differently (vk/driver_policy.h), resolved when the device is made.
   const DevicePolicy& policy() const { return policy_; }
   float timestampPeriodNs() const { return timestampPeriod_; }
@@ -125,7 +123,6 @@ class Context {
   VkPhysicalDeviceMemoryProperties memory_{};
   bool validation_ = false;
   bool pipelineLibrary_ = false;
-  bool invocationReorder_ = false;
   DevicePolicy policy_;
   float timestampPeriod_ = 1.0f;
   std::atomic<uint32_t> validationErrors_{0};

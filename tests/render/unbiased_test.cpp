@@ -114,39 +114,39 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
   expectNoValidationErrors(*session);
 }
 
-// A constant environment's light sample is a BRDF sample (WB_ENV_BRDF_SAMPLING, pathtracer/environment.glsl),
-// MIS-weighted against the continuation's draw of the same density. MIS, light sampling alone (the
-// environment through next-event estimation only: a BRDF-sampled light sample weighted 1), BRDF sampling
-// alone and the alias table's uniform directions (WB_ENV_BRDF_SAMPLING=0) must agree; a pdf the miss shader
-// or next-event estimation weighs with that is not the strategy's shows here.
-TEST(Unbiased, ConstantEnvironmentSampledByTheBrdfAgrees) {
+// Continuation rays towards glossy reflectors (pathtracer/guiding.glsl): the sun focused by a smooth metal
+// sphere onto the floor. The mixture's pdf weighs every estimate that weighs against BRDF sampling, so guided
+// MIS, guided BRDF sampling alone (no next-event estimation: the sun, here of angular size, is reached
+// through the miss shader) and unguided MIS (the default) must agree.
+TEST(Unbiased, ReflectorGuidingAgreesWithBrdfSampling) {
   render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
+  gpu::DirectionalLight sun{};
+  sun.direction = glm::normalize(glm::vec3(0.6f, -0.7f, -0.3f));
+  sun.cosAngularRadius = std::cos(glm::radians(6.0f));
+  sun.radiance = glm::vec3(40.0f);
+  o.sceneData->lights.push_back(sun);
   o.settings = envSettings();
   o.settings.envPath.clear();
   o.settings.envColor = glm::vec3(0.2f, 0.3f, 0.5f);
+  render::SessionOptions offOptions = o;
+  o.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}};
   auto session = makeSession(o);
-  render::SessionOptions tableOptions = o;
-  tableOptions.settings.defines = {{"WB_ENV_BRDF_SAMPLING", "0"}};
-  auto tableSession = makeSession(tableOptions);
-  render::RenderSettings mis = o.settings, lightOnly = o.settings, brdfOnly = o.settings;
-  lightOnly.mis = false;
+  auto offSession = makeSession(offOptions);
+  render::RenderSettings mis = o.settings, brdfOnly = o.settings;
   brdfOnly.nee = false;
   const Estimate eMis = estimateMean(*session, mis, 16, 16, 100);
-  const Estimate eLight = estimateMean(*session, lightOnly, 16, 16, 200);
-  const Estimate eBrdf = estimateMean(*session, brdfOnly, 16, 16, 300);
-  const Estimate eTable = estimateMean(*tableSession, tableOptions.settings, 16, 16, 400);
-  expectClean("mis", eMis);
-  expectClean("light only", eLight);
-  expectClean("brdf only", eBrdf);
-  expectClean("alias table mis", eTable);
-  std::printf(" constant environment:\n");
-  expectAgree("mis", eMis, "light only", eLight);
-  expectAgree("mis", eMis, "brdf only", eBrdf);
-  expectAgree("light only", eLight, "brdf only", eBrdf);
-  expectAgree("mis", eMis, "alias table mis", eTable);
+  const Estimate eBrdf = estimateMean(*session, brdfOnly, 16, 64, 300);
+  const Estimate eOff = estimateMean(*offSession, offOptions.settings, 16, 16, 400);
+  expectClean("guided mis", eMis);
+  expectClean("guided brdf only", eBrdf);
+  expectClean("unguided mis", eOff);
+  std::printf(" sun and a glossy metal sphere:\n");
+  expectAgree("guided mis", eMis, "guided brdf only", eBrdf);
+  expectAgree("guided mis", eMis, "unguided mis", eOff);
+  expectAgree("guided brdf only", eBrdf, "unguided mis", eOff);
   expectNoValidationErrors(*session);
-  expectNoValidationErrors(*tableSession);
+  expectNoValidationErrors(*offSession);
 }
 
 // Russian roulette only reweights surviving paths: on, off, from the first bounce with a tight survival clamp
