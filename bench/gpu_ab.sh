@@ -9,8 +9,10 @@
 #  2. ROUNDS rounds (default 3); in each, every configuration below renders the default scene and the sunlit
 #     glossy scene at 256x256 and 2048x2048 one after another (`render --stats`, enough samples for ~0.5 s of
 #     tracing on an H200): wall seconds per sample (the first batch left out) and rays per second.
-#  3. `converge` of the error-per-sample switches on the sunlit glossy scene, 256x256, against a 4096-spp
-#     reference, 3 runs each: relMSE at 16/64 spp and seconds to relMSE 0.01.
+#  3. `converge` on the sunlit glossy scene, 256x256, against a 4096-spp reference, 3 runs each: the default,
+#     reflector guiding (fractions 0.3 and 0.5) and the device's samples per launch; and on the Cornell box
+#     against ../shared's Cycles reference (WB_SHARED_DIR), default and samples per launch: relMSE per spp and
+#     seconds to relMSE 0.01 (converge's first run traces one sample per launch, the others per checkpoint).
 # -q: one round, fewer samples (a smoke run: lavapipe takes ~10 minutes). Prints OUT/summary.md (Markdown) and
 # writes OUT/summary.json. Needs python3.
 set -euo pipefail
@@ -86,7 +88,15 @@ csize=256x256 cref=4096 cspp=256
 "$wb" converge "${sunlit[@]}" --size "$csize" --reference-spp "$cref" --seconds 3600 --max-spp "$cspp" --runs 3 \
   --target-relmse 0.01 --config "default:" --config "guiding:--define WB_REFLECTOR_GUIDING=1" \
   --config "guiding0.5:--define WB_REFLECTOR_GUIDING=1 --define WB_REFLECTOR_FRACTION=0.5" \
-  --out "$out/sunlit_converge"
+  --config "launch-auto:--samples-per-launch 0" --out "$out/sunlit_converge"
+shared=${WB_SHARED_DIR:-$repo/../shared}
+if [ -f "$shared/reference/cornell_cycles.exr" ]; then
+  "$wb" converge "$shared/reference/cornell.gltf" --size "$csize" --env-color 0,0,0 --max-bounces 64 \
+    --reference "$shared/reference/cornell_cycles.exr" --seconds 3600 --max-spp 128 --runs 3 --target-relmse 0.01 \
+    --config "default:" --config "launch-auto:--samples-per-launch 0" --out "$out/cornell_converge"
+else
+  echo "   $shared/reference/cornell_cycles.exr not found (set WB_SHARED_DIR): no Cornell box convergence"
+fi
 
 python3 - "$out" <<'EOF'
 import csv, json, math, os, statistics, sys
@@ -144,9 +154,10 @@ for r in bench.get("pathtracer", []):
     summary["roofline"].append({k: r[k] for k in ("scene", "size", "bare_primary_rays_per_second",
                                                   "bare_diffuse_rays_per_second", "pathtracer_gpu_rays_per_second",
                                                   "pathtracer_vs_bare_diffuse_ratio")})
-conv = os.path.join(out, "sunlit_converge", "converge.md")
-if os.path.exists(conv):
-    lines += ["", "Sunlit glossy scene, error per sample (converge):", "", open(conv).read()]
+for sub, title in (("sunlit_converge", "Sunlit glossy scene"), ("cornell_converge", "Cornell box (against Cycles)")):
+    conv = os.path.join(out, sub, "converge.md")
+    if os.path.exists(conv):
+        lines += ["", f"{title}, error per sample and time to relMSE 0.01 (converge):", "", open(conv).read()]
 open(os.path.join(out, "summary.md"), "w").write("\n".join(lines) + "\n")
 json.dump(summary, open(os.path.join(out, "summary.json"), "w"), indent=1)
 print("\n".join(lines))
