@@ -124,3 +124,11 @@ TEST(GpuTypesLayout, RooflineBlocksMatchTheHostStructs) {
     EXPECT_EQ(blocks.at("GeometryBlock"), sizeof(GeometryInfo)) << stage;
   }
 }
+
+TEST(GpuTypesLayout, ResolvePassBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  const auto blocks = moduleBlocks("pathtracer/resolve.comp");
+  ASSERT_TRUE(blocks.count("ResolveBlock"));
+  EXPECT_EQ(blocks.at("ResolveBlock"), sizeof(ResolveConstants));
+  EXPECT_EQ(blocks.at("SampleSlotBlock"), sizeof(float) * 4);  // vec4 per slot
+}
