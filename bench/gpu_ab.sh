@@ -13,7 +13,7 @@
 #     reflector guiding (fractions 0.3 and 0.5) and the device's samples per launch; and on the Cornell box
 #     against ../shared's Cycles reference (WB_SHARED_DIR), default and samples per launch: relMSE per spp and
 #     seconds to relMSE 0.01 (converge's first run traces one sample per launch, the others per checkpoint).
-# -q: one round, fewer samples (a smoke run: lavapipe takes ~10 minutes). Prints OUT/summary.md (Markdown) and
+# -q: a smoke run (one round, 64x64 and 128x128, few samples: a few minutes on lavapipe). Prints OUT/summary.md (Markdown) and
 # writes OUT/summary.json. Needs python3.
 set -euo pipefail
 wb=build/workbench
@@ -44,12 +44,13 @@ configs=(
 )
 # name|scene arguments
 scenes=("default|" "sunlit|${sunlit[*]}")
-# size|spp per run (quick: a quarter)
+# size|spp per run
 sizes=("256x256|1024" "2048x2048|16")
+[ "$quick" = 1 ] && sizes=("64x64|16" "128x128|4")
 
 echo "== 1. roofline ($(date -u +%FT%TZ), $(uname -n))"
 if [ "$quick" = 1 ]; then
-  "$wb" bench --only pathtracer --quick --roofline-sizes 256x256 --out "$out/bench_pathtracer.json"
+  "$wb" bench --only pathtracer --quick --roofline-sizes 64x64 --out "$out/bench_pathtracer.json"
 else
   "$wb" bench --only pathtracer --size 512x512 --roofline-sizes 256x256,2048x2048 --repeats 3 \
     --out "$out/bench_pathtracer.json"
@@ -63,8 +64,6 @@ for ((r = 1; r <= rounds; r++)); do
     read -r -a sargs <<< "${s#*|}"
     for z in "${sizes[@]}"; do
       size=${z%%|*} spp=${z#*|}
-      [ "$quick" = 1 ] && spp=$(( spp / 4 > 4 ? spp / 4 : 4 ))
-      [ "$quick" = 1 ] && [ "$size" = 2048x2048 ] && size=512x512
       for c in "${configs[@]}"; do
         cname=${c%%|*}
         read -r -a flags <<< "${c#*|}"
@@ -84,7 +83,7 @@ done
 
 echo "== 3. error per sample on the sunlit glossy scene"
 csize=256x256 cref=4096 cspp=256
-[ "$quick" = 1 ] && csize=64x64 cref=1024 cspp=64
+[ "$quick" = 1 ] && csize=64x64 cref=256 cspp=16
 "$wb" converge "${sunlit[@]}" --size "$csize" --reference-spp "$cref" --seconds 3600 --max-spp "$cspp" --runs 3 \
   --target-relmse 0.01 --config "default:" --config "guiding:--define WB_REFLECTOR_GUIDING=1" \
   --config "guiding0.5:--define WB_REFLECTOR_GUIDING=1 --define WB_REFLECTOR_FRACTION=0.5" \
@@ -92,7 +91,7 @@ csize=256x256 cref=4096 cspp=256
 shared=${WB_SHARED_DIR:-$repo/../shared}
 if [ -f "$shared/reference/cornell_cycles.exr" ]; then
   "$wb" converge "$shared/reference/cornell.gltf" --size "$csize" --env-color 0,0,0 --max-bounces 64 \
-    --reference "$shared/reference/cornell_cycles.exr" --seconds 3600 --max-spp 128 --runs 3 --target-relmse 0.01 \
+    --reference "$shared/reference/cornell_cycles.exr" --seconds 3600 --max-spp "$((cspp < 128 ? cspp : 128))" --runs 3 --target-relmse 0.01 \
     --config "default:" --config "launch-auto:--samples-per-launch 0" --out "$out/cornell_converge"
 else
   echo "   $shared/reference/cornell_cycles.exr not found (set WB_SHARED_DIR): no Cornell box convergence"
