@@ -383,28 +383,13 @@ std::vector<double> PathTracer::renderPixel(uint32_t x, uint32_t y, uint32_t sam
   return seconds;
 }
 
-eval::ImageRGBA PathTracer::readImage() const {
-  eval::ImageRGBA img;
-  img.width = settings_.width;
-  img.height = settings_.height;
-  img.pixels = readAccumulation();
-  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-  return img;
-}
-
 std::vector<float> PathTracer::readAccumulation() const {
-  auto bytes = accum_.download(VK_IMAGE_LAYOUT_GENERAL);
-  std::vector<float> out(bytes.size() / sizeof(float));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
+  return readFloatImage(accum_);
 }
 
 std::vector<float> PathTracer::readAov(Aov aov) const {
-  const auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
-  if (aov != Aov::Stats) return halvesToFloats(bytes);
-  std::vector<float> out(bytes.size() / sizeof(float));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
+  if (aov == Aov::Stats) return readFloatImage(aovImage(aov));
+  return halvesToFloats(aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL));
 }
 
 gpu::Counters PathTracer::readCounters() const {

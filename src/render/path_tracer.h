@@ -86,7 +86,6 @@ class PathTracer final : public Renderer {
   void recordCompileOnly(VkCommandBuffer cmd) override { recordRegion(cmd, PixelRegion{}); }
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
   const vk::Image& outputImage() const override { return accum_; }
-  eval::ImageRGBA readImage() const override;
   std::vector<Pass*> passes() const override { return {pass_.get()}; }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;

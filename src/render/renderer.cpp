@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace wb::render {
@@ -11,6 +12,22 @@ CameraState cameraFromScene(const scene::Camera& camera) {
   c.yfov = camera.yfov;
   c.znear = camera.znear > 0.0f ? camera.znear : 0.01f;
   return c;
+}
+
+std::vector<float> readFloatImage(const vk::Image& image) {
+  const auto bytes = image.download(VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<float> out(bytes.size() / sizeof(float));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
+
+eval::ImageRGBA Renderer::readImage() const {
+  eval::ImageRGBA img;
+  img.width = settings().width;
+  img.height = settings().height;
+  img.pixels = readFloatImage(outputImage());
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
 }
 
 std::vector<double> Renderer::render(uint32_t samples, const Progress& progress) {

@@ -38,6 +38,9 @@ struct RendererResources {
   const GpuEnvironment& environment;
 };
 
+// The texels of an RGBA32F image in GENERAL layout, read back (waits for the device).
+std::vector<float> readFloatImage(const vk::Image& image);
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
@@ -82,7 +85,7 @@ class Renderer {
   // Linear radiance (RGBA32F storage image, GENERAL layout), for a display pass.
   virtual const vk::Image& outputImage() const = 0;
   // The same read back (waits for the device); alpha = 1.
-  virtual eval::ImageRGBA readImage() const = 0;
+  eval::ImageRGBA readImage() const;
 
   // Its passes, in a fixed order: a renderer made with makeLike() lists the same passes in the same order
   // (the live-edit loop, the JIT warm-up and the A/B comparison address a pass by its index).
