@@ -1,6 +1,5 @@
 #include "render/roofline.h"
 
-#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/paths.h"
@@ -72,13 +71,6 @@ Roofline::Roofline(const RendererResources& r, uint32_t width, uint32_t height, 
     // The shader's test (roofline.rgen), in the same float arithmetic.
     if (normals[i] * toLight.x + normals[i + 1] * toLight.y + normals[i + 2] * toLight.z > 0.0f) ++litHits_;
   }
-}
-
-std::vector<float> Roofline::read(const vk::Image& image) {
-  const auto bytes = image.download(VK_IMAGE_LAYOUT_GENERAL);
-  std::vector<float> out(bytes.size() / sizeof(float));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
 }
 
 Roofline::~Roofline() {

@@ -39,12 +39,10 @@ class Roofline {
   // Read back (they wait for the device), RGBA per pixel: the G-buffer (xyz the camera ray's hit, w 1 for a
   // hit, 0 for a miss) and what the last launch found (x; shadow: 1 light visible, 0 occluded or not traced;
   // diffuse: the bounce's hit distance, -1 escaped, or -1 when the camera ray missed).
-  std::vector<float> readHits() const { return read(hitImage_); }
-  std::vector<float> readResult() const { return read(result_); }
+  std::vector<float> readHits() const { return readFloatImage(hitImage_); }
+  std::vector<float> readResult() const { return readFloatImage(result_); }
 
  private:
-  static std::vector<float> read(const vk::Image& image);
-
   vk::Context& ctx_;
   uint32_t width_, height_;
   std::unique_ptr<Pass> pass_;
