@@ -64,7 +64,7 @@ Roofline::Roofline(const RendererResources& r, uint32_t width, uint32_t height, 
 
   // The G-buffer, and what the other kinds trace from it.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, BareRays::Primary, 1); });
-  const auto hits = readHits(), normals = read(normals_);
+  const auto hits = readHits(), normals = readFloatImage(normals_);
   for (size_t i = 0; i < hits.size(); i += 4) {
     if (!(hits[i + 3] > 0.0f)) continue;
     ++hits_;
