@@ -34,13 +34,14 @@ std::vector<double> Renderer::render(uint32_t samples, const Progress& progress)
   std::vector<double> seconds;
   auto& ctx = context();
   const auto start = std::chrono::steady_clock::now();
-  for (uint32_t i = 0; i < samples; ++i) {
+  for (uint32_t i = 0; i < samples;) {
     const auto t0 = std::chrono::steady_clock::now();
-    ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
-    advance();
+    uint32_t n = 0;
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { n = recordBatch(cmd, samples - i); });
     const auto t1 = std::chrono::steady_clock::now();
-    seconds.push_back(std::chrono::duration<double>(t1 - t0).count());
-    if (progress && !progress(i + 1, std::chrono::duration<double>(t1 - start).count())) break;
+    seconds.insert(seconds.end(), n, std::chrono::duration<double>(t1 - t0).count() / n);
+    i += n;
+    if (progress && !progress(i, std::chrono::duration<double>(t1 - start).count())) break;
   }
   return seconds;
 }
