@@ -117,7 +117,8 @@ std::optional<eval::ImageRGBA> loadOrRenderReference(const ConvergeOptions& c, c
 }
 
 // Ctrl-C stops it after the sample in progress: the result holds the checkpoints reached.
-// With --denoise (path tracer) each checkpoint measures the raw image and the denoised one of the same samples.
+// With --denoise (path tracer) each checkpoint measures the raw image and the denoised one of the same
+// samples.
 ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
                        uint32_t referenceSpp, ProgressLine& progress, size_t index, size_t count,
                        const InterruptRequest& interrupt) {
@@ -356,10 +357,11 @@ int ConvergeCommand::run() {
     setup.partialNote = partialNote;
     if (c.runs >= 2) {
       setup.notes.push_back(
-          referenceSpp ? "Pixel tests: the reference's own variance per pixel is modelled as one run's times spp / " +
-                             std::to_string(referenceSpp) + " (it is a render of the same path tracer)."
-                       : "Pixel tests: the reference file is taken as exact (its own noise, if any, makes more "
-                         "pixels look off: the raw image's rate shows how many).");
+          referenceSpp
+              ? "Pixel tests: the reference's own variance per pixel is modelled as one run's times spp / " +
+                    std::to_string(referenceSpp) + " (it is a render of the same path tracer)."
+              : "Pixel tests: the reference file is taken as exact (its own noise, if any, makes more "
+                "pixels look off: the raw image's rate shows how many).");
     }
     writeSummary(dir, results, setup, reference);
     std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)%s\n", results.size(),

@@ -18,7 +18,8 @@ struct DenoiseVerdict {
   bool neverWorse = true;                             // denoised relMSE <= raw at every checkpoint
   double worstRatio = 0;                              // the largest denoised / raw relMSE
   uint32_t worstSpp = 0;
-  double finalMeanDifference = 0;  // the largest |denoised mean / raw mean - 1| over channels, last checkpoint
+  double finalMeanDifference =
+      0;  // the largest |denoised mean / raw mean - 1| over channels, last checkpoint
 };
 DenoiseVerdict denoiseVerdict(const ConfigResult& r, double target = 0.01);
 

@@ -114,7 +114,8 @@ eval::Rgb meanOfRuns(const Checkpoint& cp) {
 void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, const eval::Rgb& refMean) {
   std::ostringstream f;
   f << "config,flags,spp,seconds,seconds_min,seconds_max,runs,mse,rmse,relmse,variance,bias2,mean_r,mean_g,"
-       "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency,image,pixels_significant,pixels_significant_vs_raw,"
+       "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency,image,pixels_significant,pixels_significant_vs_"
+       "raw,"
        "pixel_test_alpha\n";
   for (const auto& r : results) {
     for (const auto* rows : {&r.checkpoints, &r.denoised}) {

@@ -36,8 +36,8 @@ PixelTestResult test(size_t runs, uint32_t width, uint32_t height, double alpha,
       }
       const double mean = sum / double(runs);
       const double variance = std::max(0.0, (sum2 - sum * mean) / double(runs - 1));
-      const double se =
-          std::max(std::sqrt(variance / double(runs) + refVariance(i)), 1e-6 * std::abs(magnitude(i)) + 1e-12);
+      const double se = std::max(std::sqrt(variance / double(runs) + refVariance(i)),
+                                 1e-6 * std::abs(magnitude(i)) + 1e-12);
       if (!std::isfinite(mean) || std::abs(mean) / se > critical) significant = true;
     }
     ++r.pixels;

@@ -25,8 +25,8 @@ struct PixelTestResult {
 PixelTestResult pixelsOffReference(const std::vector<ImageRGBA>& runs, const ImageRGBA& reference,
                                    const ImageRGBA* referenceVariance = nullptr, double alpha = 0.01);
 
-// The paired form: a[i] and b[i] come from the same samples (a filter's output and its input), and the test is
-// of the mean of a[i] - b[i] against 0: what the filter itself moves, without the reference's noise.
+// The paired form: a[i] and b[i] come from the same samples (a filter's output and its input), and the test
+// is of the mean of a[i] - b[i] against 0: what the filter itself moves, without the reference's noise.
 PixelTestResult pixelsOffPaired(const std::vector<ImageRGBA>& a, const std::vector<ImageRGBA>& b,
                                 double alpha = 0.01);
 

@@ -1,7 +1,7 @@
 #include "render/denoiser.h"
 
 #include <algorithm>
-#include <cstdlib>
+#include <cstring>
 
 #include "common/paths.h"
 
@@ -11,7 +11,8 @@ namespace {
 constexpr uint32_t kGroupSize = 8;  // local_size of shaders/denoise/*.comp
 const char* const kPassNames[] = {"denoise prepare (compute)", "denoise variance (compute)",
                                   "denoise a-trous (compute)", "denoise final (compute)"};
-const char* const kProgramNames[] = {"denoise-prepare", "denoise-variance", "denoise-atrous", "denoise-final"};
+const char* const kProgramNames[] = {"denoise-prepare", "denoise-variance", "denoise-atrous",
+                                     "denoise-final"};
 const char* const kFiles[] = {"prepare.comp", "variance.comp", "atrous.comp", "final.comp"};
 
 }  // namespace
@@ -31,11 +32,6 @@ Denoiser::Denoiser(vk::Context& ctx, shader::ShaderLibrary& library) : ctx_(ctx)
   }
   resize(1, 1);
   for (auto& p : passes_) p->rebuild();
-  // TUNING (not to commit)
-  if (const char* e = std::getenv("WB_DN_SIGMA_L")) options_.sigmaLuminance = std::strtof(e, nullptr);
-  if (const char* e = std::getenv("WB_DN_TAU")) options_.handoverTau = std::strtof(e, nullptr);
-  if (const char* e = std::getenv("WB_DN_ITER")) options_.iterations = std::strtoul(e, nullptr, 10);
-  if (const char* e = std::getenv("WB_DN_SIGMA_Z")) options_.sigmaDepth = std::strtof(e, nullptr);
 }
 
 Denoiser::~Denoiser() {
@@ -44,12 +40,14 @@ Denoiser::~Denoiser() {
 }
 
 void Denoiser::resize(uint32_t width, uint32_t height) {
-  width = std::max(width, 1u);
-  height = std::max(height, 1u);
-  if (width == width_ && height == height_) return;
+  width_ = std::max(width, 1u);
+  height_ = std::max(height, 1u);
+  // The images only grow: the window's preview levels and resizes come back to sizes already held.
+  if (width_ <= capacityWidth_ && height_ <= capacityHeight_) return;
+  width = capacityWidth_ = std::max(width_, capacityWidth_);
+  height = capacityHeight_ = std::max(height_, capacityHeight_);
   ctx_.waitIdle();
-  width_ = width;
-  height_ = height;
+  inputs_ = {};  // the caller's images may have been remade with the size: setInputs() binds them again
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                   VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   guide_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
@@ -85,6 +83,15 @@ void Denoiser::bind() {
     p->setStorageImage("varianceImage", variance_.view());
     p->setStorageImage("outputImage", output_.view());
   }
+}
+
+std::vector<float> Denoiser::readOutput() const {
+  const auto bytes = output_.download(VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<float> rgba(size_t(width_) * height_ * 4);
+  const size_t row = size_t(width_) * 4 * sizeof(float), stride = size_t(capacityWidth_) * 4 * sizeof(float);
+  for (uint32_t y = 0; y < height_; ++y)
+    std::memcpy(reinterpret_cast<char*>(rgba.data()) + y * row, bytes.data() + y * stride, row);
+  return rgba;
 }
 
 std::vector<Pass*> Denoiser::passes() const {

@@ -21,7 +21,7 @@ struct DenoiseOptions {
   float sigmaLuminance = 4.0f;  // luminance edge-stopping in standard deviations of the mean; 0: off
   float sigmaNormal = 128.0f;   // exponent of the normals' cosine
   float sigmaDepth = 1.0f;      // depth edge-stopping, in multiples of the depth change per pixel
-  float handoverTau = 0.05f;    // relative error assumed for the filtered image; < 0: no hand-over (tests)
+  float handoverTau = 0.1f;     // relative error assumed for the filtered image; < 0: no hand-over (tests)
 };
 
 // The images the denoiser reads (the path tracer's, GENERAL layout): radiance rgba32f with the samples per
@@ -41,7 +41,8 @@ class Denoiser {
   // The shader stage of each pass, in passes() order.
   static std::vector<shader::ShaderKey> stageKeys();
 
-  // Size of the images it filters (allocates its own); then the inputs (call both when no work is in flight).
+  // Size of the images it filters (its own images grow to the largest size asked; no work may be in flight
+  // when they grow); then the inputs (call both when no work is in flight).
   void resize(uint32_t width, uint32_t height);
   void setInputs(const DenoiseInputs& inputs);
   void setOptions(const DenoiseOptions& options) { options_ = options; }
@@ -52,7 +53,10 @@ class Denoiser {
   void record(VkCommandBuffer cmd, uint32_t rows = ~0u) const;
   // Each pass over one workgroup (a driver that compiles at the first dispatch compiles them).
   void recordCompileOnly(VkCommandBuffer cmd) const;
+  // The output image (at least width() x height(): read pixels [0, width()) x [0, height()) of it) and those
+  // pixels read back (RGBA, rows of width(); waits for the device).
   const vk::Image& output() const { return output_; }
+  std::vector<float> readOutput() const;
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
 
@@ -67,7 +71,7 @@ class Denoiser {
   vk::Context& ctx_;
   std::array<std::unique_ptr<Pass>, kPassCount> passes_;
   DenoiseOptions options_;
-  uint32_t width_ = 0, height_ = 0;
+  uint32_t width_ = 0, height_ = 0, capacityWidth_ = 0, capacityHeight_ = 0;
   DenoiseInputs inputs_;
   vk::Image guide_, ping_, pong_, variance_, output_;
 };

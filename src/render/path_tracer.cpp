@@ -398,9 +398,7 @@ eval::ImageRGBA PathTracer::readDenoised() const {
   eval::ImageRGBA img;
   img.width = settings_.width;
   img.height = settings_.height;
-  const auto bytes = denoiser_->output().download(VK_IMAGE_LAYOUT_GENERAL);
-  img.pixels.resize(bytes.size() / sizeof(float));
-  std::memcpy(img.pixels.data(), bytes.data(), bytes.size());
+  img.pixels = denoiser_->readOutput();
   for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
   return img;
 }

@@ -32,6 +32,7 @@ live::LiveSession::Options sessionOptions(GLFWwindow* window, const WindowOption
   live::LiveSession::Options so;
   auto& st = so.state;
   st.params = o.render.params;
+  st.params.render.denoise = true;  // the window's view is denoised (the panel's toggle, `--set denoise=0`)
   // The target spp: --spp when given, else keep refining.
   st.params.render.spp = o.render.flags.given("spp") ? o.render.params.render.spp : 0;
   st.resolutionScale = o.scale;
@@ -247,7 +248,7 @@ void WorkbenchWindow::drawFrame(float dt) {
   }
   session_->beginFrame();
   const live::DisplayFrame d = session_->displayFrame();
-  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats});
+  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.denoised});
 
   const Rect image = imageRect(view);
   gpu::DisplayPush push{};
@@ -261,13 +262,18 @@ void WorkbenchWindow::drawFrame(float dt) {
   push.tracedRows = d.tracedRows;
   push.sceneScale = sceneRadius(session_->render().scene());
   push.maxVertices = d.maxVertices;
+  push.denoiseSplit = d.denoised ? st.params.display.denoiseSplit : -1.0f;
 
   const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
   std::string screenshot;
   if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty()))
     screenshot = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
-  if (!presenter_->present([&](VkCommandBuffer cmd) { return session_->recordTrace(cmd); }, push, screenshot))
-    return;
+  const auto traceAndDenoise = [&](VkCommandBuffer cmd) {
+    const uint64_t traced = session_->recordTrace(cmd);
+    session_->recordDenoise(cmd);  // only in frames that are shown
+    return traced;
+  };
+  if (!presenter_->present(traceAndDenoise, push, screenshot)) return;
   screenshotPath_.clear();
   lastPresent_ = Clock::now();
   ++frameCount_;
