@@ -6,7 +6,7 @@
 set -euo pipefail
 
 if [ "$(id -u)" -ne 0 ]; then
-  echo "setup.sh: must run as root (it installs Debian packages): sudo $0" >&2
+  echo "setup.sh: must run as root (it installs Debian packages): run it as root, or with sudo where there is one" >&2
   exit 1
 fi
 

@@ -143,8 +143,8 @@ void main() {
   uint inspectNan = inspectNonFinite(ns, WB_INSPECT_NAN_SHADING_NORMAL) | inspectNonFinite(radiance, WB_INSPECT_NAN_EMISSION);
 #endif
   // The vertex's sample dimensions (WB_DIM_LOBE .. WB_DIM_LIGHT + 2). A CPU device JIT-compiles every inlined copy
-  // of the sampler: there they come from one loop up front (lavapipe's JIT of the pipeline ~15% shorter); GPUs
-  // draw each where it is used (the loop cost the H200 6% of its trace rate).
+  // of the sampler: there they come from one loop up front (a shorter JIT); GPUs draw each where it is used (the
+  // loop's array costs them trace rate). docs/bench/README.md has the measurements.
 #if WB_CPU_DEVICE
   float u[WB_DIM_LIGHT + 3u];
   for (uint k = 0u; k < WB_DIM_LIGHT + 3u; ++k) u[k] = pathSampleBounce(bounce, k);

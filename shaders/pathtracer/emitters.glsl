@@ -10,12 +10,12 @@
 //    WB_EMITTER_SOLID_ANGLE_RATIO is longer than the distance to its centroid), else a uniform point of its area,
 //    with the streamlined sampler of shared/spherical_triangle.h (triangleLightSample); a single-sided emitter seen
 //    from behind gets no sample at all.
-//  1: the first implementation: solid angle where the longest edge is longer than half the distance to the
-//    triangle's plane (sphericalTriangleUseSolidAngle), with the first sampler.
+//  1: the plain technique: solid angle where the longest edge is longer than half the distance to the
+//    triangle's plane (sphericalTriangleUseSolidAngle), with the plain sampler.
 //  0: a uniform point of the area everywhere.
-// Ratio 1.5 keeps the Cornell box's error per sample of the first implementation (it picks solid angle for ~99% of
-// the box's wall area, the floor's far corners excepted); ratio 1 (~54%) gave up some of it for no time saved on a
-// GPU, where a warp pays for the technique if one of its paths takes it (docs/reports/error_per_sample.md).
+// Ratio 1.5 picks solid angle for nearly all of a Cornell box's wall area (the floor's far corners excepted): the
+// error per sample of technique 1 at less work; a smaller ratio gives up some of it for no time saved on a GPU,
+// where a warp pays for the technique if one of its paths takes it (docs/reports/error_per_sample.md).
 #ifndef WB_EMITTER_SOLID_ANGLE
 #define WB_EMITTER_SOLID_ANGLE 2
 #endif

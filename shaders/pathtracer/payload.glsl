@@ -9,8 +9,8 @@
 
 // Next-event estimation: closest-hit computes each light sample's contribution and hands raygen the shadow ray
 // that decides it. Raygen traces path and shadow rays from one traceRayEXT call site: lavapipe compiles a whole
-// traversal into the code per call site (a second one in closest-hit cost ~20% of the pipeline's JIT time, which
-// every shader edit waits for), and the pipeline needs no recursion.
+// traversal into the code per call site (a second one in closest-hit lengthens the pipeline's JIT, which every
+// shader edit waits for), and the pipeline needs no recursion.
 struct ShadowRequest {
   vec3 direction;  // from PathPayload.origin
   float tMax;

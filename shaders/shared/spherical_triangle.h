@@ -118,7 +118,7 @@ WB_FN vec3 sphericalTriangleHit(vec3 p, vec3 dir, vec3 p0, vec3 p1, vec3 p2) {
 }
 
 // ---- The streamlined technique (WB_EMITTER_SOLID_ANGLE=2, the default) ----
-// The functions above are the first implementation (WB_EMITTER_SOLID_ANGLE=1). Those below compute the same
+// The functions above are the plain technique (WB_EMITTER_SOLID_ANGLE=1). Those below compute the same
 // distribution with less work: one set of unit vectors serves the solid angle and the sampler, the solid angle is
 // computed once per light sample, the orthogonalisations need no fallback branches, and the sampled direction meets
 // the light's plane by a plane intersection instead of a full ray-triangle test. Their rule
@@ -186,9 +186,9 @@ WB_FN vec3 sphericalTriangleSample(SphericalTriangle t, vec2 u) {
 }
 
 // The technique rule with its ratio: solid angle where the longest edge times `ratio` is longer than the
-// distance from p to the triangle's centroid, i.e. where the triangle subtends a large angle. (The first
-// implementation measured the distance to the triangle's plane, which also picks solid angle for far points
-// near that plane, where the spherical triangle is a thin sliver: little gain, and float precision suffers.) A
+// distance from p to the triangle's centroid, i.e. where the triangle subtends a large angle. (The plain
+// technique's rule, the distance to the triangle's plane, also picks solid angle for far points near that
+// plane, where the spherical triangle is a thin sliver: little gain, and float precision suffers.) A
 // function of the point and the triangle alone, so next-event estimation and the MIS weight of a BRDF sample
 // that hits the light agree on the technique. n = cross(p1 - p0, p2 - p0): degenerate triangles never qualify.
 WB_FN bool triangleLightUseSolidAngle(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec3 n, float ratio) {

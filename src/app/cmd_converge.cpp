@@ -165,7 +165,9 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
     while (!interrupt.requested()) {
       if (run == 0) {
         if (t >= c.seconds || spp >= c.maxSpp) break;
-        t += timedRender(session, 1);
+        const double dt = timedRender(session, 1);
+        interrupt.noteWorkSeconds(dt);  // a signal's grace covers a sample in progress
+        t += dt;
         ++spp;
         const bool pow2 = (spp & (spp - 1)) == 0;
         bool tick = false;

@@ -87,7 +87,10 @@ int RenderCommand::run() {
     InterruptRequest interrupt;
     ProgressLine progress("render");
     const uint32_t total = ro.params.render.spp;
-    const double seconds = session.render(total, [&](uint32_t done, double) {
+    double last = 0;
+    const double seconds = session.render(total, [&](uint32_t done, double elapsed) {
+      interrupt.noteWorkSeconds(elapsed - last);  // a signal's grace covers a sample in progress
+      last = elapsed;
       progress.update("", double(done) / double(total),
                       std::to_string(done) + "/" + std::to_string(total) + " spp");
       return !interrupt.requested();

@@ -1,8 +1,9 @@
 #include "app/cmd_watch.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/progress.h"
 #include "app/reload_log.h"
 #include "eval/image.h"
 #include "app/render_options.h"
@@ -20,12 +22,6 @@
 #include "render/render_session.h"
 
 namespace wb::app {
-namespace {
-
-std::atomic<bool> gInterrupted{false};
-
-}  // namespace
-
 void WatchCommand::addFlags(CLI::App& cli) {
   addRenderOptions(cli, options);
   cli.add_flag("--headless", headless, "render offscreen (no window)");
@@ -101,8 +97,8 @@ int WatchCommand::run() {
     live::EditLoop loop(session, lo);  // every renderer's passes, the hybrid modes' raster ones too
     if (ab) loop.prepareAB();
     loop.start();
-    std::signal(SIGINT, [](int) { gInterrupted = true; });
-    std::signal(SIGTERM, [](int) { gInterrupted = true; });
+    // SIGINT/SIGTERM end the loop after the frame in progress (or, should it never finish, the process).
+    InterruptRequest interrupt;
     std::printf("watching %s; rendering %s at %ux%u on %s\n", shaderDir().string().c_str(),
                 session.scene().sourcePath.string().c_str(), ro.params.render.width, ro.params.render.height,
                 session.context().deviceName().c_str());
@@ -147,7 +143,7 @@ int WatchCommand::run() {
     // gets the cores of a CPU device).
     const double restRatio = session.context().policy().watchRestRatio;
     uint64_t frame = 0;
-    while (!gInterrupted) {
+    while (!interrupt.requested()) {
       if (frames && frame >= frames) break;
       if (seconds > 0 &&
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= seconds) {
@@ -157,8 +153,25 @@ int WatchCommand::run() {
       writeCompleted();
       const auto frameBegin = std::chrono::steady_clock::now();
       auto& renderer = session.renderer();
-      session.context().submitAndWait([&](VkCommandBuffer cmd) { renderer.record(cmd); });
+      const auto limit = loop.frameLimit();
+      if (!session.context().submitAndWaitFor([&](VkCommandBuffer cmd) { renderer.record(cmd); }, limit)) {
+        // No driver here cancels a running shader: say which edit did it, in the log too, and end.
+        live::ReloadEvent e;
+        e.ok = false;
+        e.error = loop.hangMessage(std::chrono::duration<double>(limit).count());
+        e.when = std::chrono::system_clock::now();
+        if (const auto last = loop.hot().lastEvent()) e.filesChanged = last->filesChanged;
+        const std::string line = jsonText(reloadEventJson(e));
+        std::printf("%s\n", line.c_str());
+        std::fprintf(stderr, "workbench watch: error: %s\n", e.error.c_str());
+        if (log_.isOpen()) log_.writeLine(line);
+        std::fflush(stdout);
+        std::fflush(stderr);
+        ::_exit(4);
+      }
       renderer.advance();
+      interrupt.noteWorkSeconds(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - frameBegin).count());
       const auto frameEnd = std::chrono::steady_clock::now();
       loop.frameFinished(frameBegin);  // the frame's own time: the rest below is not part of it
       const auto until = loop.restUntil(frameBegin, frameEnd, restRatio);

@@ -78,5 +78,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "workbench: %u Vulkan validation error(s), printed above\n", validationErrors);
     code = 3;
   }
+  // A device that never finished a frame (an endless loop in a shader, refused at its trial) still has
+  // threads running it; the drivers' exit handlers could wait for them forever.
+  if (wb::vk::Context::anyHung()) {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    ::_exit(code);
+  }
   return code;
 }

@@ -14,9 +14,14 @@ constexpr double kTerminalPeriod = 0.25;  // seconds between rewrites of the ter
 constexpr double kLogPeriod = 5.0;        // seconds between plain lines
 
 std::atomic<int> gSignal{0};
+int gWakeFd = -1;  // the grace thread's pipe (write end)
 
 void onSignal(int sig) {
   gSignal = sig;
+  if (gWakeFd >= 0) {
+    const char c = 's';
+    [[maybe_unused]] auto n = ::write(gWakeFd, &c, 1);  // async-signal-safe
+  }
 }
 
 std::string duration(double s) {
@@ -120,8 +125,29 @@ void StepProgress::show(bool force) {
       force);
 }
 
-InterruptRequest::InterruptRequest() {
+InterruptRequest::InterruptRequest(double graceSeconds) {
   gSignal = 0;
+  int fds[2];
+  if (::pipe(fds) == 0) {
+    wakeRead_ = fds[0];
+    gWakeFd = wakeWrite_ = fds[1];
+    // After a signal the command has `graceSeconds` to stop and write what it has; a command blocked where
+    // it cannot look (a device that never finishes a frame) is ended then, with the signal's exit status.
+    grace_ = std::thread([this, graceSeconds] {
+      char c = 0;
+      if (::read(wakeRead_, &c, 1) != 1 || c != 's') return;  // 'q': the request ended first
+      const double grace = std::max(graceSeconds, 3.0 * workSeconds_.load());
+      std::unique_lock lock(mutex_);
+      if (done_.wait_for(lock, std::chrono::duration<double>(grace), [&] { return finished_; })) return;
+      std::fprintf(stderr,
+                   "workbench: still busy %.1f s after signal %d (the device does not finish its work): "
+                   "ending now\n",
+                   grace, gSignal.load());
+      std::fflush(stdout);
+      std::fflush(stderr);
+      ::_exit(128 + gSignal);
+    });
+  }
   struct sigaction sa {};
   sa.sa_handler = onSignal;
   sigemptyset(&sa.sa_mask);
@@ -133,6 +159,19 @@ InterruptRequest::InterruptRequest() {
 InterruptRequest::~InterruptRequest() {
   ::signal(SIGINT, SIG_DFL);
   ::signal(SIGTERM, SIG_DFL);
+  if (grace_.joinable()) {
+    {
+      std::lock_guard lock(mutex_);
+      finished_ = true;
+    }
+    done_.notify_all();
+    gWakeFd = -1;
+    const char c = 'q';
+    [[maybe_unused]] auto n = ::write(wakeWrite_, &c, 1);
+    grace_.join();
+  }
+  if (wakeRead_ >= 0) ::close(wakeRead_);
+  if (wakeWrite_ >= 0) ::close(wakeWrite_);
 }
 
 bool InterruptRequest::requested() const {
@@ -141,6 +180,10 @@ bool InterruptRequest::requested() const {
 
 int InterruptRequest::signal() const {
   return gSignal;
+}
+
+void InterruptRequest::noteWorkSeconds(double seconds) const {
+  if (seconds > workSeconds_.load()) workSeconds_ = seconds;
 }
 
 }  // namespace wb::app

@@ -2,6 +2,7 @@
 // rewritten in place (a bar, what is done, elapsed time, ETA); otherwise a plain line is printed when a phase
 // begins, every few seconds and when it ends, so logs stay short.
 #pragma once
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -56,16 +57,29 @@ class StepProgress {
   std::thread ticker_;
 };
 
-// While alive, SIGINT and SIGTERM ask the command to stop (interruptRequested()); a second signal ends the
-// process at once (the default action).
+// While alive, SIGINT and SIGTERM ask the command to stop (requested()); a second signal ends the process at
+// once (the default action), and so does the end of `graceSeconds` after the first if the command is still
+// running then (blocked on a device that never finishes its work): whatever the device is doing, a signal
+// ends the process within a second or two, with the exit status 128 + the signal.
 class InterruptRequest {
  public:
-  InterruptRequest();
+  explicit InterruptRequest(double graceSeconds = 2.0);
   ~InterruptRequest();
   InterruptRequest(const InterruptRequest&) = delete;
   InterruptRequest& operator=(const InterruptRequest&) = delete;
   bool requested() const;
   int signal() const;  // the signal received (0: none)
+  // The command's longest unit of work so far (a sample, a frame): the grace after a signal is at least
+  // three of them, so that the work in progress can finish and be written on a slow machine.
+  void noteWorkSeconds(double seconds) const;
+
+ private:
+  mutable std::atomic<double> workSeconds_{0.0};
+  int wakeRead_ = -1, wakeWrite_ = -1;
+  std::thread grace_;
+  std::mutex mutex_;
+  std::condition_variable done_;
+  bool finished_ = false;
 };
 
 }  // namespace wb::app

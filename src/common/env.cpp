@@ -14,12 +14,14 @@ std::string shown(const std::string& value) {
 }
 
 // The WB_* switches (0 or 1) the workbench reads.
-constexpr const char* kSwitches[] = {"WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",   "WB_JIT_WARMUP",
-                                     "WB_CPU_DEVICE_CODE",  "WB_SIMULATE_NO_PRESENT", "WB_SIMULATE_DISK_FULL",
-                                     "WB_VALIDATION"};
+constexpr const char* kSwitches[] = {
+    "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",   "WB_JIT_WARMUP",         "WB_TRIAL_RUN",
+    "WB_CPU_DEVICE_CODE",  "WB_SIMULATE_NO_PRESENT", "WB_SIMULATE_DISK_FULL", "WB_VALIDATION"};
 
 // WB_REBUILD_YIELD: frame times of rest per frame while a rebuild compiles.
 constexpr double kMaxRebuildYield = 1000.0;
+// WB_HANG_SECONDS: the shortest wait for a frame before it counts as hung.
+constexpr double kMinHangSeconds = 0.5, kMaxHangSeconds = 3600.0;
 
 }  // namespace
 
@@ -59,6 +61,11 @@ void checkWorkbenchVariables() {
     throw std::invalid_argument("WB_REBUILD_YIELD=" + shown(*get("WB_REBUILD_YIELD")) +
                                 ": expected frame times of rest from 0 to " +
                                 std::to_string(int(kMaxRebuildYield)));
+  }
+  if (const auto hang = number("WB_HANG_SECONDS");
+      hang && (*hang < kMinHangSeconds || *hang > kMaxHangSeconds)) {
+    throw std::invalid_argument("WB_HANG_SECONDS=" + shown(*get("WB_HANG_SECONDS")) +
+                                ": expected seconds from 0.5 to 3600");
   }
 }
 

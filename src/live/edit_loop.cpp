@@ -1,5 +1,8 @@
 #include "live/edit_loop.h"
 
+#include <algorithm>
+#include <cstdio>
+
 #include "common/paths.h"
 
 namespace wb::live {
@@ -53,6 +56,8 @@ std::optional<ReloadEvent> EditLoop::beginFrame() {
 
 void EditLoop::frameFinished(Clock::time_point frameBegin) {
   hot_->frameFinished(frameBegin);
+  frameSeconds_.push_back(std::chrono::duration<double>(Clock::now() - frameBegin).count());
+  if (frameSeconds_.size() > 32) frameSeconds_.pop_front();
   if (!awaitingFirstFrame_) return;
   const auto last = hot_->lastEvent();
   if (!last || last->editToFirstFrameMs < 0) return;  // the new image's first frame is not done yet
@@ -89,6 +94,32 @@ EditLoop::Clock::time_point EditLoop::restUntil(Clock::time_point frameBegin, Cl
                                                 double ratio) const {
   if (ratio <= 0 || !hot_->compiling()) return frameEnd;
   return frameEnd + std::chrono::duration_cast<Clock::duration>((frameEnd - frameBegin) * ratio);
+}
+
+std::chrono::nanoseconds EditLoop::frameLimit() const {
+  const double floor = session_.context().policy().hangSeconds;
+  double typical = 0;
+  if (!frameSeconds_.empty()) {
+    std::vector<double> sorted(frameSeconds_.begin(), frameSeconds_.end());
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    typical = sorted[sorted.size() / 2];
+  }
+  double limit = std::max(floor, 50.0 * typical);
+  // A first frame may compile its pipeline (the driver's JIT, where the warm-up did not): ten floors.
+  if (awaitingFirstFrame_ || frameSeconds_.empty()) limit = std::max(limit, 10.0 * floor);
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(limit));
+}
+
+std::string EditLoop::hangMessage(double seconds) const {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.1f", seconds);
+  std::string files;
+  if (const auto last = hot_->lastEvent())
+    for (const auto& f : last->filesChanged) files += (files.empty() ? "" : ", ") + f;
+  return std::string("a frame did not finish in ") + s + " s" +
+         (files.empty() ? std::string() : " after the reload of " + files) +
+         ": an endless loop the trial frame did not meet? The device cannot stop it: the workbench ends (the "
+         "files on disk are as saved; fix them before the next start)";
 }
 
 void EditLoop::revert(const std::vector<HotReload::InstalledPass>& installed) {

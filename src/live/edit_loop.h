@@ -70,6 +70,14 @@ class EditLoop {
   Clock::time_point restUntil(Clock::time_point frameBegin, Clock::time_point frameEnd, double ratio) const;
   bool compiling() const { return hot_->compiling(); }
 
+  // The longest the next frame may take before it counts as hung: the device policy's floor or many times
+  // the frames before it, and longer for the first frame with a new pipeline (a driver that compiles at the
+  // first dispatch compiles it there when the warm-up could not).
+  std::chrono::nanoseconds frameLimit() const;
+  // What the user reads when a frame did not finish within frameLimit(): the last reload's files. A device
+  // here cannot cancel the work, so the caller ends the process after saying it.
+  std::string hangMessage(double seconds) const;
+
   // The A/B comparison: on or off (it runs with the budget given), and Revert of the last reload.
   bool abEnabled() const { return abOn_; }
   void setAB(bool on);
@@ -87,6 +95,7 @@ class EditLoop {
   ABBudget budget_;
   std::unique_ptr<ABComparison> comparison_;  // made on the first comparison
   bool awaitingFirstFrame_ = false;
+  std::deque<double> frameSeconds_;  // the last frames' durations
   std::deque<CompletedReload> completed_;
 };
 

@@ -1,6 +1,7 @@
 #include "live/hot_reload.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <thread>
@@ -10,6 +11,33 @@ namespace {
 
 double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// A pipeline whose trial frame never finished, as the user reads it: the stages whose SPIR-V differs from the
+// installed pipeline's (the edit), the limit, and what happens.
+std::string describeHang(const shader::ShaderLibrary::ProgramBuild& build,
+                         const shader::ShaderLibrary::ProgramBuild& installed, double limitSeconds) {
+  std::string stages;
+  for (size_t i = 0; i < build.stages.size(); ++i) {
+    const auto& s = build.stages[i];
+    const bool same =
+        i < installed.stages.size() && installed.stages[i] && installed.stages[i]->spirv == s->spirv;
+    if (!same) stages += (stages.empty() ? "" : ", ") + s->key.path.string();
+  }
+  char limit[32];
+  std::snprintf(limit, sizeof limit, "%.1f", limitSeconds);
+  return "the new " + (stages.empty() ? std::string("pipeline") : stages) + " did not finish a " +
+         std::to_string(kTrialSize) + "x" + std::to_string(kTrialSize) + " trial frame in " + limit +
+         " s: an endless loop? The edit is refused and the last good pipeline stays (the trial ran on a "
+         "second "
+         "device, which the workbench leaves behind)";
+}
+
+bool sameSpirv(const shader::ShaderLibrary::ProgramBuild& a, const shader::ShaderLibrary::ProgramBuild& b) {
+  if (a.stages.size() != b.stages.size()) return false;
+  for (size_t i = 0; i < a.stages.size(); ++i)
+    if (!a.stages[i] || !b.stages[i] || a.stages[i]->spirv != b.stages[i]->spirv) return false;
+  return true;
 }
 
 }  // namespace
@@ -42,7 +70,9 @@ HotReload::Warmup* HotReload::warmupFor(const render::Renderer& renderer) {
   auto& w = warmups_[&renderer];
   if (!w) {
     w = std::make_unique<Warmup>();
-    w->enabled = renderer.context().policy().jitWarmup;
+    const auto& policy = renderer.context().policy();
+    w->enabled = policy.jitWarmup || policy.trialRuns;
+    w->compileAhead = policy.jitWarmup;
   }
   return w.get();
 }
@@ -87,20 +117,32 @@ render::PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::Shad
   render::Renderer& renderer = *entry.owner;
   // The driver's compile on the warm-up device runs beside this device's pipeline creation; the probe comes
   // first so that the warm-up can number its groups like the pipeline built here.
-  const auto counter = probeGroupCounter(renderer.context(), build);
+  const auto counter =
+      warmup->compileAhead ? probeGroupCounter(renderer.context(), build) : std::optional<uint32_t>();
   std::vector<uint8_t> warmedHandles;  // empty: no warm-up ran, or not a ray tracing pipeline
   const auto options = library_.options();
   bool failed = false;
+  WarmOutcome outcome = WarmOutcome::Warmed;
+  double limit = 0;
   auto built = buildBesideWarmup([&] { return entry.pass->buildPipeline(program, build); },
                                  [&] {
                                    auto make = [&] { return std::make_unique<JitWarmup>(renderer, options); };
-                                   if (auto* w = warmup->slot.warmOrRenew(make, [&](JitWarmup& x) {
-                                         return x.warm(renderer, entry.passIndex, build, counter.value_or(0));
-                                       }))
-                                     warmedHandles = w->groupHandles();
+                                   const auto [w, o] = warmup->slot.warmOrRenew(make, [&](JitWarmup& x) {
+                                     const WarmOutcome r = x.warm(renderer, entry.passIndex, build, counter,
+                                                                  warmup->compileAhead);
+                                     limit = x.trialLimitSeconds();
+                                     return r;
+                                   });
+                                   outcome = o;
+                                   if (w) warmedHandles = w->groupHandles();
                                  },
                                  failed);
   if (failed) ++warmup->failures;
+  if (outcome == WarmOutcome::Hung) {
+    // A new warm-up device for the next reload, made now off the loop.
+    warmup->slot.makeAhead([&renderer, options] { return std::make_unique<JitWarmup>(renderer, options); });
+    throw TrialHang(describeHang(build, entry.pass->installed().build, limit));
+  }
   const auto& rt = built.pipeline->rayTracing;
   if (!warmedHandles.empty() && rt && warmedHandles != rt->sbt().groupHandles()) ++warmup->mismatches;
   return built;
@@ -120,6 +162,7 @@ HotReload::WarmupStats HotReload::jitWarmup(const render::Renderer& renderer) co
   s.warmups = w->slot.warmups();
   s.mismatches = w->mismatches;
   s.failures = w->failures;
+  s.hung = w->slot.hung();
   return s;
 }
 
@@ -142,17 +185,6 @@ void HotReload::reloadAll() {
   manualRequest_ = true;
   reloader_.requestReloadAll();
 }
-
-namespace {
-
-bool sameSpirv(const shader::ShaderLibrary::ProgramBuild& a, const shader::ShaderLibrary::ProgramBuild& b) {
-  if (a.stages.size() != b.stages.size()) return false;
-  for (size_t i = 0; i < a.stages.size(); ++i)
-    if (!a.stages[i] || !b.stages[i] || a.stages[i]->spirv != b.stages[i]->spirv) return false;
-  return true;
-}
-
-}  // namespace
 
 void HotReload::run() {
   while (running_) {
@@ -222,7 +254,8 @@ bool HotReload::prepare(ReloadResult& result) {
       // The program compiled but its pipeline did not build (or uses a resource the pass does not bind: a
       // shader::CompileError at its declaration): the last good pipeline stays, and the error is current
       // (banner, Shaders panel) until a later build of this program succeeds.
-      const bool compileError = dynamic_cast<const shader::CompileError*>(&ex) != nullptr;
+      const bool compileError = dynamic_cast<const shader::CompileError*>(&ex) != nullptr ||
+                                dynamic_cast<const TrialHang*>(&ex) != nullptr;
       const std::string message =
           e->pass->name() + (compileError ? ": " : ": pipeline creation failed: ") + ex.what();
       p.event.ok = false;
@@ -231,6 +264,15 @@ bool HotReload::prepare(ReloadResult& result) {
     }
   }
   p.event.pipelineMs = msBetween(t0, std::chrono::steady_clock::now());
+  // Saves written while these were built supersede them: the counters see every one queued by now, and a
+  // build they outdate is not offered for install (poll() checks again for later ones).
+  reloader_.noteQueuedChanges(std::chrono::milliseconds(1000));
+  const size_t builtBefore = p.built.size();
+  std::erase_if(p.built, [&](const Built& b) { return outdated(b.pipeline.program); });
+  if (builtBefore > 0 && p.built.empty() && p.event.ok) {
+    ++superseded_;  // its files stay carried: the newer event reports them
+    return false;
+  }
   std::lock_guard lock(mutex_);
   p.event.filesChanged.assign(carriedFiles_.begin(), carriedFiles_.end());
   carriedFiles_.clear();

@@ -81,6 +81,7 @@ class HotReload {
     uint32_t warmups = 0;     // pipelines compiled ahead
     uint32_t mismatches = 0;  // warmed pipelines whose groups got other numbers (the first frame compiled)
     uint32_t failures = 0;    // warm-ups that threw (that reload's first frame compiled)
+    uint32_t hung = 0;        // trial frames that never finished (their reloads refused)
   };
 
   HotReload(shader::ShaderLibrary& library, std::vector<std::filesystem::path> watchDirs);
@@ -155,7 +156,8 @@ class HotReload {
 
  private:
   struct Warmup {
-    bool enabled = false;
+    bool enabled = false;       // a warm-up device: JIT compile-ahead or trial frames (the device policy's)
+    bool compileAhead = false;  // DevicePolicy::jitWarmup
     std::atomic<uint32_t> mismatches{0}, failures{0};
     WarmupSlot<JitWarmup> slot;
   };

@@ -59,8 +59,9 @@ std::unique_ptr<shader::ShaderLibrary> warmupLibrary(shader::ShaderLibrary::Opti
   return std::make_unique<shader::ShaderLibrary>(o);
 }
 
-// Waits (up to 2 s) until Mesa's writer thread stored what a dispatch that took `dispatch` compiled: a cache
-// load takes ~10 ms, a compile hundreds. The render device's first use then finds the entry.
+// Waits (up to 2 s) until Mesa's writer thread stored what a dispatch that took `dispatch` compiled (a
+// dispatch that loaded its pipeline from the cache is an order of magnitude shorter than one that compiled).
+// The render device's first use then finds the entry.
 void awaitCacheWrite(std::chrono::steady_clock::duration dispatch, uint64_t bytesBefore) {
   if (dispatch < std::chrono::milliseconds(kCompiledMs)) return;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
@@ -159,30 +160,65 @@ render::RendererResources WarmupDevice::resources() const {
 JitWarmup::JitWarmup(const render::Renderer& like, const shader::ShaderLibrary::Options& libraryOptions)
     : device_(like.context(), libraryOptions) {
   render::RenderSettings settings = like.settings();
-  settings.width = settings.height = 1;
+  settings.width = settings.height = kTrialSize;
   settings.tileWidth = settings.tileHeight = 0;
+  settings.spp = 0;
   renderer_ = like.makeLike(device_.resources(), settings);
+  // The stand-in's own camera: every pixel of the trial frame sees its quad, so hit shaders run.
+  renderer_->setCamera(render::cameraFromScene(device_.scene.camera));
 }
 
 JitWarmup::~JitWarmup() = default;
 
-bool JitWarmup::warm(const render::Renderer& like, size_t passIndex,
-                     const shader::ShaderLibrary::ProgramBuild& build, uint32_t renderDeviceGroupCounter) {
+WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
+                            const shader::ShaderLibrary::ProgramBuild& build,
+                            std::optional<uint32_t> renderDeviceGroupCounter, bool compileAhead) {
   using Clock = std::chrono::steady_clock;
+  vk::Context& ctx = *device_.ctx;
+  const double hangSeconds = like.context().policy().hangSeconds;
   // Compiled parameters first: a new specialisation rebuilds a pipeline here (new group numbers).
   renderer_->matchCompiledParameters(like);
-  if (!alignGroupCounter(*device_.ctx, build, renderDeviceGroupCounter)) return false;
+  if (compileAhead && !alignGroupCounter(ctx, build, renderDeviceGroupCounter.value_or(0)))
+    return WarmOutcome::Renew;
   render::Pass& pass = *renderer_->passes().at(passIndex);
   auto built = pass.buildPipeline(pass.program(), build);
   const auto& rt = built.pipeline->rayTracing;
   handles_ = rt ? rt->sbt().groupHandles() : std::vector<uint8_t>{};
   pass.install(std::move(built));
-  const uint64_t before = mesaShaderCacheBytes();
-  const auto t1 = Clock::now();
-  device_.ctx->submitAndWait([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); });
-  awaitCacheWrite(Clock::now() - t1, before);
+  auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
+  if (compileAhead) {
+    // The compile itself has no bound worth guessing on a busy machine; a renderer whose compile-only
+    // record runs shaders (the hybrid modes') still ends on a hang, after longer.
+    const uint64_t before = mesaShaderCacheBytes();
+    const auto t1 = Clock::now();
+    const auto compileLimit = std::chrono::duration<double>(std::max(60.0, 12.0 * hangSeconds));
+    if (!ctx.submitAndWaitFor([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); },
+                              std::chrono::duration_cast<std::chrono::nanoseconds>(compileLimit))) {
+      trialLimit_ = compileLimit.count();
+      return WarmOutcome::Hung;
+    }
+    awaitCacheWrite(Clock::now() - t1, before);
+  }
+  // The trial frame: a small image of real paths. It finishes in milliseconds; the limit is the policy's
+  // floor or many times the trial frames before it, whichever is longer.
+  double typical = 0;
+  if (!trialSeconds_.empty()) {
+    auto sorted = trialSeconds_;
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    typical = sorted[sorted.size() / 2];
+  }
+  trialLimit_ = std::max(hangSeconds, 50.0 * typical);
+  renderer_->resetAccumulation();
+  const auto t2 = Clock::now();
+  if (!ctx.submitAndWaitFor(
+          [&](VkCommandBuffer cmd) { renderer_->record(cmd); },
+          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(trialLimit_))))
+    return WarmOutcome::Hung;
+  renderer_->advance();
+  trialSeconds_.push_back(seconds(Clock::now() - t2));
+  if (trialSeconds_.size() > 16) trialSeconds_.erase(trialSeconds_.begin());
   ++warmups_;
-  return true;
+  return WarmOutcome::Warmed;
 }
 
 }  // namespace wb::live

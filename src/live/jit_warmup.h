@@ -1,13 +1,18 @@
-// Compile-ahead for drivers that compile pipelines lazily (DevicePolicy::jitWarmup). lavapipe's llvmpipe
-// turns a pipeline into machine code at its first dispatch, not at vkCreate*Pipelines: the path tracer (every
-// stage inlined into one function) takes most of a second to JIT, so the first frame after a hot reload would
-// stall the render loop by that much. The warm-up builds the new pipeline on a second VkDevice of the same
-// driver, in a renderer like the edited one (render::Renderer::makeLike) on a stand-in scene at 1x1, and
-// renders one sample there, which makes llvmpipe compile it and store the result in Mesa's shader disk cache
-// (MESA_SHADER_CACHE_DIR). The render device's first frame with its own copy of the pipeline then loads the
-// machine code from the cache instead of compiling it. The compiled code depends on the SPIR-V, the pipeline
-// layout, the specialisation constants and the groups' numbers (see alignGroupCounter), not on the data
-// bound. HotReload runs it beside the render device's own pipeline creation.
+// The second device a hot reload's new pipelines pass through before they are installed:
+// - Compile-ahead for drivers that compile pipelines lazily (DevicePolicy::jitWarmup). lavapipe's llvmpipe
+//   turns a pipeline into machine code at its first dispatch, not at vkCreate*Pipelines: the path tracer
+//   (every stage inlined into one function) would stall the render loop for the whole JIT at its first frame
+//   after a hot reload. The warm-up builds the new pipeline in a renderer like the edited one
+//   (render::Renderer::makeLike) on a stand-in scene and records a sample with as little work as it allows,
+//   which makes llvmpipe compile it and store the result in Mesa's shader disk cache (MESA_SHADER_CACHE_DIR).
+//   The render device's first frame with its own copy of the pipeline then loads the machine code from the
+//   cache instead of compiling it. The compiled code depends on the SPIR-V, the pipeline layout, the
+//   specialisation constants and the groups' numbers (see alignGroupCounter), not on the data bound.
+// - A trial frame on every device (DevicePolicy::trialRuns): a small image of real paths on the stand-in,
+// with
+//   a time limit. A shader that never returns hangs this device, which nothing else uses, instead of the
+//   render device: the reload is refused (TrialHang) and the last good pipeline draws on.
+// HotReload runs it beside the render device's own pipeline creation.
 #pragma once
 #include <cstdint>
 #include <cstdio>
@@ -15,11 +20,13 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "render/renderer.h"
 #include "shader/library.h"
 #include "live/reloader.h"
+#include "live/warmup_slot.h"
 #include "vk/context.h"
 
 namespace wb::live {
@@ -58,21 +65,31 @@ struct WarmupDevice {
   std::unique_ptr<render::GpuEnvironment> env;
 };
 
+// The side the trial frame renders: every pixel traces (16x16 pixels, the stand-in's quad and sky).
+inline constexpr uint32_t kTrialSize = 16;
+
 class JitWarmup {
  public:
-  // A warm-up device and, on it, a renderer like `like` at 1x1 on the stand-in scene.
+  // A warm-up device and, on it, a renderer like `like` at kTrialSize on the stand-in scene.
   JitWarmup(const render::Renderer& like, const shader::ShaderLibrary::Options& libraryOptions);
   ~JitWarmup();
   JitWarmup(const JitWarmup&) = delete;
   JitWarmup& operator=(const JitWarmup&) = delete;
 
   // Builds the pipeline of `like`'s pass number `passIndex` (in passes() order) from `build` on the warm-up
-  // device and renders one sample there (blocking; call it off the render thread).
-  // `renderDeviceGroupCounter` is probeGroupCounter() of the render device, taken before it built its own
-  // pipeline of `build`. Returns false when the groups could not be numbered alike (this device numbered more
-  // groups already: make a new warm-up). Throws what pipeline creation throws.
-  bool warm(const render::Renderer& like, size_t passIndex, const shader::ShaderLibrary::ProgramBuild& build,
-            uint32_t renderDeviceGroupCounter);
+  // device, and there (blocking; call it off the render thread):
+  // - with `compileAhead`: records a sample with as little work as the renderer allows, so that a driver
+  //   that compiles at the first dispatch compiles it into its disk cache. `renderDeviceGroupCounter` is
+  //   probeGroupCounter() of the render device, taken before it built its own pipeline of `build`;
+  // - renders a trial frame of kTrialSize pixels, waiting at most hangSeconds() for it: a shader that never
+  //   returns hangs this device, not the render device (the reload is refused).
+  // Throws what pipeline creation throws.
+  WarmOutcome warm(const render::Renderer& like, size_t passIndex,
+                   const shader::ShaderLibrary::ProgramBuild& build,
+                   std::optional<uint32_t> renderDeviceGroupCounter, bool compileAhead);
+  // How long the last trial frame was given (s), and whether a frame of this warm-up never finished.
+  double trialLimitSeconds() const { return trialLimit_; }
+  bool hung() const { return device_.ctx->hung(); }
   // The group handles of the last warmed pipeline (empty when it was not a ray tracing pipeline): equal to
   // the render device's pipeline's when their numbers matched.
   const std::vector<uint8_t>& groupHandles() const { return handles_; }
@@ -83,6 +100,13 @@ class JitWarmup {
   std::unique_ptr<render::Renderer> renderer_;  // after device_: destroyed first
   std::vector<uint8_t> handles_;
   uint32_t warmups_ = 0;
+  std::vector<double> trialSeconds_;  // the finished trial frames', for the limit of the next
+  double trialLimit_ = 0;
+};
+
+// A reload's new pipeline whose trial frame did not finish (JitWarmup::warm): what the user reads.
+struct TrialHang : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // Runs `warm()` on a low-priority thread of its own beside `build()` (the render device's pipeline creation,

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <set>
+#include <thread>
 
 namespace wb::live {
 
@@ -158,6 +159,12 @@ bool Reloader::newerChange() const {
   return eventsWaiting();  // written already, not yet read by the worker (a busy machine delays it)
 }
 
+void Reloader::noteQueuedChanges(std::chrono::milliseconds cap) const {
+  const auto deadline = std::chrono::steady_clock::now() + cap;
+  while ((eventsWaiting() || absorbing_) && running_ && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+}
+
 uint64_t Reloader::lastChange(shader::ShaderLibrary::ProgramId program) const {
   std::lock_guard lock(mutex_);
   const auto it = lastChange_.find(program);
@@ -278,7 +285,9 @@ void Reloader::run() {
     // Flagged before the read: between taking the events from the kernel and folding them in, neither
     // eventsWaiting() nor `pending` shows them to newerChange().
     if (fds[0].revents & POLLIN) changesPending_ = true;
+    absorbing_ = true;
     absorb(watcher_->read());
+    absorbing_ = false;
     changesPending_ = !pending.empty() || overflow;
     if (pending.empty() && !overflow) continue;
     const auto quietFor = clock.now() - last;

@@ -95,6 +95,9 @@ class Reloader {
   // The change sequence at the last change seen to one of `program`'s files (an event read from the watcher,
   // before its burst is compiled), 0 if none since start(). Thread-safe.
   uint64_t lastChange(shader::ShaderLibrary::ProgramId program) const;
+  // Waits (at most `cap`) until the worker has read every event the kernel has queued so far, so that
+  // lastChange() counts every save written before this call.
+  void noteQueuedChanges(std::chrono::milliseconds cap) const;
   // When the compile in progress began (meaningful while rebuilding()).
   std::chrono::steady_clock::time_point rebuildStart() const {
     return std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(rebuildStart_.load()));
@@ -127,6 +130,7 @@ class Reloader {
   std::atomic<uint64_t> reloads_{0};
   std::atomic<bool> rebuilding_{false};
   std::atomic<bool> changesPending_{false};
+  std::atomic<bool> absorbing_{false};  // the worker is reading and noting events
   std::atomic<std::chrono::steady_clock::rep> rebuildStart_{0};
   mutable std::mutex mutex_;
   std::deque<ReloadResult> results_;

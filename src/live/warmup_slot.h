@@ -1,14 +1,23 @@
 // Where a render pass keeps its JIT warm-up (render/jit_warmup.h), made ahead of the first hot reload.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <exception>
 #include <future>
 #include <memory>
 #include <mutex>
+#include <utility>
 
 #include "live/reloader.h"
 
 namespace wb::live {
+
+// What a warm-up of one pipeline came to.
+enum class WarmOutcome {
+  Warmed,  // compiled ahead (where asked) and the trial frame finished
+  Renew,   // the groups could not be numbered alike (this device numbered more groups already: make another)
+  Hung,    // a frame did not finish in time: the device is busy for good (the slot leaks that warm-up)
+};
 
 // makeAhead() starts making a warm-up on a low-priority thread when hot reload is set up, so that the first
 // edit does not wait for it to be made (a second Vulkan instance and device, a stand-in scene and its
@@ -28,10 +37,11 @@ class WarmupSlot {
   }
   // Runs warm(warm-up) with the current one (waiting for one being made ahead), or with one made anew by
   // `make` when there is none, the one made ahead failed, or the current one cannot match the render device
-  // any more (its device numbered more groups already: warm() returned false). Returns the warm-up that
-  // warmed, or nullptr. Called by the hot-reload worker only.
+  // any more (warm() returned Renew). Returns the outcome and the warm-up that warmed (nullptr unless
+  // Warmed). A warm-up whose frame hung is never destroyed (its device cannot be waited for): the slot lets
+  // go of it, and the next call makes another. Called by the hot-reload worker only.
   template <class Make, class Warm>
-  Warmup* warmOrRenew(Make&& make, Warm&& warm) {
+  std::pair<Warmup*, WarmOutcome> warmOrRenew(Make&& make, Warm&& warm) {
     std::lock_guard lock(mutex_);
     if (pending_.valid()) {
       try {
@@ -41,10 +51,23 @@ class WarmupSlot {
         warmup_.reset();
       }
     }
-    if (warmup_ && warm(*warmup_)) return warmup_.get();
+    auto run = [&]() -> std::pair<Warmup*, WarmOutcome> {
+      const WarmOutcome o = warm(*warmup_);
+      if (o == WarmOutcome::Hung) {
+        (void)warmup_.release();  // its threads may run forever; the process's exit ends them
+        ++hung_;
+      }
+      return {o == WarmOutcome::Warmed ? warmup_.get() : nullptr, o};
+    };
+    if (warmup_) {
+      const auto r = run();
+      if (r.second != WarmOutcome::Renew) return r;
+    }
     warmup_ = make();
-    return warm(*warmup_) ? warmup_.get() : nullptr;
+    return run();
   }
+  // Warm-ups let go of because a frame hung.
+  uint32_t hung() const { return hung_; }
   // Whether there is one, or one is being made (without waiting: one in use by the worker is there).
   bool present() const {
     std::unique_lock lock(mutex_, std::try_to_lock);
@@ -59,6 +82,7 @@ class WarmupSlot {
  private:
   mutable std::mutex mutex_;
   std::unique_ptr<Warmup> warmup_;
+  std::atomic<uint32_t> hung_{0};
   // Declared last: destroyed first, which waits for a make in flight.
   std::future<std::unique_ptr<Warmup>> pending_;
 };

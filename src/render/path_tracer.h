@@ -162,7 +162,8 @@ class PathTracer final : public Renderer {
   std::unique_ptr<Denoiser> denoiser_;
   vk::Image accum_, albedo_, normal_, info_, stats_;
   // The image sets of the last sizes left (a preview's, the full one's): going back to a size reuses its
-  // memory, already touched, instead of allocating anew (lavapipe: ~25 ms at 440x360, the first touch).
+  // memory, already touched, instead of allocating and touching it anew (a CPU device pays for the first
+  // touch in the first frame).
   struct ImageSet {
     vk::Image accum, albedo, normal, info, stats;
   };

@@ -99,7 +99,7 @@ std::vector<std::string> missingDeviceFeatures(VkPhysicalDevice d, const DeviceC
 // Keeps every shared library loaded now loaded until the process exits. vkDestroyInstance makes the loader
 // unload the driver, and the next instance loads it again: NVIDIA's libnvidia-tls takes static TLS each time
 // it is loaded, and after ~20 instances in one process (the hard-case suite, a test binary run whole)
-// vkCreateInstance fails with "cannot allocate memory in static TLS block" (seen on an H200, driver 580).
+// vkCreateInstance fails with "cannot allocate memory in static TLS block" (NVIDIA's driver 580).
 // Called before an instance goes, so the driver and what it loaded lazily (ray tracing compiler, layers)
 // stay.
 void keepLoadedLibrariesResident() {
@@ -397,7 +397,20 @@ uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags wanted) co
   throw VulkanError("no memory type with the wanted properties");
 }
 
+namespace {
+std::atomic<bool> gAnyHung{false};
+}  // namespace
+
+bool Context::anyHung() {
+  return gAnyHung;
+}
+
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+  submitAndWaitFor(record, std::chrono::nanoseconds::max());
+}
+
+bool Context::submitAndWaitFor(const std::function<void(VkCommandBuffer)>& record,
+                               std::chrono::nanoseconds timeout) {
   std::lock_guard lock(submitMutex_);
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_;
@@ -417,9 +430,17 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     std::lock_guard qlock(queueMutex_);
     WB_VK(vkQueueSubmit(queue_, 1, &si, fence_));
   }
-  WB_VK(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX));
+  const uint64_t ns = timeout == std::chrono::nanoseconds::max() ? UINT64_MAX : uint64_t(timeout.count());
+  const VkResult r = vkWaitForFences(device_, 1, &fence_, VK_TRUE, ns);
+  if (r == VK_TIMEOUT) {
+    hung_ = true;
+    gAnyHung = true;
+    return false;
+  }
+  WB_VK(r);
   WB_VK(vkResetFences(device_, 1, &fence_));
   vkFreeCommandBuffers(device_, pool_, 1, &cmd);
+  return true;
 }
 
 void Context::waitIdle() {

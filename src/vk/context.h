@@ -1,6 +1,7 @@
 // The Vulkan instance, the chosen device with ray tracing enabled, one queue, and one-shot command helpers.
 #pragma once
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -66,6 +67,14 @@ class Context {
 
   // Records with `record` into a fresh command buffer, submits and waits.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+  // The same, waiting at most `timeout`: false when the work has not finished by then. The device is then
+  // busy for good as far as this process knows (no driver here cancels a running shader): the context is
+  // marked hung and must not be used or destroyed (hung(); leak it).
+  bool submitAndWaitFor(const std::function<void(VkCommandBuffer)>& record, std::chrono::nanoseconds timeout);
+  bool hung() const { return hung_; }
+  // Whether any context of the process hung: its threads may never end, so the process ends with _exit
+  // rather than running the drivers' exit handlers (app/main.cpp).
+  static bool anyHung();
   // The queue is shared by the render loop and background work: hold this while submitting.
   std::mutex& queueMutex() { return queueMutex_; }
   // vkDeviceWaitIdle under the queue's lock (it accesses every queue of the device, which a submission on
@@ -121,6 +130,7 @@ class Context {
   std::vector<std::string> messages_;
   std::mutex queueMutex_;
   std::mutex submitMutex_;
+  std::atomic<bool> hung_{false};
   std::unique_ptr<PipelineCache> pipelineCache_;
 };
 

@@ -29,6 +29,8 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   o.cpuShapedShaderCode = env::choice("WB_CPU_DEVICE_CODE");
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
+  o.trialRuns = env::choice("WB_TRIAL_RUN");
+  o.hangSeconds = env::number("WB_HANG_SECONDS");
   return o;
 }
 
@@ -56,6 +58,8 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
     p.watchRestRatio = p.windowRestRatio = restRatio(kLoopShareWhileCompiling);
   }
   p.windowTraceShareWhileCompiling = cpu ? kLoopShareWhileCompiling : 1.0;
+  p.trialRuns = overrides.trialRuns.value_or(true);
+  if (overrides.hangSeconds) p.hangSeconds = *overrides.hangSeconds;
   return p;
 }
 

@@ -28,6 +28,8 @@ struct PolicyOverrides {
   std::optional<bool> deferredHostOps;      // WB_DEFERRED_HOST_OPS=0 (on by default where supported)
   std::optional<bool> cpuShapedShaderCode;  // WB_CPU_DEVICE_CODE=0|1
   std::optional<double> rebuildRestRatio;   // WB_REBUILD_YIELD=R (0 .. 1000)
+  std::optional<bool> trialRuns;            // WB_TRIAL_RUN=0|1
+  std::optional<double> hangSeconds;        // WB_HANG_SECONDS=S (0.5 .. 3600)
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -56,6 +58,13 @@ struct DevicePolicy {
   double windowRestRatio = 0.0;
   // ... and the window traces with this share of its per-frame budget meanwhile.
   double windowTraceShareWhileCompiling = 1.0;
+  // Every new pipeline of a hot reload first renders a small frame on a second device (the warm-up's),
+  // where a shader that never returns hangs nothing that matters: the reload is refused and the last good
+  // pipeline stays. On every device: no driver here can cancel a running shader.
+  bool trialRuns = true;
+  // A frame that has not finished after this long, and after many times the frames before it, counts as
+  // hung (the trial frame's, and the render loop's watchdog).
+  double hangSeconds = 5.0;
 };
 
 DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides);
@@ -66,9 +75,9 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
 // did).
 //
 // - LP_NATIVE_VECTOR_WIDTH=128: llvmpipe (lavapipe) compiles shaders 4 lanes wide instead of its 8-lane AVX2
-//   default: the path tracer's pipeline JITs in ~40% less time while the trace rate and every image stay the
-//   same; the window's raster work takes ~20% longer (docs/bench/lavapipe_vector_width.md). GPU drivers
-//   ignore it. Left alone when the user set a MESA_SHADER_CACHE_DIR of their own (see below).
+//   default: the path tracer's pipeline JITs in much less time while the trace rate and every image stay the
+//   same, at some cost to the window's raster work (docs/bench/lavapipe_vector_width.md). GPU drivers ignore
+//   it. Left alone when the user set a MESA_SHADER_CACHE_DIR of their own (see below).
 // - MESA_SHADER_CACHE_DIR=<cacheDir>/mesa/lp<width> (the user's width or ours): Mesa's shader disk cache
 // under
 //   the workbench's shader cache, one folder per width, because llvmpipe's cache key leaves the width out and

@@ -286,8 +286,8 @@ VkPipeline RayTracingPipeline::compileLibrary(const Inputs& in, const GroupLibra
   lci.pLibraryInterface = &iface;
   lci.layout = in.layout;
   VkPipeline lib = VK_NULL_HANDLE;
-  // Not through a deferred operation: for these one- or two-stage libraries it gained nothing on an H200
-  // (docs/bench/h200_pipeline_creation.md); they compile side by side instead.
+  // Not through a deferred operation: a one- or two-stage library has no parallelism for one to use; the
+  // libraries compile side by side instead (docs/bench/h200_pipeline_creation.md).
   WB_VK(ctx_.vkCreateRayTracingPipelinesKHR(ctx_.device(), VK_NULL_HANDLE, ctx_.pipelineCache(), 1, &lci,
                                             nullptr, &lib));
   return lib;
@@ -295,7 +295,8 @@ VkPipeline RayTracingPipeline::compileLibrary(const Inputs& in, const GroupLibra
 
 void RayTracingPipeline::linkLibraries(const Inputs& in, const std::vector<VkPipeline>& libs,
                                        const VkRayTracingPipelineInterfaceCreateInfoKHR& iface) {
-  // Linked plainly too: through a deferred operation the H200's driver crashed at the first trace.
+  // Linked plainly too: NVIDIA's driver 580 crashes at the first trace of a pipeline linked through a
+  // deferred operation (docs/bench/h200_pipeline_creation.md).
   const auto start = std::chrono::steady_clock::now();
   VkPipelineLibraryCreateInfoKHR li{VK_STRUCTURE_TYPE_PIPELINE_LIBRARY_CREATE_INFO_KHR};
   li.libraryCount = static_cast<uint32_t>(libs.size());

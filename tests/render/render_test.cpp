@@ -12,39 +12,15 @@ using namespace wb::testing;
 
 namespace {
 
-// The camera ray through image point (px, py) in pixels, exactly as raygen builds it.
-void cameraRay(const render::CameraState& cam, uint32_t w, uint32_t h, float px, float py, glm::vec3& origin,
-               glm::vec3& dir) {
-  glm::mat4 proj = glm::perspective(cam.yfov, float(w) / float(h), cam.znear, 1000.0f);
-  proj[1][1] *= -1.0f;
-  const glm::vec2 ndc(px / w * 2.0f - 1.0f, py / h * 2.0f - 1.0f);
-  glm::vec4 target = glm::inverse(proj) * glm::vec4(ndc, 1.0f, 1.0f);
-  glm::mat4 vi = glm::inverse(cam.view);
-  origin = glm::vec3(vi * glm::vec4(0, 0, 0, 1));
-  dir = glm::normalize(glm::vec3(vi * glm::vec4(glm::normalize(glm::vec3(target) / target.w), 0.0f)));
-}
-
-bool hitsBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
-  float t0 = 0.0f, t1 = 1e30f;
-  for (int a = 0; a < 3; ++a) {
-    float inv = 1.0f / d[a];
-    float tn = (lo[a] - o[a]) * inv, tf = (hi[a] - o[a]) * inv;
-    if (tn > tf) std::swap(tn, tf);
-    t0 = std::max(t0, tn);
-    t1 = std::min(t1, tf);
-  }
-  return t0 <= t1;
-}
-
 // 0 = hits the plane in the sun, 1 = hits the plane in shadow, 2 = other (box, sky).
 int classify(const ShadowScene& s, const render::CameraState& cam, uint32_t w, uint32_t h, float px,
              float py) {
   glm::vec3 o, d;
   cameraRay(cam, w, h, px, py, o, d);
-  if (hitsBox(o, d, s.boxMin, s.boxMax) || d.y >= 0.0f) return 2;
+  if (hitBox(o, d, s.boxMin, s.boxMax) >= 0.0f || d.y >= 0.0f) return 2;
   const glm::vec3 p = o + d * (-o.y / d.y);
   if (std::abs(p.x) > 50 || std::abs(p.z) > 50) return 2;
-  return hitsBox(p + glm::vec3(0, 1e-4f, 0), -s.sunDirection, s.boxMin, s.boxMax) ? 1 : 0;
+  return hitBox(p + glm::vec3(0, 1e-4f, 0), -s.sunDirection, s.boxMin, s.boxMax) >= 0.0f ? 1 : 0;
 }
 
 }  // namespace

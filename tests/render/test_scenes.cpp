@@ -1,5 +1,9 @@
 #include "test_scenes.h"
 
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "scene/procedural.h"
 
 #include <cmath>
@@ -207,6 +211,33 @@ scene::Scene makeHardCasesScene() {
   sc.camera.yfov = 1.0f;
   sc.bounds = {glm::vec3(-50, 0, -50), glm::vec3(50, 2, 50)};
   return sc;
+}
+
+}  // namespace wb::testing
+
+namespace wb::testing {
+
+void cameraRay(const render::CameraState& cam, uint32_t w, uint32_t h, float px, float py, glm::vec3& origin,
+               glm::vec3& dir) {
+  glm::mat4 proj = glm::perspective(cam.yfov, float(w) / float(h), cam.znear, 1000.0f);
+  proj[1][1] *= -1.0f;
+  const glm::vec2 ndc(px / w * 2.0f - 1.0f, py / h * 2.0f - 1.0f);
+  glm::vec4 target = glm::inverse(proj) * glm::vec4(ndc, 1.0f, 1.0f);
+  glm::mat4 vi = glm::inverse(cam.view);
+  origin = glm::vec3(vi * glm::vec4(0, 0, 0, 1));
+  dir = glm::normalize(glm::vec3(vi * glm::vec4(glm::normalize(glm::vec3(target) / target.w), 0.0f)));
+}
+
+float hitBox(glm::vec3 o, glm::vec3 d, glm::vec3 lo, glm::vec3 hi) {
+  float t0 = 0.0f, t1 = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    float inv = 1.0f / d[a];
+    float tn = (lo[a] - o[a]) * inv, tf = (hi[a] - o[a]) * inv;
+    if (tn > tf) std::swap(tn, tf);
+    t0 = std::max(t0, tn);
+    t1 = std::min(t1, tf);
+  }
+  return t0 <= t1 ? t0 : -1.0f;
 }
 
 }  // namespace wb::testing

@@ -1,5 +1,6 @@
 // Scenes built in code for GPU tests, with answers known analytically.
 #pragma once
+#include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace wb::testing {
@@ -44,5 +45,15 @@ scene::Scene makeEnvSpheresScene();
 // (metal and dielectric), degenerate and zero-area triangles, zero normals, normal-mapped quads with missing,
 // parallel and zero-handedness tangents, a single-sided quad seen from behind, and a directional light.
 scene::Scene makeHardCasesScene();
+
+}  // namespace wb::testing
+
+namespace wb::testing {
+
+// The camera ray through image point (px, py) in pixels of a w x h image, exactly as raygen builds it.
+void cameraRay(const render::CameraState& cam, uint32_t w, uint32_t h, float px, float py, glm::vec3& origin,
+               glm::vec3& dir);
+// The slab test of a ray against the box lo..hi: the entry distance (0 inside), or -1 when it misses.
+float hitBox(glm::vec3 origin, glm::vec3 dir, glm::vec3 lo, glm::vec3 hi);
 
 }  // namespace wb::testing

@@ -52,9 +52,12 @@ std::string xvfbRun() {
 
 // The workbench in a 320x240 window on a virtual display, under the validation layer (ctest sets
 // WB_VALIDATION=1): a validation error makes the workbench exit with status 3.
-CommandResult runWindow(const std::string& args, const std::string& env = "") {
-  return runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + env + " " + xvfbRun() +
-                  WB_WORKBENCH_BIN + " --window 320x240 " + args);
+// `limitSeconds` (> 0): the window is killed past it (a test of a hang enforces its own limit).
+CommandResult runWindow(const std::string& args, const std::string& env = "", int limitSeconds = 0) {
+  const std::string limit =
+      limitSeconds > 0 ? "timeout -k 10 " + std::to_string(limitSeconds) + " " : std::string();
+  return runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + env + " " + limit +
+                  xvfbRun() + WB_WORKBENCH_BIN + " --window 320x240 " + args);
 }
 
 // Mean brightness of the image area (right of the panel, above the status line) of a window screenshot.
@@ -248,6 +251,47 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
 }
 
 // A save that changes no SPIR-V (the same bytes, or a comment) rebuilds nothing and keeps the accumulation.
+// A closest-hit that never returns: its trial frame on the second device does not finish, the edit is refused
+// with its file in the banner, the window keeps drawing with the last good pipeline, and the next good edit
+// is installed.
+TEST(Window, AnEndlessLoopIsRefusedAndTheWindowDrawsOn) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("endless");
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  const std::string good = readFile(watched);
+  std::string endless = good;
+  const auto body = endless.find('{', endless.find("void main()")) + 1;
+  endless.insert(body, "\n  while (payload.radiance.x >= 0.0) { payload.radiance.x += 1.0; }\n");
+  writeFile(dir / "endless.rchit", endless);
+  std::string fixedText = good;
+  const std::string needle = "const float minCos = 1e-3;";
+  ASSERT_NE(fixedText.find(needle), std::string::npos);
+  fixedText.replace(fixedText.find(needle), needle.size(), "const float minCos = 1.0001e-3;");
+  writeFile(dir / "good.rchit", fixedText);
+  const auto script = dir / "script.txt";
+  writeFile(script, "wait_samples 1 300\ncopy " + (dir / "endless.rchit").string() + " " + watched.string() +
+                        "\nwait_reload 300\nstats " + (dir / "refused.json").string() + "\nframes 4\nstats " +
+                        (dir / "after.json").string() + "\ncopy " + (dir / "good.rchit").string() + " " +
+                        watched.string() + "\nwait_reload 300\nwait_samples 1 300\nstats " +
+                        (dir / "fixed.json").string() + "\n");
+  auto r = runWindow("--script " + script.string(), "WB_ROOT=" + root.string() + " WB_HANG_SECONDS=3", 500);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto refused = readJson(dir / "refused.json"), after = readJson(dir / "after.json");
+  const auto fixed = readJson(dir / "fixed.json");
+  const std::string banner = refused["banner"];
+  EXPECT_NE(banner.find("closesthit.rchit"), std::string::npos) << banner;
+  EXPECT_NE(banner.find("endless loop"), std::string::npos) << banner;
+  EXPECT_FALSE(refused["reloads"].back()["ok"].get<bool>());
+  EXPECT_TRUE(refused["reloads"].back()["pipelines_rebuilt"].empty()) << "the hanging pipeline was installed";
+  EXPECT_GT(after["frames"].get<int>(), refused["frames"].get<int>()) << "the window stopped drawing";
+  EXPECT_TRUE(fixed["reloads"].back()["ok"].get<bool>()) << fixed["reloads"].back().dump();
+  EXPECT_EQ(fixed["banner"], "");
+}
+
 TEST(Window, AnUnchangedSaveKeepsTheAccumulation) {
   REQUIRE_XVFB();
   const auto dir = tempDir("unchanged");

@@ -58,7 +58,8 @@ Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindo
 }
 
 Presenter::~Presenter() {
-  finish();
+  if (inFlight_) WB_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  inFlight_ = false;
   ctx_.waitIdle();
   VkDevice d = ctx_.device();
   if (queries_) vkDestroyQueryPool(d, queries_, nullptr);
@@ -81,7 +82,7 @@ void Presenter::recreate() {
   int fbw = 0, fbh = 0;
   glfwGetFramebufferSize(window_, &fbw, &fbh);
   // The frame in flight may use the old swapchain; it stays in flight for finish() to account for.
-  if (inFlight_) WB_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  if (inFlight_) waitForFence();
   if (swapchain_->recreate(uint32_t(fbw), uint32_t(fbh), vsync_)) gui_->swapchainRecreated(*swapchain_);
 }
 
@@ -112,9 +113,21 @@ void Presenter::readTimestamps(bool withDisplay) {
   if (withDisplay) displayMs_ = double(ts[2] - ts[1]) * period;
 }
 
+void Presenter::waitForFence() {
+  const auto limit = frameLimit_ ? frameLimit_() : std::chrono::nanoseconds::max();
+  const uint64_t ns = limit == std::chrono::nanoseconds::max() ? UINT64_MAX : uint64_t(limit.count());
+  const VkResult r = vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, ns);
+  if (r == VK_TIMEOUT) {
+    FrameHang hang("a frame did not finish");
+    hang.seconds = std::chrono::duration<double>(limit).count();
+    throw hang;
+  }
+  WB_VK(r);
+}
+
 bool Presenter::finish() {
   if (!inFlight_) return false;
-  WB_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  waitForFence();
   inFlight_ = false;
   readTimestamps(inFlightDisplayed_);
   if (!captureTarget_.empty()) {

@@ -3,6 +3,7 @@
 // display. A frame records the session's trace (a callback), then the display pass and the panel into the
 // swapchain's render pass, submits and presents; a trace-only submission records the trace alone.
 #pragma once
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -24,6 +25,12 @@ struct PresentationUnavailable : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A submission did not finish within the frame limit (Presenter::setFrameLimit): the device cannot stop it.
+struct FrameHang : std::runtime_error {
+  using std::runtime_error::runtime_error;
+  double seconds = 0;
+};
+
 class Presenter {
  public:
   // Throws PresentationUnavailable when the device cannot present to `window`.
@@ -32,6 +39,9 @@ class Presenter {
   ~Presenter();
   Presenter(const Presenter&) = delete;
   Presenter& operator=(const Presenter&) = delete;
+
+  // How long a submission may take before it counts as hung (FrameHang thrown by the waits).
+  void setFrameLimit(std::function<std::chrono::nanoseconds()> limit) { frameLimit_ = std::move(limit); }
 
   DisplayPass& display() { return *display_; }
   const vk::Swapchain& swapchain() const { return *swapchain_; }
@@ -62,6 +72,8 @@ class Presenter {
  private:
   void recreate();
   void readTimestamps(bool withDisplay);
+  // Waits for the submission in flight within the frame limit; throws FrameHang past it.
+  void waitForFence();
 
   vk::Context& ctx_;
   GLFWwindow* window_;
@@ -80,6 +92,7 @@ class Presenter {
   std::string captureTarget_;
   uint64_t tracedPixels_ = 0;
   double traceMs_ = 0, displayMs_ = 0;
+  std::function<std::chrono::nanoseconds()> frameLimit_;
 };
 
 }  // namespace wb::app

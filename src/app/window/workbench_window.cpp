@@ -10,6 +10,9 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <unistd.h>
+
+#include "app/progress.h"
 #include "app/window/ab_panel.h"
 #include "app/window/window_report.h"
 #include "common/json_text.h"
@@ -61,6 +64,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o)
   presenter_ = std::make_unique<Presenter>(session_->render().context(), session_->render().library(),
                                            window_, vsync_, o.imguiIni);
   input_ = std::make_unique<WindowInput>(window_, *events_, *session_);
+  presenter_->setFrameLimit([this] { return session_->loop().frameLimit(); });
   session_->loop().addPass(presenter_->display().pass());
   session_->start(
       [] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
@@ -280,10 +284,25 @@ void WorkbenchWindow::drawFrame(float dt) {
 }
 
 int WorkbenchWindow::run() {
+  try {
+    return frameLoop();
+  } catch (const FrameHang& hang) {
+    // No driver here cancels a running shader: say which edit did it, and end (the device cannot be closed).
+    std::fprintf(stderr, "workbench: error: %s\n", session_->loop().hangMessage(hang.seconds).c_str());
+    std::fflush(stdout);
+    std::fflush(stderr);
+    ::_exit(4);
+  }
+}
+
+int WorkbenchWindow::frameLoop() {
+  // SIGINT/SIGTERM end the session like the quit key, after the frame in flight (or, should it never finish,
+  // the process).
+  InterruptRequest interrupt;
   auto last = Clock::now();
   auto frameBegin = last;  // when the work of the frame in flight began (after any rest)
   int exitCode = 0;
-  while (!glfwWindowShouldClose(window_) && !session_->state().quit) {
+  while (!glfwWindowShouldClose(window_) && !session_->state().quit && !interrupt.requested()) {
     glfwPollEvents();
     finishFrame(frameBegin);
     if (events_->takeActivity()) lastInput_ = Clock::now();
@@ -301,6 +320,7 @@ int WorkbenchWindow::run() {
     if (frameCount_ > 0) {
       frames_.add(std::chrono::duration<float, std::milli>(now - last).count());
       session_->frameInterval(last, now);
+      interrupt.noteWorkSeconds(std::chrono::duration<double>(now - last).count());
     }
     last = now;
     frameBegin = now;

@@ -59,6 +59,7 @@ class WorkbenchWindow : public ScriptHost {
   uint32_t samples() const override { return session_->inPreview() ? 0 : session_->samples(); }
 
  private:
+  int frameLoop();
   // The frame loop's parts: waiting for the frame in flight (false: none was); tracing without presenting
   // while converging untouched (false: quit); one script step (false: the session ends); laying out,
   // recording, submitting and presenting one frame.
