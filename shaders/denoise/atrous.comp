@@ -18,6 +18,8 @@ void main() {
   if (!insideImage(p)) return;
   const vec4 center = source(p);
   const vec4 guideP = imageLoad(guideImage, p);
+  const vec3 nP = octDecode(guideP.xy);
+  const bool missP = guideP.z < 0.0;
   const float lumP = luminance(center.rgb);
   // 2 sigma^2 V: a tap sigmaLuminance standard deviations away weighs exp(-1/2).
   const float reach = 2.0 * pc.sigmaLuminance * pc.sigmaLuminance * max(center.a, 0.0);
@@ -30,12 +32,22 @@ void main() {
       const ivec2 q = p + ivec2(x, y) * int(pc.step);
       if (!insideImage(q)) continue;
       const vec4 c = source(q);
-      float w = kernelWeight(x) * kernelWeight(y) *
-                geometryWeight(guideP, imageLoad(guideImage, q), float(pc.step) * length(vec2(x, y)));
+      const vec4 guideQ = imageLoad(guideImage, q);
+      // The geometry's and the luminance's weights in one exponential.
+      float w = kernelWeight(x) * kernelWeight(y);
+      float exponent = 0.0;
+      const bool missQ = guideQ.z < 0.0;
+      if (missP || missQ) {
+        if (missP != missQ) continue;
+      } else {
+        w *= normalWeight(nP, octDecode(guideQ.xy));
+        exponent = depthExponent(guideP, guideQ, float(pc.step) * length(vec2(x, y)));
+      }
       if (pc.sigmaLuminance > 0.0) {
         const float difference = luminance(c.rgb) - lumP;
-        w *= reach > 0.0 ? exp(-difference * difference / reach) : (difference == 0.0 ? 1.0 : 0.0);
+        exponent += reach > 0.0 ? difference * difference / reach : (difference == 0.0 ? 0.0 : 1.0e30);
       }
+      w *= exp(-exponent);
       sum += w * c.rgb;
       weights += w;
       variance += w * w * max(c.a, 0.0);

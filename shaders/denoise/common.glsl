@@ -34,17 +34,28 @@ bool insideImage(ivec2 q) {
   return q.x >= 0 && q.y >= 0 && q.x < int(pc.imageSize.x) && q.y < int(min(pc.rows, pc.imageSize.y));
 }
 
-// The geometric part of the edge-stopping weight between a pixel p and a tap q `distance` pixels away: their
-// normals (cosine to the power sigmaNormal) and depths (the difference against the change the depth gradient
-// predicts over that distance). A miss only meets misses.
-float geometryWeight(vec4 guideP, vec4 guideQ, float distance) {
+// The normals' part of the edge-stopping weight: their cosine to the power sigmaNormal (by squaring for the
+// default 128: no transcendental function per tap).
+float normalWeight(vec3 nP, vec3 nQ) {
+  float c = max(dot(nP, nQ), 0.0);
+  if (pc.sigmaNormal != 128.0) return pow(c, pc.sigmaNormal);
+  for (int i = 0; i < 7; ++i) c *= c;
+  return c;
+}
+
+// The depths' part, as the exponent of exp(-e) (a caller adds other exponents and calls exp once): the
+// difference of the depths against the change the depth gradient predicts over the taps' distance.
+float depthExponent(vec4 guideP, vec4 guideQ, float distance) {
+  const float expected = pc.sigmaDepth * guideP.w * distance + 1.0e-3 * guideP.z;
+  return abs(guideP.z - guideQ.z) / expected;
+}
+
+// The geometric part of the edge-stopping weight between a pixel p and a tap q `distance` pixels away: normals
+// and depths. A miss only meets misses. nP: guideP's normal, decoded once by the caller for all its taps.
+float geometryWeight(vec4 guideP, vec3 nP, vec4 guideQ, float distance) {
   const bool missP = guideP.z < 0.0, missQ = guideQ.z < 0.0;
   if (missP || missQ) return missP && missQ ? 1.0 : 0.0;
-  const vec3 nP = octDecode(guideP.xy), nQ = octDecode(guideQ.xy);
-  const float wn = pow(max(dot(nP, nQ), 0.0), pc.sigmaNormal);
-  const float expected = pc.sigmaDepth * guideP.w * distance + 1.0e-3 * guideP.z;
-  const float wz = exp(-abs(guideP.z - guideQ.z) / expected);
-  return wn * wz;
+  return normalWeight(nP, octDecode(guideQ.xy)) * exp(-depthExponent(guideP, guideQ, distance));
 }
 
 // The B3-spline a-trous kernel (1/16, 1/4, 3/8, 1/4, 1/16), index -2..2.

@@ -32,6 +32,7 @@ void main() {
   if (!insideImage(p)) return;
   const vec4 center = imageLoad(pingImage, p);
   const vec4 guideP = imageLoad(guideImage, p);
+  const vec3 nP = octDecode(guideP.xy);
   const float n = imageLoad(radianceImage, p).a;
   const bool own = n >= 2.0;
   // Per tap: its per-sample variance (own) or its luminance (below 2 samples); taps off the surface, off the
@@ -42,7 +43,7 @@ void main() {
     for (int x = -1; x <= 1; ++x) {
       const ivec2 q = p + ivec2(x, y);
       float value = self;
-      if (insideImage(q) && geometryWeight(guideP, imageLoad(guideImage, q), length(vec2(x, y))) > 0.5) {
+      if (insideImage(q) && geometryWeight(guideP, nP, imageLoad(guideImage, q), length(vec2(x, y))) > 0.5) {
         const vec4 c = imageLoad(pingImage, q);
         if (!own) {
           value = luminance(c.rgb);

@@ -120,6 +120,6 @@ TEST(GpuTypesLayout, DenoiserPushConstantsMatchTheHostStruct) {
        {"denoise/prepare.comp", "denoise/variance.comp", "denoise/atrous.comp", "denoise/final.comp"}) {
     const auto blocks = moduleBlocks(stage);
     ASSERT_TRUE(blocks.count("PushBlock")) << stage;
-    EXPECT_EQ(blocks.at("PushBlock"), sizeof(DenoisePush)) << stage;
+    EXPECT_EQ(blocks.at("PushBlock"), sizeof(wb::gpu::DenoisePush)) << stage;
   }
 }
