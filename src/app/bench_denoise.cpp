@@ -84,7 +84,8 @@ json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device)
           {"sample_ms", t},
           {"denoise_share_of_sample", t > 0 ? d / t : 0.0},
           {"iterations", tracer.denoiser()->options().iterations},
-          {"device", s.context().deviceName()}};
+          {"device", s.context().deviceName()},
+          {"driver", s.context().driverInfo()}};
 }
 
 // The Cornell box against Cycles, raw and denoised from the same samples, `runs` seeds, until both reach

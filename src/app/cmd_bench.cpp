@@ -552,6 +552,7 @@ int BenchCommand::run() {
     if (has("denoise")) {
       result["denoise"] = benchDenoise(dno, progress);
       result["device"] = result["denoise"]["cost"][0]["device"];
+      result["driver"] = result["denoise"]["cost"][0]["driver"];
     }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {

@@ -151,7 +151,7 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
     // One curve per configuration, and one more for each denoised one.
     std::vector<std::pair<std::string, const std::vector<Checkpoint>*>> curves;
     for (const auto& r : results) {
-      curves.push_back({r.name, &r.checkpoints});
+      curves.push_back({r.denoised.empty() ? r.name : r.name + " raw", &r.checkpoints});
       if (!r.denoised.empty()) curves.push_back({r.name + " denoised", &r.denoised});
     }
     for (size_t i = 0; i < curves.size(); ++i) {
