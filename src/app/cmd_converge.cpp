@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/converge_denoise.h"
 #include "app/converge_report.h"
 #include "app/converge_run.h"
 #include "app/render_options.h"
@@ -365,6 +366,7 @@ int ConvergeCommand::run() {
               : "Pixel tests: the reference file is taken as exact (its own noise, if any, makes more "
                 "pixels look off: the raw image's rate shows how many).");
     }
+    setup.moreSections = [&](std::ostream& md) { writeDenoiseComparison(md, results); };
     writeSummary(dir, results, setup, reference);
     std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)%s\n", results.size(),
                 dir.string().c_str(), plotNote.empty() ? ", converge.png" : "",

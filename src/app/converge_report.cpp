@@ -1,5 +1,4 @@
 #include "app/converge_report.h"
-#include "app/converge_denoise.h"
 
 #include <algorithm>
 #include <cmath>
@@ -262,7 +261,7 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
     row(r, r.checkpoints, r.denoised.empty() ? r.name : r.name + " (raw)");
     row(r, r.denoised, r.name + " (denoised)");
   }
-  writeDenoiseComparison(md, results);
+  if (setup.moreSections) setup.moreSections(md);
   writeErrorImages(dir, results, reference, md);
   writeFileAtomically(dir / "converge.md", md.str(), "converge");  // last: it names the files above
 }

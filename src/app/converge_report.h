@@ -4,6 +4,8 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +89,8 @@ struct ReportSetup {
   std::string plotNote;            // why the plot is missing; empty when it is there
   std::vector<std::string> notes;  // further lines of the set-up list
   std::string partialNote;  // non-empty: heads the report ("**Partial:** ..."): the run was interrupted
+  // Sections written after the table of final errors, before the error images (converge_denoise.h's).
+  std::function<void(std::ostream&)> moreSections;
 };
 // converge.md: the set-up, the table of final errors and time to error, and the error images.
 void writeSummary(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,
