@@ -27,6 +27,10 @@
 // of the bounce where it ended them (0 for the others: b / g is the mean over those it ended), a = the lowest
 // bounce at which a sample became NaN/Inf (WB_NO_NON_FINITE: none)
 #define WB_BIND_AOV_STATS 20
+#define WB_BIND_REFLECTORS 21   // storage buffer vec4[]: glossy reflectors' bounding spheres (xyz centre, w radius)
+// storage buffer vec4[]: the radiance of each sample of a launch of several (launch depth > 1), [z][y][x]; the resolve
+// pass (pathtracer/resolve.comp) accumulates them into WB_BIND_ACCUM in sample order
+#define WB_BIND_SAMPLE_SLOTS 22
 // The path inspector's buffers, declared only by the WB_INSPECT build of the path tracer (shaders/pathtracer/inspect.glsl).
 #define WB_BIND_INSPECT_HEADER 17    // storage buffer InspectHeader: which pixel and how many records
 #define WB_BIND_INSPECT_SAMPLES 18   // storage buffer InspectSample[]: one per recorded sample
@@ -44,5 +48,10 @@
 #define WB_BIND_REFLECTION 48        // rgba16f storage image: rgb reflected radiance, a 1 where traced
 #define WB_BIND_HYBRID_OUTPUT 49     // rgba32f storage image: composited linear radiance
 #define WB_BIND_HYBRID_INSPECT 50    // storage buffer HybridInspectRecord: the rays of the inspected pixel
+
+// ---- the bare-ray roofline (shaders/roofline; the scene's TLAS and geometries at their path tracer bindings) ----
+#define WB_BIND_ROOFLINE_HITS 60     // rgba32f storage image: camera ray hit position, a = 1 hit, 0 miss
+#define WB_BIND_ROOFLINE_NORMALS 61  // rgba32f storage image: geometric normal at the hit, facing the camera
+#define WB_BIND_ROOFLINE_RESULT 62   // rgba32f storage image: what a launch found (keeps its rays from being unused)
 
 #endif

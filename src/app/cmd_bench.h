@@ -22,6 +22,8 @@ class BenchCommand : public Command {
   static const std::vector<std::string>& sectionNames();
   bool quick = false;
   std::string out, device, size;
+  std::vector<std::string> rooflineSizes;  // --roofline-sizes (empty: the defaults, set by finish())
+  bool rooflineSizesGiven = false;
   int repeats = 0;
   int edits = 0;
   bool noLoad = false;

@@ -21,7 +21,8 @@ struct RenderOptions {
   bool aovAlbedo = false, aovNormal = false;  // which --aov images to write
   std::vector<std::string> defines;           // --define K=V
   std::string device;
-  std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)
+  std::string tile;              // "WxH": dispatch shape of a sample (default: the whole image)
+  std::string samplesPerLaunch;  // "N": samples per ray tracing launch (default: the device's choice)
   ParameterFlags flags;
 
   const render::RenderSettings& settings() const { return params.render; }

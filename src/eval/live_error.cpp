@@ -63,18 +63,28 @@ uint32_t LiveError::nextCheckpoint(uint32_t samples, double seconds) const {
   return p;
 }
 
+bool LiveError::fits(uint32_t width, uint32_t height) const {
+  const ImageRGBA& ref = *reference_;
+  if (ref.width == width && ref.height == height) return true;
+  return width > 0 && height > 0 && ref.width % width == 0 && ref.height % height == 0 &&
+         ref.width / width == ref.height / height;
+}
+
+bool LiveError::checkSize(uint32_t width, uint32_t height) {
+  if (!reference_) return false;
+  if (fits(width, height)) return true;
+  const ImageRGBA& ref = *reference_;
+  error_ = "reference " + sizeText(ref.width, ref.height) + " does not match the trace size " +
+           sizeText(width, height) + " (nor an integer multiple of it): set the trace size with " +
+           "--size WxH --scale 1, or render the reference at that size";
+  return false;
+}
+
 std::optional<ImageRGBA> LiveError::referenceFor(const ImageRGBA& image) {
+  if (!checkSize(image.width, image.height)) return std::nullopt;
   const ImageRGBA& ref = *reference_;
   if (ref.width == image.width && ref.height == image.height) return ref;
-  if (ref.width % image.width == 0 && ref.height % image.height == 0 &&
-      ref.width / image.width == ref.height / image.height) {
-    return downsampleTo(ref, image.width, image.height);
-  }
-  error_ = "reference " + sizeText(ref.width, ref.height) + " does not match the trace size " +
-           sizeText(image.width, image.height) +
-           " (nor an integer multiple of it): set the trace size with " +
-           "--size WxH --scale 1, or render the reference at that size";
-  return std::nullopt;
+  return downsampleTo(ref, image.width, image.height);
 }
 
 void LiveError::add(const ImageRGBA& image, uint32_t samples, double seconds) {

@@ -34,6 +34,10 @@ class LiveError {
   const std::string& referenceName() const { return referenceName_; }
   const std::string& error() const { return error_; }  // why the last reference or comparison failed
 
+  // Whether the reference can score an image of this size (the same, or an integer multiple of it); when it
+  // cannot, error() says why at once instead of at the next point.
+  bool checkSize(uint32_t width, uint32_t height);
+
   // The accumulation restarted (drops the history and the snapshots).
   void restart();
   // Whether a readback at this sample count would add a point: at 1, 2, 4, 8, ... samples and, with a
@@ -51,6 +55,7 @@ class LiveError {
 
  private:
   std::optional<ImageRGBA> referenceFor(const ImageRGBA& image);
+  bool fits(uint32_t width, uint32_t height) const;
 
   std::optional<ImageRGBA> reference_;
   std::string referenceName_;

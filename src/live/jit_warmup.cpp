@@ -199,6 +199,10 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
     }
     awaitCacheWrite(Clock::now() - t1, before);
   }
+  if (!like.context().policy().trialRuns) {
+    ++warmups_;
+    return WarmOutcome::Warmed;
+  }
   // The trial frame: a small image of real paths. It finishes in milliseconds; the limit is the policy's
   // floor or many times the trial frames before it, whichever is longer.
   double typical = 0;

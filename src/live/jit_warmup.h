@@ -8,10 +8,9 @@
 //   The render device's first frame with its own copy of the pipeline then loads the machine code from the
 //   cache instead of compiling it. The compiled code depends on the SPIR-V, the pipeline layout, the
 //   specialisation constants and the groups' numbers (see alignGroupCounter), not on the data bound.
-// - A trial frame on every device (DevicePolicy::trialRuns): a small image of real paths on the stand-in,
-// with
-//   a time limit. A shader that never returns hangs this device, which nothing else uses, instead of the
-//   render device: the reload is refused (TrialHang) and the last good pipeline draws on.
+// - A trial frame on every device, unless DevicePolicy::trialRuns is off: a small image of real paths on the
+//   stand-in, with a time limit. A shader that never returns hangs this device, which nothing else uses,
+//   instead of the render device: the reload is refused (TrialHang) and the last good pipeline draws on.
 // HotReload runs it beside the render device's own pipeline creation.
 #pragma once
 #include <cstdint>

@@ -138,7 +138,9 @@ void LiveSession::apply(bool waitForMode) {
     } else {
       // A failure is shown in the panel (liveError().error()) and said on the terminal, where --reference was
       // typed.
-      if (!liveError_.loadReference(st.referencePath))
+      if (!liveError_.loadReference(st.referencePath) ||
+          (progressive_->samples() > 0 &&
+           !liveError_.checkSize(progressive_->targetWidth(), progressive_->targetHeight())))
         std::fprintf(stderr, "workbench: reference %s not used: %s (the running error is a noise estimate)\n",
                      st.referencePath.c_str(), liveError_.error().c_str());
     }

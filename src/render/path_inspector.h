@@ -1,8 +1,8 @@
 // The path inspector's records made sense of on the host: the samples of the inspected pixel in order, each
 // with its vertices, what every vertex and the escaping ray added to the sample, the first NaN/Inf and the
 // term that produced it, and the pixel's estimate from the recorded samples. The shaders write the records
-// (shaders/pathtracer/inspect.glsl, structs in shaders/shared/inspect_types.h); PathTracer::readInspection reads
-// them.
+// (shaders/pathtracer/inspect.glsl, structs in shaders/shared/inspect_types.h); PathTracer::readInspection
+// reads them.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -63,7 +63,7 @@ RunningEstimate estimateOf(const std::vector<InspectedSample>& samples);
 
 // Names of the record's codes, as the JSON and the Inspect tab write them.
 const char* inspectEndName(uint32_t end);         // "escaped", "absorbed", "max_bounces", ...
-const char* inspectLobeName(uint32_t lobe);       // "diffuse" | "specular"
+const char* inspectLobeName(uint32_t lobe);       // "diffuse" | "specular" | "reflector"
 const char* inspectRrName(uint32_t outcome);      // "not_applied" | "survived" | "terminated"
 const char* inspectLightKindName(uint32_t kind);  // "directional" | "environment" | "emitter"
 const char* inspectLightStatusName(

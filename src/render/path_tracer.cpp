@@ -57,6 +57,10 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   pass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer", std::move(recipe));
   pass_->setPushConstantBytes(sizeof(gpu::PushConstants));
   pass_->setOnInstall([this] { sampleIndex_ = 0; });
+  resolve_ = std::make_unique<Pass>(ctx_, library_, "pathtracer resolve", ComputeRecipe{});
+  resolve_->setPushConstantBytes(sizeof(gpu::ResolveConstants));
+  resolve_->useProgram("pathtracer resolve", {{shaderDir() / "pathtracer" / "resolve.comp"}});
+  sampleSlots_ = vk::Buffer(ctx_, sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   frameUniforms_ = vk::Buffer(ctx_, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
@@ -71,6 +75,7 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   createImages();
   createInspectBuffers();
   bindResources();
+  resolve_->rebuild();
   setFeatures(features);
   makeDenoiser();
 }
@@ -232,6 +237,9 @@ void PathTracer::bindResources() {
     denoiser_->resize(settings_.width, settings_.height);
     denoiser_->setInputs({accum_.view(), albedo_.view(), normal_.view(), stats_.view()});
   }
+  p.setBuffer("SampleSlotBlock", sampleSlots_);
+  resolve_->setStorageImage("accumImage", accum_.view());
+  resolve_->setBuffer("SampleSlotBlock", sampleSlots_);
 }
 
 std::unique_ptr<Renderer> PathTracer::makeLike(const RendererResources& resources,
@@ -311,6 +319,7 @@ void PathTracer::updateFrameUniforms() {
   f.envTotalWeight = env_->totalWeight();
   f.emitterCount = gpuScene_.emitterCount();
   f.emitterTotalPower = gpuScene_.emitterTotalPower();
+  f.reflectorCount = gpuScene_.reflectorCount();
   // Light sampling splits between the environment and the area lights; a black environment gets none.
   const bool envBlack =
       settings_.envIntensity <= 0.0f || (!env_->isMap() && settings_.envColor == glm::vec3(0.0f));
@@ -318,7 +327,34 @@ void PathTracer::updateFrameUniforms() {
   std::memcpy(frameUniforms_.mapped(), &f, sizeof(f));
 }
 
-void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
+uint32_t PathTracer::samplesPerLaunch() const {
+  if (settings_.aov || settings_.denoise || inspection_ || settings_.tileWidth || settings_.tileHeight)
+    return 1;
+  if (settings_.samplesPerLaunch != 0) return settings_.samplesPerLaunch;
+  if (ctx_.policy().compilesAtFirstDispatch) return 1;
+  const uint64_t pixels = uint64_t(settings_.width) * settings_.height;
+  return uint32_t(std::clamp<uint64_t>(((uint64_t(1) << 20) + pixels - 1) / pixels, 1, 16));
+}
+
+uint32_t PathTracer::recordBatch(VkCommandBuffer cmd, uint32_t samples) {
+  const uint32_t n = std::min(samplesPerLaunch(), std::max(samples, 1u));
+  if (n <= 1) {
+    record(cmd);
+    advance();
+    return 1;
+  }
+  const VkDeviceSize bytes = VkDeviceSize(settings_.width) * settings_.height * n * sizeof(glm::vec4);
+  if (sampleSlots_.size() < bytes) {
+    ctx_.waitIdle();  // the smaller buffer may be in flight
+    sampleSlots_ = vk::Buffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+    bindResources();
+  }
+  recordRegion(cmd, PixelRegion{0, 0, settings_.width, settings_.height}, n);
+  sampleIndex_ += n;
+  return n;
+}
+
+void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_t samples) {
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
   if (gpuScene_.emitterVersion() != emitterVersion_) bindResources();
   if (sampleIndex_ == 0 && r.x == 0 && r.y == 0) updateFrameUniforms();
@@ -347,8 +383,18 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
 
   pass_->bind(cmd);
   pass_->push(cmd, pc);
-  pass_->traceRays(cmd, r.width, r.height);
+  pass_->traceRays(cmd, r.width, r.height, samples);
   vk::memoryBarrier(cmd);
+  if (samples > 1) {
+    gpu::ResolveConstants rc{};
+    rc.imageSize = pc.imageSize;
+    rc.firstSample = sampleIndex_;
+    rc.samples = samples;
+    resolve_->bind(cmd);
+    resolve_->push(cmd, rc);
+    resolve_->dispatch(cmd, (r.width + 7) / 8, (r.height + 7) / 8);
+    vk::memoryBarrier(cmd);
+  }
 }
 
 void PathTracer::record(VkCommandBuffer cmd) {
@@ -404,27 +450,16 @@ eval::ImageRGBA PathTracer::readDenoised() const {
 }
 
 eval::ImageRGBA PathTracer::readEstimate() const {
-  eval::ImageRGBA img;
-  img.width = settings_.width;
-  img.height = settings_.height;
-  img.pixels = readAccumulation();
-  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-  return img;
+  return Renderer::readImage();
 }
 
 std::vector<float> PathTracer::readAccumulation() const {
-  auto bytes = accum_.download(VK_IMAGE_LAYOUT_GENERAL);
-  std::vector<float> out(bytes.size() / sizeof(float));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
+  return readFloatImage(accum_);
 }
 
 std::vector<float> PathTracer::readAov(Aov aov) const {
-  const auto bytes = aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL);
-  if (aov != Aov::Stats) return halvesToFloats(bytes);
-  std::vector<float> out(bytes.size() / sizeof(float));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
+  if (aov == Aov::Stats) return readFloatImage(aovImage(aov));
+  return halvesToFloats(aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL));
 }
 
 gpu::Counters PathTracer::readCounters() const {

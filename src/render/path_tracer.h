@@ -79,6 +79,11 @@ class PathTracer final : public Renderer {
   void resetAccumulation() override { sampleIndex_ = 0; }
   void record(VkCommandBuffer cmd) override;  // every tile of one sample (settings' tile size)
   void advance() override { ++sampleIndex_; }
+  uint32_t recordBatch(VkCommandBuffer cmd, uint32_t samples) override;
+  // Samples one launch traces for a whole-image sample: settings' samplesPerLaunch (default 1), or for 0 (the
+  // device's choice) 1 on a device that compiles at the first dispatch (a CPU is full at any size) and enough
+  // for ~2^20 invocations on a GPU (at most 16); always 1 with AOVs, the inspector or tiles.
+  uint32_t samplesPerLaunch() const;
   void recordCompileOnly(VkCommandBuffer cmd) override;
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
   const vk::Image& outputImage() const override { return accum_; }
@@ -95,7 +100,7 @@ class PathTracer final : public Renderer {
 
   // Records one sample for `region` into cmd (the window traces a sample in strips over several frames);
   // call advance() once every region of the image got this sample.
-  void recordRegion(VkCommandBuffer cmd, const PixelRegion& region);
+  void recordRegion(VkCommandBuffer cmd, const PixelRegion& region) { recordRegion(cmd, region, 1); }
   // Traces `samples` samples of pixel (x, y) alone from scratch, each submitted and waited for (the path
   // inspector without an image): the pixel gets the samples a full render gives it, the rest of the image
   // stays as it was. Returns each sample's wall time in seconds.
@@ -130,6 +135,8 @@ class PathTracer final : public Renderer {
   const vk::PipelineLayout& layout() const { return pass_->layout(); }
 
  private:
+  // `samples` > 1: a launch of that depth over the whole image, then the resolve pass.
+  void recordRegion(VkCommandBuffer cmd, const PixelRegion& region, uint32_t samples);
   void createImages();
   // Sets every resource the path tracer binds on its pass.
   void bindResources();
@@ -159,6 +166,9 @@ class PathTracer final : public Renderer {
   // Before pass_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<Pass> pass_;
+  // Accumulates the samples of a launch of several (not in passes(): a fixed part of the accumulation).
+  std::unique_ptr<Pass> resolve_;
+  vk::Buffer sampleSlots_;  // WB_BIND_SAMPLE_SLOTS, sized for the largest launch so far
   std::unique_ptr<Denoiser> denoiser_;
   vk::Image accum_, albedo_, normal_, info_, stats_;
   // The image sets of the last sizes left (a preview's, the full one's): going back to a size reuses its

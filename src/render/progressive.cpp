@@ -30,8 +30,7 @@ constexpr double kMinCoarsePixels = 256.0;
 
 }  // namespace
 
-ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, PathTracer& tracer)
-    : ctx_(ctx), tracer_(tracer) {
+ProgressiveTracer::ProgressiveTracer(vk::Context& ctx, PathTracer& tracer) : ctx_(ctx), tracer_(tracer) {
   targetWidth_ = tracer.settings().width;
   targetHeight_ = tracer.settings().height;
   preview_ = makePreviewImage(ctx, 1, 1);

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace wb::render {
@@ -13,17 +14,34 @@ CameraState cameraFromScene(const scene::Camera& camera) {
   return c;
 }
 
+std::vector<float> readFloatImage(const vk::Image& image) {
+  const auto bytes = image.download(VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<float> out(bytes.size() / sizeof(float));
+  std::memcpy(out.data(), bytes.data(), bytes.size());
+  return out;
+}
+
+eval::ImageRGBA Renderer::readImage() const {
+  eval::ImageRGBA img;
+  img.width = settings().width;
+  img.height = settings().height;
+  img.pixels = readFloatImage(outputImage());
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
 std::vector<double> Renderer::render(uint32_t samples, const Progress& progress) {
   std::vector<double> seconds;
   auto& ctx = context();
   const auto start = std::chrono::steady_clock::now();
-  for (uint32_t i = 0; i < samples; ++i) {
+  for (uint32_t i = 0; i < samples;) {
     const auto t0 = std::chrono::steady_clock::now();
-    ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
-    advance();
+    uint32_t n = 0;
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { n = recordBatch(cmd, samples - i); });
     const auto t1 = std::chrono::steady_clock::now();
-    seconds.push_back(std::chrono::duration<double>(t1 - t0).count());
-    if (progress && !progress(i + 1, std::chrono::duration<double>(t1 - start).count())) break;
+    seconds.insert(seconds.end(), n, std::chrono::duration<double>(t1 - t0).count() / n);
+    i += n;
+    if (progress && !progress(i, std::chrono::duration<double>(t1 - start).count())) break;
   }
   return seconds;
 }

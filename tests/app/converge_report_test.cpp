@@ -54,7 +54,7 @@ TEST(ConvergeReport, NamesAndNumbers) {
 
 namespace {
 
-Checkpoint measured(uint32_t spp, double seconds, double relMse, eval::Rgb mean) {
+Checkpoint measured(uint32_t spp, double seconds, double relMse, wb::eval::Rgb mean) {
   Checkpoint c = at({seconds}, {relMse});
   c.spp = spp;
   c.mse = {relMse};

@@ -137,6 +137,13 @@ TEST(LiveError, ReferenceSizes) {
   EXPECT_FALSE(e.latest());
   EXPECT_NE(e.error().find("50x50"), std::string::npos) << e.error();
   EXPECT_NE(e.error().find("48x32"), std::string::npos) << e.error();
+  // The size is checked when asked, before any point: the reason is there at once.
+  e.setReference(odd, "odd");
+  EXPECT_TRUE(e.error().empty());
+  EXPECT_FALSE(e.checkSize(img.width, img.height));
+  EXPECT_NE(e.error().find("50x50"), std::string::npos) << e.error();
+  EXPECT_TRUE(e.checkSize(25, 25));
+  EXPECT_FALSE(e.checkSize(0, 0));
   // A missing file.
   EXPECT_FALSE(e.loadReference("/nonexistent/ref.exr"));
   EXPECT_FALSE(e.error().empty());

@@ -273,7 +273,11 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
       ImGui::TableNextColumn();
       ImGui::Text("%.3g", v.distance);
       ImGui::TableNextColumn();
-      ImGui::Text("%c %.2f", v.lobe == WB_LOBE_SPECULAR ? 'S' : 'D', v.lobeProbability);
+      ImGui::Text("%c %.2f",
+                  v.lobe == WB_LOBE_SPECULAR    ? 'S'
+                  : v.lobe == WB_LOBE_REFLECTOR ? 'R'
+                                                : 'D',
+                  v.lobeProbability);
       ImGui::TableNextColumn();
       ImGui::Text("%.3g", v.pdf);
       ImGui::TableNextColumn();

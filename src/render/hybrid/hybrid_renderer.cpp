@@ -398,20 +398,8 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
   vk::memoryBarrier(cmd);
 }
 
-eval::ImageRGBA HybridRenderer::readImage() const {
-  eval::ImageRGBA img;
-  img.width = settings_.width;
-  img.height = settings_.height;
-  img.pixels = readOutput();
-  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
-  return img;
-}
-
 std::vector<float> HybridRenderer::readOutput() const {
-  auto bytes = output_.download(VK_IMAGE_LAYOUT_GENERAL);
-  std::vector<float> out(bytes.size() / sizeof(float));
-  std::memcpy(out.data(), bytes.data(), bytes.size());
-  return out;
+  return readFloatImage(output_);
 }
 
 std::vector<uint8_t> HybridRenderer::readShadowMask() const {

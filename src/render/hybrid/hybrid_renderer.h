@@ -60,7 +60,6 @@ class HybridRenderer final : public Renderer {
   uint32_t samplesAccumulated() const override { return frameIndex_; }
   // The composited linear radiance.
   const vk::Image& outputImage() const override { return output_; }
-  eval::ImageRGBA readImage() const override;
   std::vector<Pass*> passes() const override;
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
