@@ -10,6 +10,7 @@
 #define WB_DISPLAY_BIND_INFO 3     // rgba16f AOV: geometric normal, a = path vertices
 #define WB_DISPLAY_BIND_PREVIEW 4  // rgba32f low-resolution preview shown under rows not yet traced
 #define WB_DISPLAY_BIND_STATS 5    // rgba32f AOV: the heat maps' data (WB_BIND_AOV_STATS in shared/bindings.h)
+#define WB_DISPLAY_BIND_DENOISED 6  // rgba32f the denoised radiance (the accumulation when not denoising)
 
 // What the display shows (the Inspect panel's debug view). Switching never resets accumulation.
 #define WB_VIEW_BEAUTY 0u
@@ -42,7 +43,7 @@ struct DisplayPush {
   uint tracedRows;     // rows [0, tracedRows) hold the current sample; the rest show the preview
   float sceneScale;    // scene bounding radius (depth view)
   float maxVertices;   // bounce heat map full scale (max bounces + 1)
-  float pad0;
+  float denoiseSplit;  // < 0: the accumulation only; else the denoised image right of this fraction of the view
 };
 
 WB_NAMESPACE_END

@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/bench_denoise.h"
 #include "app/bench_roofline.h"
 #include "app/bench_window.h"
 #include "app/process.h"
@@ -461,13 +462,15 @@ void printSummary(const json& result, const std::string& cmdline) {
   if (result.contains("startup")) std::printf("start-up: %s\n", jsonText(result["startup"]).c_str());
   if (result.contains("hot_reload")) std::printf("hot reload: %s\n", jsonText(result["hot_reload"]).c_str());
   if (result.contains("window")) std::printf("window: %s\n", jsonText(result["window"]).c_str());
+  if (result.contains("denoise")) std::printf("denoise: %s\n", jsonText(result["denoise"]).c_str());
   std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
 }
 
 }  // namespace
 
 const std::vector<std::string>& BenchCommand::sectionNames() {
-  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes", "window"};
+  static const std::vector<std::string> names = {"pathtracer", "startup", "reload",
+                                                 "modes",      "window",  "denoise"};
   return names;
 }
 
@@ -492,7 +495,7 @@ void BenchCommand::addFlags(CLI::App& cli) {
          "none with --quick; above 512x512 skipped on a CPU device unless given)")
       ->delimiter(',');
   cli.add_option("--only", sections,
-                 "sections to run, comma or space separated: pathtracer,startup,reload,modes,window")
+                 "sections to run, comma or space separated: pathtracer,startup,reload,modes,window,denoise")
       ->delimiter(',')
       ->check(CLI::IsMember(sectionNames()));
 }
@@ -556,10 +559,16 @@ int BenchCommand::run() {
   wo.underLoad = !noLoad;
   wo.clicks = clicks >= 0 ? clicks : quick ? 8 : 12;
   wo.device = device;
-  const int steps = int(ptScenes.size()) * 2 + (has("pathtracer") ? int(rooflineSizes.size()) : 0) +
-                    (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) +
-                    (has("modes") ? int(mScenes.size()) * 4 + 3 : 0) +
-                    (has("window") ? windowBenchSteps(wo) : 0);
+  DenoiseBenchOptions dno;
+  dno.width = w;
+  dno.height = h;
+  dno.repeats = repeats;
+  dno.quick = quick;
+  dno.device = device;
+  const int steps =
+      int(ptScenes.size()) * 2 + (has("pathtracer") ? int(rooflineSizes.size()) : 0) +
+      (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) + (has("modes") ? int(mScenes.size()) * 4 + 3 : 0) +
+      (has("window") ? windowBenchSteps(wo) : 0) + (has("denoise") ? denoiseBenchSteps(dno) : 0);
   StepProgress progress("bench", steps);
   try {
     if (has("pathtracer")) {
@@ -593,6 +602,11 @@ int BenchCommand::run() {
       result["window"] = benchWindow(wo, work, ownMesaCache, progress);
       result["device"] = result["window"]["device"];
       result["driver"] = result["window"]["driver"];
+    }
+    if (has("denoise")) {
+      result["denoise"] = benchDenoise(dno, progress);
+      result["device"] = result["denoise"]["cost"][0]["device"];
+      result["driver"] = result["denoise"]["cost"][0]["driver"];
     }
     result["peak_rss_mb"] = peakRssMb();
   } catch (const std::exception& e) {

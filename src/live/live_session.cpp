@@ -117,6 +117,14 @@ void LiveSession::apply(bool waitForMode) {
       settingsChanged = true;
     }
   }
+  if (s.denoise != tracer.settings().denoise) {
+    // A filter of the accumulation: toggling it restarts nothing (the window writes the AOVs it reads).
+    const bool made = tracer.denoiser() != nullptr;
+    render::RenderSettings ts = tracer.settings();
+    ts.denoise = s.denoise;
+    tracer.setSettings(ts);
+    if (!made && tracer.denoiser()) loop_->hot().addRenderer(tracer);  // its passes hot-reload too
+  }
   if (settingsChanged) {
     tracer.setFeatures(render::featuresFor(session_->scene(), s));
     progressive_->setSettings(s);
@@ -333,6 +341,19 @@ uint64_t LiveSession::recordTrace(VkCommandBuffer cmd) {
   return uint64_t(hybrid->settings().width) * hybrid->settings().height;
 }
 
+bool LiveSession::denoiseShown() const {
+  const auto& tracer = session_->pathTracer();
+  return !session_->hybrid() && tracer.settings().denoise && tracer.denoiser() &&
+         !progressive_->inPreview() && (progressive_->samples() > 0 || progressive_->cursorRow() > 0);
+}
+
+void LiveSession::recordDenoise(VkCommandBuffer cmd) const {
+  if (!denoiseShown()) return;
+  const auto& tracer = session_->pathTracer();
+  tracer.recordDenoise(cmd,
+                       progressive_->samples() == 0 ? progressive_->cursorRow() : tracer.settings().height);
+}
+
 void LiveSession::traceTimed(uint64_t pixels, double ms) {
   if (!lastTraceHybrid_) progressive_->reportTraceTime(pixels, ms);
   if (progressive_->generation() != traceGeneration_) {
@@ -440,6 +461,7 @@ DisplayFrame LiveSession::displayFrame() const {
     return d;
   }
   d.radiance = tracer.accumulationImage().view();
+  if (denoiseShown()) d.denoised = tracer.denoiser()->output().view();
   d.imageSize = {tracer.settings().width, tracer.settings().height};
   const bool usePreview = progressive_->previewValid() && progressive_->samples() == 0;
   if (usePreview)
@@ -466,7 +488,8 @@ void LiveSession::updateLiveError() {
   }
   const uint32_t n = samples();
   const double seconds = secondsSinceReset();
-  if (liveError_.wants(n, seconds)) liveError_.add(image(), n, seconds);
+  // The estimator's own image (never the denoised one): the error estimate models its noise.
+  if (liveError_.wants(n, seconds)) liveError_.add(session_->renderer().readEstimate(), n, seconds);
 }
 
 void LiveSession::updateInspection() {

@@ -34,6 +34,8 @@ struct DisplayFrame {
   VkImageView radiance = VK_NULL_HANDLE;  // linear radiance of the mode shown
   VkImageView albedo = VK_NULL_HANDLE, normal = VK_NULL_HANDLE, info = VK_NULL_HANDLE, stats = VK_NULL_HANDLE;
   VkImageView preview = VK_NULL_HANDLE;
+  // The denoised radiance (the path tracer with denoise on, once recordDenoise() records it), else null.
+  VkImageView denoised = VK_NULL_HANDLE;
   glm::uvec2 imageSize{1u};
   glm::uvec2 previewSize{0u};  // 0: no preview under the rows not traced yet
   uint32_t tracedRows = 0;     // rows of the current sample traced so far (the rest shows the preview)
@@ -81,6 +83,10 @@ class LiveSession {
   // work is done (completed reloads, counters, running error, inspector records).
   void beginFrame();
   uint64_t recordTrace(VkCommandBuffer cmd);
+  // After recordTrace() in a frame that is shown: the denoiser over the accumulation when denoise is on and a
+  // sample is (partly) traced; displayFrame().denoised is then its output.
+  void recordDenoise(VkCommandBuffer cmd) const;
+  bool denoiseShown() const;
   void traceTimed(uint64_t pixels, double ms);
   void frameFinished(Clock::time_point frameBegin);
   // After a trace-only submission finished (no reload completes with it): counters and running error.

@@ -140,6 +140,12 @@ std::vector<ParameterInfo> makeList() {
       kPathTraceMode, [](P& p) -> SamplerKind& { return p.render.sampler; }));
   l.push_back(unsignedInt("seed", "Render", "seed", "random seed", 0, 4294967295.0, 0, 0, kAllModes,
                           [](P& p) -> uint32_t& { return p.render.seed; }));
+  l.push_back(
+      boolean("denoise", "--denoise", true, "Render", "denoise",
+              "denoise the path tracer's image (edge-avoiding a-trous guided by albedo, normal, depth "
+              "and variance; hands over to the raw image as samples accumulate; the window: on)",
+              kPathTraceMode, [](P& p) -> bool& { return p.render.denoise; }));
+  l.back().resetsAccumulation = false;  // a filter of the accumulation: part of no reference's key
   l.push_back(boolean("generic", "--generic", true, "Render", "generic shaders",
                       "all-features shaders instead of the scene-specialised build", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.generic; }));
@@ -206,6 +212,13 @@ std::vector<ParameterInfo> makeList() {
   view.resetsAccumulation = false;
   view.flag.clear();  // window only (`--set view=...`)
   l.push_back(view);
+  l.push_back(
+      real("denoise_split", "Display", "split raw | denoised",
+           "the window with denoise on: raw image left of this fraction of the view, denoised right of "
+           "it (0: all denoised)",
+           0, 1, 0, 1, kPathTraceMode, [](P& p) -> float& { return p.display.denoiseSplit; }));
+  l.back().resetsAccumulation = false;
+  l.back().flag.clear();  // window only (`--set denoise_split=0.5`)
   return l;
 }
 

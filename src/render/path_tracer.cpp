@@ -78,6 +78,29 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   bindResources();
   resolve_->rebuild();
   setFeatures(features);
+  makeDenoiser();
+}
+
+void PathTracer::makeDenoiser() {
+  if (!settings_.denoise || denoiser_) return;
+  denoiser_ = std::make_unique<Denoiser>(ctx_, library_);
+  bindResources();
+}
+
+std::vector<Pass*> PathTracer::passes() const {
+  std::vector<Pass*> out{pass_.get()};
+  if (denoiser_)
+    for (Pass* p : denoiser_->passes()) out.push_back(p);
+  return out;
+}
+
+void PathTracer::recordDenoise(VkCommandBuffer cmd, uint32_t rows) const {
+  if (denoiser_) denoiser_->record(cmd, rows);
+}
+
+void PathTracer::recordCompileOnly(VkCommandBuffer cmd) {
+  recordRegion(cmd, PixelRegion{});
+  if (denoiser_) denoiser_->recordCompileOnly(cmd);
 }
 
 bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
@@ -240,6 +263,10 @@ void PathTracer::bindResources() {
   p.setBuffer("InspectHeaderBlock", inspectHeader_);
   p.setBuffer("InspectSampleBlock", inspectSamples_);
   p.setBuffer("InspectVertexBlock", inspectVertices_);
+  if (denoiser_) {
+    denoiser_->resize(settings_.width, settings_.height);
+    denoiser_->setInputs({accum_.view(), albedo_.view(), normal_.view(), stats_.view()});
+  }
   p.setBuffer("SampleSlotBlock", sampleSlots_);
   resolve_->setStorageImage("accumImage", accum_.view());
   resolve_->setBuffer("SampleSlotBlock", sampleSlots_);
@@ -261,7 +288,18 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   const bool inspectResized =
       inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
   const bool sunChanged = settings.sunAngleDeg != settings_.sunAngleDeg;
+  // Denoising filters the accumulation without changing it: turning it on or off restarts nothing, unless
+  // the AOVs it reads were not being written.
+  RenderSettings sameDenoise = settings;
+  sameDenoise.denoise = settings_.denoise;
+  const bool onlyDenoise = sameDenoise == settings_;
+  const bool aovsWritten = settings_.aov || settings_.denoise;
   settings_ = settings;
+  makeDenoiser();
+  if (onlyDenoise) {
+    if (!aovsWritten) sampleIndex_ = 0;
+    return;
+  }
   if (sunChanged) uploadLights();
   if (resized || inspectResized) {
     ctx_.waitIdle();
@@ -320,7 +358,8 @@ void PathTracer::updateFrameUniforms() {
 }
 
 uint32_t PathTracer::samplesPerLaunch() const {
-  if (settings_.aov || inspection_ || settings_.tileWidth || settings_.tileHeight) return 1;
+  if (settings_.aov || settings_.denoise || inspection_ || settings_.tileWidth || settings_.tileHeight)
+    return 1;
   if (settings_.samplesPerLaunch != 0) return settings_.samplesPerLaunch;
   if (ctx_.policy().compilesAtFirstDispatch) return 1;
   const uint64_t pixels = uint64_t(settings_.width) * settings_.height;
@@ -365,7 +404,8 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_
   pc.flags = (settings_.sampler == SamplerKind::Pcg ? WB_FLAG_SAMPLER_PCG : 0u) |
              (settings_.sampler == SamplerKind::Owen ? WB_FLAG_SAMPLER_OWEN : 0u) |
              (settings_.nee ? 0u : WB_FLAG_NO_NEE) | (settings_.mis ? 0u : WB_FLAG_NO_BRDF_MIS) |
-             (settings_.russianRoulette ? 0u : WB_FLAG_NO_RR) | (settings_.aov ? WB_FLAG_AOV : 0u);
+             (settings_.russianRoulette ? 0u : WB_FLAG_NO_RR) |
+             (settings_.aov || settings_.denoise ? WB_FLAG_AOV : 0u);
   pc.seed = settings_.seed;
   pc.debugView = settings_.debugView;
   pc.tileOffset = glm::uvec2(r.x, r.y);
@@ -411,6 +451,36 @@ std::vector<double> PathTracer::renderPixel(uint32_t x, uint32_t y, uint32_t sam
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   return seconds;
+}
+
+double PathTracer::denoise() {
+  if (!denoiser_) {
+    denoiser_ = std::make_unique<Denoiser>(ctx_, library_);
+    bindResources();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) { denoiser_->record(cmd); });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+eval::ImageRGBA PathTracer::readImage() const {
+  if (!settings_.denoise || !denoiser_) return readEstimate();
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) { denoiser_->record(cmd); });
+  return readDenoised();
+}
+
+eval::ImageRGBA PathTracer::readDenoised() const {
+  if (!denoiser_) throw std::logic_error("readDenoised: the denoiser has not run");
+  eval::ImageRGBA img;
+  img.width = settings_.width;
+  img.height = settings_.height;
+  img.pixels = denoiser_->readOutput();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
+eval::ImageRGBA PathTracer::readEstimate() const {
+  return Renderer::readImage();
 }
 
 std::vector<float> PathTracer::readAccumulation() const {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "render/denoiser.h"
 #include "render/renderer.h"
 #include "scene/features.h"
 #include "vk/pipeline_layout.h"
@@ -83,10 +84,15 @@ class PathTracer final : public Renderer {
   // device's choice) 1 on a device that compiles at the first dispatch (a CPU is full at any size) and enough
   // for ~2^20 invocations on a GPU (at most 16); always 1 with AOVs, the inspector or tiles.
   uint32_t samplesPerLaunch() const;
-  void recordCompileOnly(VkCommandBuffer cmd) override { recordRegion(cmd, PixelRegion{}); }
+  void recordCompileOnly(VkCommandBuffer cmd) override;
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
   const vk::Image& outputImage() const override { return accum_; }
-  std::vector<Pass*> passes() const override { return {pass_.get()}; }
+  // The denoised image when settings().denoise, else the accumulation (waits for the device; alpha = 1).
+  eval::ImageRGBA readImage() const override;
+  // The accumulation, never denoised: the estimator's image (alpha = 1).
+  eval::ImageRGBA readEstimate() const override;
+  // The path tracer's pass, then the denoiser's once it is made (settings().denoise made it).
+  std::vector<Pass*> passes() const override;
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   gpu::Counters readCounters() const override;
@@ -105,6 +111,17 @@ class PathTracer final : public Renderer {
   // per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.
   const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
   bool pipelineLinked() const { return pass_->pipeline().rayTracing->linked(); }
+
+  // The denoiser, made the first time settings().denoise is on (nullptr before); it filters the current
+  // accumulation into denoiser()->output() when recorded.
+  const Denoiser* denoiser() const { return denoiser_.get(); }
+  Denoiser* denoiser() { return denoiser_.get(); }
+  // Records the denoiser over the accumulation (rows [0, rows) hold the current samples; see Denoiser).
+  void recordDenoise(VkCommandBuffer cmd, uint32_t rows = ~0u) const;
+  // Runs the denoiser over the accumulation, submitted and waited for (makes it if none is made); returns
+  // its wall time in seconds. readDenoised() then reads its output (alpha = 1).
+  double denoise();
+  eval::ImageRGBA readDenoised() const;
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
@@ -135,6 +152,8 @@ class PathTracer final : public Renderer {
   // Makes the program for (features, inspect) current, registering it on first use; rebuilds the pipeline.
   void useVariant(const scene::SceneFeatures& features, bool inspect);
   void createInspectBuffers();
+  // Makes the denoiser when settings_.denoise asks for it and none is made.
+  void makeDenoiser();
   // Writes the lights as the shaders shade them (the sun angle of the settings applied) when they changed.
   void uploadLights();
 
@@ -158,6 +177,7 @@ class PathTracer final : public Renderer {
   // Accumulates the samples of a launch of several (not in passes(): a fixed part of the accumulation).
   std::unique_ptr<Pass> resolve_;
   vk::Buffer sampleSlots_;  // WB_BIND_SAMPLE_SLOTS, sized for the largest launch so far
+  std::unique_ptr<Denoiser> denoiser_;
   vk::Image accum_, albedo_, normal_, info_, stats_;
   // The image sets of the last sizes left (a preview's, the full one's): going back to a size reuses its
   // memory, already touched, instead of allocating and touching it anew (a CPU device pays for the first

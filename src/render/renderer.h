@@ -85,7 +85,10 @@ class Renderer {
   // Linear radiance (RGBA32F storage image, GENERAL layout), for a display pass.
   virtual const vk::Image& outputImage() const = 0;
   // The same read back (waits for the device); alpha = 1.
-  eval::ImageRGBA readImage() const;
+  virtual eval::ImageRGBA readImage() const;
+  // The estimator's own image, before any filter of its output (the path tracer's denoiser): what the A/B
+  // comparison judges. The same as readImage() for a renderer without one.
+  virtual eval::ImageRGBA readEstimate() const { return readImage(); }
 
   // Its passes, in a fixed order: a renderer made with makeLike() lists the same passes in the same order
   // (the live-edit loop, the JIT warm-up and the A/B comparison address a pass by its index).

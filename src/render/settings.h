@@ -38,6 +38,9 @@ struct RenderSettings {
   SamplerKind sampler = SamplerKind::Owen;
   uint32_t seed = 0;
   bool aov = false;  // albedo + normal AOVs
+  // The path tracer's image is denoised (render/denoiser.h; the AOVs are written for it): what readImage()
+  // returns and the window shows. The accumulation itself, the inspector and A/B stay raw.
+  bool denoise = false;
   uint32_t debugView = 0;
   // Dispatch shape of a headless sample: tiles of this size (0 = the whole image in one vkCmdTraceRaysKHR).
   uint32_t tileWidth = 0, tileHeight = 0;
@@ -57,6 +60,8 @@ struct RenderSettings {
   // The directional lights' angular diameter in degrees, in every mode (`--sun-angle`, scene::withSunAngle):
   // 0 makes them delta lights, a negative value keeps the scene's (glTF lights are delta lights).
   float sunAngleDeg = -1.0f;
+
+  bool operator==(const RenderSettings&) const = default;
 };
 
 }  // namespace wb::render

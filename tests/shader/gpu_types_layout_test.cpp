@@ -11,6 +11,7 @@
 #include "common/paths.h"
 #include "display/display_types.h"
 #include "shader/library.h"
+#include "shared/denoise_types.h"
 #include "shared/hybrid_types.h"
 #include "shared/inspect_types.h"
 #include "shared/pathtracer_types.h"
@@ -113,6 +114,15 @@ TEST(GpuTypesLayout, PathInspectorBlocksMatchTheHostStructs) {
   EXPECT_TRUE(raygen.count("InspectSampleBlock") && raygen.count("InspectHeaderBlock"));
   // The normal build declares none of them.
   EXPECT_FALSE(moduleBlocks("pathtracer/raygen.rgen").count("InspectSampleBlock"));
+}
+
+TEST(GpuTypesLayout, DenoiserPushConstantsMatchTheHostStruct) {
+  for (const char* stage :
+       {"denoise/prepare.comp", "denoise/variance.comp", "denoise/atrous.comp", "denoise/final.comp"}) {
+    const auto blocks = moduleBlocks(stage);
+    ASSERT_TRUE(blocks.count("PushBlock")) << stage;
+    EXPECT_EQ(blocks.at("PushBlock"), sizeof(wb::gpu::DenoisePush)) << stage;
+  }
 }
 
 TEST(GpuTypesLayout, RooflineBlocksMatchTheHostStructs) {

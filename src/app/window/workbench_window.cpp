@@ -39,6 +39,7 @@ live::LiveSession::Options sessionOptions(GLFWwindow* window, const WindowOption
   live::LiveSession::Options so;
   auto& st = so.state;
   st.params = o.render.params;
+  st.params.render.denoise = true;  // the window's view is denoised (the panel's toggle, `--set denoise=0`)
   // The target spp: --spp when given, else keep refining.
   st.params.render.spp = o.render.flags.given("spp") ? o.render.params.render.spp : 0;
   st.resolutionScale = o.scale;
@@ -288,7 +289,7 @@ void WorkbenchWindow::drawFrame(float dt) {
   }
   session_->beginFrame();
   const live::DisplayFrame d = session_->displayFrame();
-  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats});
+  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.denoised});
 
   const Rect image = imageRect(view);
   gpu::DisplayPush push{};
@@ -302,18 +303,24 @@ void WorkbenchWindow::drawFrame(float dt) {
   push.tracedRows = d.tracedRows;
   push.sceneScale = sceneRadius(session_->render().scene());
   push.maxVertices = d.maxVertices;
+  push.denoiseSplit = d.denoised ? st.params.display.denoiseSplit : -1.0f;
 
   const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
   std::string screenshot;
   if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty()))
     screenshot = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
   // After a click or a key the next frames redraw without tracing (their effect is on screen a display pass
-  // later), unless the image has nothing to show yet.
+  // later), unless the image has nothing to show yet. The denoiser runs only in frames that traced: a
+  // redraw shows its last output.
   const bool trace = redrawOnlyFrames_ == 0 || !session_->imageStarted();
   if (redrawOnlyFrames_ > 0) --redrawOnlyFrames_;
-  if (!presenter_->present([&](VkCommandBuffer cmd) { return trace ? session_->recordTrace(cmd) : 0; }, push,
-                           screenshot))
-    return;
+  const auto traceAndDenoise = [&](VkCommandBuffer cmd) -> uint64_t {
+    if (!trace) return 0;
+    const uint64_t traced = session_->recordTrace(cmd);
+    session_->recordDenoise(cmd);
+    return traced;
+  };
+  if (!presenter_->present(traceAndDenoise, push, screenshot)) return;
   screenshotPath_.clear();
   clicksInFlight_ += clicks;
   lastPresent_ = Clock::now();
