@@ -168,12 +168,15 @@ void runWindow(const PrivateRoot& pr, const std::string& script, const std::vect
                              std::to_string(child.exitStatus) + ":\n" + readText(log));
 }
 
-// Paths per second of the headless path tracer at the window's trace size, after a warm-up.
-double headlessPathsPerSecond(uint32_t w, uint32_t h, int samples, const std::string& device, json& info) {
+// Paths per second of the headless path tracer at the window's trace size, after a warm-up; `denoise` as the
+// window's setting (the denoiser's inputs are then written with every sample, as in the window).
+double headlessPathsPerSecond(uint32_t w, uint32_t h, bool denoise, int samples, const std::string& device,
+                              json& info) {
   render::SessionOptions o;
   o.scenePath = defaultScenePath().string();
   o.settings.width = w;
   o.settings.height = h;
+  o.settings.denoise = denoise;
   o.context.deviceName = device;
   o.quiet = true;
   render::RenderSession s(o);
@@ -362,7 +365,9 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
                   {"trace_size", std::to_string(traceW) + "x" + std::to_string(traceH)},
                   {"present_mode", jb["present_mode"]},
                   {"trace_budget_ms", jb["trace_budget_ms"]}};
-    headlessRates.push_back(headlessPathsPerSecond(traceW, traceH, o.samples, o.device, result));
+    const bool denoise = jb["parameters"]["denoise"].get<bool>();
+    windowInfo["denoise"] = denoise;
+    headlessRates.push_back(headlessPathsPerSecond(traceW, traceH, denoise, o.samples, o.device, result));
     ratios.push_back(windowRates.back() / headlessRates.back());
   }
   result["window"] = windowInfo;
@@ -489,8 +494,9 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
   }
   result["what"] =
       "window: the README's run command (default window size) under a script, on the display or on Xvfb; "
-      "headless: the path tracer in this process at the window's trace size; ratios are medians of rounds "
-      "that alternate the two. Edit: a closest-hit constant changed; first frame: the first frame drawn with "
+      "headless: the path tracer in this process at the window's trace size and denoise setting (with "
+      "denoise on, the denoiser's inputs are written every sample on both sides; the window's own denoiser "
+      "runs count against the window); ratios are medians of rounds that alternate the two. Edit: a closest-hit constant changed; first frame: the first frame drawn with "
       "the new pipeline; pipeline build: the driver's build of it (warm-up included), from the same reload. "
       "Click to screen: from just before xdotool starts (its start-up included) to the end of the frame that "
       "drew the click's effect, clicks 1.5 s apart while the image converges.";

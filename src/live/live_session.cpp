@@ -281,6 +281,7 @@ void LiveSession::beginFrame() {
   // the comparison says what becomes of it (Revert or an identical image take it back); otherwise nothing
   // parked (another size's accumulation) belongs to the new pipeline.
   const auto& installed = loop_->hot().lastInstalled();
+  if (reload) denoised_ = {};  // a new pipeline (the denoiser's own too) makes the output stale
   if (reload && std::any_of(installed.begin(), installed.end(),
                             [&](const auto& ip) { return ip.owner == &session_->pathTracer(); })) {
     if (ab_.enabled && !session_->hybrid()) {
@@ -341,17 +342,50 @@ uint64_t LiveSession::recordTrace(VkCommandBuffer cmd) {
   return uint64_t(hybrid->settings().width) * hybrid->settings().height;
 }
 
-bool LiveSession::denoiseShown() const {
+bool LiveSession::denoiseValid() const {
   const auto& tracer = session_->pathTracer();
-  return !session_->hybrid() && tracer.settings().denoise && tracer.denoiser() &&
-         !progressive_->inPreview() && (progressive_->samples() > 0 || progressive_->cursorRow() > 0);
+  return tracer.denoiser() && denoised_.generation == progressive_->generation() &&
+         denoised_.width == tracer.settings().width && denoised_.height == tracer.settings().height;
 }
 
-void LiveSession::recordDenoise(VkCommandBuffer cmd) const {
-  if (!denoiseShown()) return;
+void LiveSession::planDenoise(bool frameTraces) {
+  const auto& tracer = session_->pathTracer();
+  denoiseThisFrame_ = false;
+  if (!frameTraces || session_->hybrid() || !tracer.settings().denoise || !tracer.denoiser() ||
+      progressive_->inPreview() || progressive_->samples() == 0)
+    return;
+  if (!denoiseValid()) {
+    denoiseThisFrame_ = true;
+    return;
+  }
+  if (progressive_->samples() == denoised_.samples) return;  // nothing new since (paused, or a slow sample)
+  const double sinceMs = std::chrono::duration<double, std::milli>(Clock::now() - denoised_.at).count();
+  denoiseThisFrame_ = sinceMs >= denoised_.ms * (1.0 / kDenoiseShare - 1.0);
+}
+
+bool LiveSession::denoiseShown() const {
+  const auto& tracer = session_->pathTracer();
+  return !session_->hybrid() && tracer.settings().denoise && (denoiseThisFrame_ || denoiseValid());
+}
+
+void LiveSession::recordDenoise(VkCommandBuffer cmd) {
+  if (!denoiseThisFrame_) return;
   const auto& tracer = session_->pathTracer();
   tracer.recordDenoise(cmd,
                        progressive_->samples() == 0 ? progressive_->cursorRow() : tracer.settings().height);
+  denoised_.generation = progressive_->generation();
+  denoised_.width = tracer.settings().width;
+  denoised_.height = tracer.settings().height;
+  denoised_.samples = progressive_->samples();
+  denoised_.at = Clock::now();
+  denoiseThisFrame_ = false;
+  denoiseInFlight_ = true;
+  ++denoiseRuns_;
+}
+
+void LiveSession::denoiseTimed(double ms) {
+  if (denoiseInFlight_) denoised_.ms = ms;
+  denoiseInFlight_ = false;
 }
 
 void LiveSession::traceTimed(uint64_t pixels, double ms) {

@@ -83,10 +83,19 @@ class LiveSession {
   // work is done (completed reloads, counters, running error, inspector records).
   void beginFrame();
   uint64_t recordTrace(VkCommandBuffer cmd);
-  // After recordTrace() in a frame that is shown: the denoiser over the accumulation when denoise is on and a
-  // sample is (partly) traced; displayFrame().denoised is then its output.
-  void recordDenoise(VkCommandBuffer cmd) const;
+  // The denoiser of a shown frame (path tracer, denoise on). planDenoise() after beginFrame() decides whether
+  // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces, and then
+  // as new samples arrive, no more often than keeps the denoiser at kDenoiseShare of the time (the last
+  // output is shown meanwhile; it is of the same image, with fewer samples). While the first sample is
+  // traced in strips, the raw rows are shown. recordDenoise() after recordTrace() records the planned run;
+  // denoiseTimed() takes its measured GPU time. displayFrame().denoised is the output when it is (or becomes
+  // in this frame) the current image's.
+  static constexpr double kDenoiseShare = 0.05;
+  void planDenoise(bool frameTraces);
+  void recordDenoise(VkCommandBuffer cmd);
+  void denoiseTimed(double ms);
   bool denoiseShown() const;
+  uint64_t denoiseRuns() const { return denoiseRuns_; }
   void traceTimed(uint64_t pixels, double ms);
   void frameFinished(Clock::time_point frameBegin);
   // After a trace-only submission finished (no reload completes with it): counters and running error.
@@ -169,6 +178,17 @@ class LiveSession {
   uint32_t hybridFramesSeen_ = 0;
   Clock::time_point hybridReset_ = Clock::now();
   bool lastTraceHybrid_ = false;
+  // The denoiser's output: of which accumulation (generation, size, samples), when it was recorded and what
+  // it cost; whether this frame denoises (planDenoise) and whether the frame in flight did.
+  struct Denoised {
+    uint64_t generation = ~0ull;
+    uint32_t width = 0, height = 0, samples = 0;
+    Clock::time_point at{};
+    double ms = 0;
+  } denoised_;
+  bool denoiseThisFrame_ = false, denoiseInFlight_ = false;
+  uint64_t denoiseRuns_ = 0;
+  bool denoiseValid() const;
   uint64_t traceGeneration_ = 0;
   double traceSeconds_ = 0;
   gpu::Counters counters_{};

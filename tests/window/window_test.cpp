@@ -894,3 +894,25 @@ TEST(Window, DenoiseToggleAndSplitView) {
   EXPECT_GT(denColumns, toRaw.size() / 5) << "denoised columns on the right of the split";
   EXPECT_LT(lastRaw, firstDen) << "raw left of the split, denoised right of it";
 }
+
+// The window's denoiser runs when the image gains samples, not every frame: paused, frame after frame shows the
+// same output and filters nothing again; its GPU time is measured apart from the trace's (the trace's time
+// paces the strips).
+TEST(Window, DenoiserRunsOnlyForNewSamples) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("denoise_runs");
+  const auto a = dir / "a.json", b = dir / "b.json", c = dir / "c.json";
+  writeFile(dir / "s.txt", "wait_samples 2 300\nset paused 1\nframes 3\nstats " + a.string() +
+                               "\nframes 12\nstats " + b.string() + "\nset paused 0\nwait_samples 4 300\nframes 3\n" +
+                               "stats " + c.string() + "\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto ja = readJson(a), jb = readJson(b), jc = readJson(c);
+  EXPECT_GE(ja["denoise_runs"].get<int>(), 1) << "the denoiser ran once the image had a whole sample";
+  EXPECT_EQ(jb["denoise_runs"], ja["denoise_runs"]) << "twelve frames of a paused image filter nothing again";
+  EXPECT_GT(jb["frames"].get<int>(), ja["frames"].get<int>() + 10);
+  EXPECT_GT(ja["denoise_gpu_ms_last"].get<double>(), 0.0);
+  EXPECT_GE(jc["samples"].get<int>(), 4);
+  EXPECT_GE(jc["denoise_runs"].get<int>(), ja["denoise_runs"].get<int>()) << jc.dump();
+}
+

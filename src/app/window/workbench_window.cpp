@@ -148,6 +148,8 @@ void WorkbenchWindow::writeStats(const std::string& path) {
       {"last", frames_.last()},           {"mean", frames_.mean()}, {"p50", frames_.percentile(0.5f)},
       {"p95", frames_.percentile(0.95f)}, {"max", frames_.max()},   {"count", frames_.count()}};
   j["trace_gpu_ms_last"] = presenter_->traceMs();
+  j["denoise_gpu_ms_last"] = presenter_->afterTraceMs();
+  j["denoise_runs"] = session_->denoiseRuns();
   j["display_gpu_ms_last"] = presenter_->displayMs();
   j["parameters"] = parametersJson(*session_, input_->camera());
   writeJsonFile(path, j, "stats");
@@ -166,6 +168,7 @@ bool WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
       std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
   for (; clicksInFlight_ > 0; --clicksInFlight_) clickScreenNs_.push_back(now);
   session_->traceTimed(presenter_->tracedPixels(), presenter_->traceMs());
+  session_->denoiseTimed(presenter_->afterTraceMs());
   session_->frameFinished(frameBegin);
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
   // cores: the panel and the present cost CPU time besides the trace budget.
@@ -288,6 +291,11 @@ void WorkbenchWindow::drawFrame(float dt) {
     st.saveRequest.reset();
   }
   session_->beginFrame();
+  // After a click or a key the next frames redraw without tracing (their effect is on screen a display pass
+  // later), unless the image has nothing to show yet. The denoiser runs only in frames that trace.
+  const bool trace = redrawOnlyFrames_ == 0 || !session_->imageStarted();
+  if (redrawOnlyFrames_ > 0) --redrawOnlyFrames_;
+  session_->planDenoise(trace);
   const live::DisplayFrame d = session_->displayFrame();
   presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.denoised});
 
@@ -309,18 +317,11 @@ void WorkbenchWindow::drawFrame(float dt) {
   std::string screenshot;
   if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty()))
     screenshot = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
-  // After a click or a key the next frames redraw without tracing (their effect is on screen a display pass
-  // later), unless the image has nothing to show yet. The denoiser runs only in frames that traced: a
-  // redraw shows its last output.
-  const bool trace = redrawOnlyFrames_ == 0 || !session_->imageStarted();
-  if (redrawOnlyFrames_ > 0) --redrawOnlyFrames_;
-  const auto traceAndDenoise = [&](VkCommandBuffer cmd) -> uint64_t {
-    if (!trace) return 0;
-    const uint64_t traced = session_->recordTrace(cmd);
-    session_->recordDenoise(cmd);
-    return traced;
+  const auto recordTrace = [&](VkCommandBuffer cmd) -> uint64_t {
+    return trace ? session_->recordTrace(cmd) : 0;
   };
-  if (!presenter_->present(traceAndDenoise, push, screenshot)) return;
+  const auto recordDenoise = [&](VkCommandBuffer cmd) { session_->recordDenoise(cmd); };
+  if (!presenter_->present(recordTrace, recordDenoise, push, screenshot)) return;
   screenshotPath_.clear();
   clicksInFlight_ += clicks;
   lastPresent_ = Clock::now();
