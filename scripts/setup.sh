@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# Installs every system package the workbench needs, from scratch, idempotently. Run as root.
+# Installs every system package the workbench needs, from scratch, idempotently. As root, or through sudo.
 # Vulkan ray tracing on lavapipe needs Mesa >= 24.1; Debian 12 ships 22.3, so mesa-vulkan-drivers
 # comes from bookworm-backports on the same mirror as the machine's existing Debian sources.
 # slurm-wlm and munge: the single-node cluster of the sweep tests (scripts/slurm-local.sh).
 set -euo pipefail
 
+# As root directly (a fresh container has no sudo), else through sudo.
 if [ "$(id -u)" -ne 0 ]; then
-  echo "setup.sh: must run as root (it installs Debian packages): run it as root, or with sudo where there is one" >&2
+  if command -v sudo >/dev/null 2>&1; then exec sudo bash "$0" "$@"; fi
+  echo "setup.sh: installing the system packages needs root, and there is no sudo: run this as root" >&2
   exit 1
 fi
 

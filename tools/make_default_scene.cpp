@@ -1,6 +1,7 @@
 // Generates the workbench's default scene: a Cornell-style room (open at z = +1) with four spheres of
 // different roughness/metalness, an alpha-masked leaf, an emissive ceiling panel and a sun shining in through
-// the opening. Usage: make_default_scene [output dir]   (default: the project's assets/ folder)
+// the opening; and the sunlit glossy scene (writeSunlitScene). Usage: make_default_scene [output dir]
+// (default: the project's assets/ folder)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -219,6 +220,75 @@ json quaternionJson(const glm::quat& q) {
   return {q.x, q.y, q.z, q.w};
 }
 
+// A directional light (KHR_lights_punctual, the document's only light) shining along `direction`; returns its
+// node.
+int addSun(GltfWriter& gltf, glm::vec3 direction, json colour, double intensity) {
+  const glm::vec3 zAxis = -glm::normalize(direction);  // the node's -Z is the light's direction
+  const glm::vec3 xAxis = glm::normalize(glm::cross(glm::vec3(0, 1, 0), zAxis));
+  const glm::vec3 yAxis = glm::cross(zAxis, xAxis);
+  const glm::quat rotation = glm::normalize(glm::quat_cast(glm::mat3(xAxis, yAxis, zAxis)));
+  gltf.doc["extensions"] = {
+      {"KHR_lights_punctual",
+       {{"lights",
+         {{{"name", "sun"}, {"type", "directional"}, {"color", colour}, {"intensity", intensity}}}}}}};
+  return gltf.addNode({{"name", "sun"},
+                       {"rotation", quaternionJson(rotation)},
+                       {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+}
+
+// The sunlit glossy scene (issue 29): a grey Lambert ground plane, a Lambert sphere and two GGX conductor
+// spheres (roughness 0.25 and 0.6) of 3968 triangles each, lit by a delta sun; render it with the constant
+// environment
+// `--env-color 0.2,0.3,0.5` (glTF has no environment).
+void writeSunlitScene(const std::filesystem::path& outDir) {
+  GltfWriter gltf;
+  gltf.doc["asset"]["generator"] = "rt_workbench tools/make_default_scene (sunlit spheres)";
+  gltf.doc["extensionsUsed"] = {"KHR_materials_specular", "KHR_lights_punctual"};
+  const int ground = gltf.addMaterial(lambertian("ground", glm::vec3(0.5f)));
+  const int lambert = gltf.addMaterial(lambertian("lambert_sphere", glm::vec3(0.8f, 0.25f, 0.2f)));
+  const int gold = gltf.addMaterial(pbr("gold_roughness_0.25", glm::vec3(1.0f, 0.766f, 0.336f), 1.0f, 0.25f));
+  const int steel = gltf.addMaterial(pbr("steel_roughness_0.6", glm::vec3(0.56f, 0.57f, 0.58f), 1.0f, 0.6f));
+  MeshData plane;
+  addQuad(plane, {-20, 0, 20}, {40, 0, 0}, {0, 0, -40});  // y = 0, +Y
+  json groundPrimitive = gltf.addMeshData(plane);
+  groundPrimitive["material"] = ground;
+  json rootNodes = json::array();
+  rootNodes.push_back(
+      gltf.addNode({{"name", "ground"}, {"mesh", gltf.addMesh("ground", json::array({groundPrimitive}))}}));
+  const json spherePrimitive = gltf.addMeshData(makeSphere(64, 32));
+  struct SphereSpec {
+    const char* name;
+    int material;
+    glm::vec3 centre;
+  };
+  const SphereSpec spheres[] = {{"sphere_lambert", lambert, {-2.2f, 1.0f, 0.0f}},
+                                {"sphere_gold_0.25", gold, {0.0f, 1.0f, -0.6f}},
+                                {"sphere_steel_0.6", steel, {2.2f, 1.0f, 0.0f}}};
+  for (const SphereSpec& s : spheres) {
+    json primitive = spherePrimitive;
+    primitive["material"] = s.material;
+    rootNodes.push_back(gltf.addNode({{"name", s.name},
+                                      {"mesh", gltf.addMesh(s.name, json::array({primitive}))},
+                                      {"translation", {s.centre.x, s.centre.y, s.centre.z}}}));
+  }
+  rootNodes.push_back(addSun(gltf, glm::vec3(0.45f, -0.8f, -0.4f), {1.0, 0.97, 0.92}, 3.0));
+  gltf.doc["cameras"] = {
+      {{"name", "front"},
+       {"type", "perspective"},
+       {"perspective",
+        {{"yfov", glm::radians(35.0f)}, {"aspectRatio", 1.0}, {"znear", 0.05}, {"zfar", 200.0}}}}};
+  // At (0, 3, 11), pitched down 12 degrees: the three spheres, their shadows and the horizon.
+  rootNodes.push_back(
+      gltf.addNode({{"name", "camera"},
+                    {"camera", 0},
+                    {"translation", {0.0, 3.0, 11.0}},
+                    {"rotation", quaternionJson(glm::angleAxis(glm::radians(-12.0f), glm::vec3(1, 0, 0)))}}));
+  gltf.doc["scene"] = 0;
+  gltf.doc["scenes"] = {{{"name", "sunlit_spheres"}, {"nodes", rootNodes}}};
+  gltf.write(outDir, "sunlit_spheres");
+  std::cout << "wrote " << (outDir / "sunlit_spheres.gltf").string() << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -321,18 +391,7 @@ int main(int argc, char** argv) {
                     {"rotation", quaternionJson(glm::angleAxis(glm::radians(20.0f), glm::vec3(0, 1, 0)))}}));
 
   // Sun: travels down and into the room through the open front, so the spheres' shadows fall on the floor.
-  const glm::vec3 sunDirection = glm::normalize(glm::vec3(-0.25f, -0.9f, -1.0f));
-  const glm::vec3 zAxis = -sunDirection;  // the node's -Z is the light's direction
-  const glm::vec3 xAxis = glm::normalize(glm::cross(glm::vec3(0, 1, 0), zAxis));
-  const glm::vec3 yAxis = glm::cross(zAxis, xAxis);
-  const glm::quat sunRotation = glm::normalize(glm::quat_cast(glm::mat3(xAxis, yAxis, zAxis)));
-  gltf.doc["extensions"] = {
-      {"KHR_lights_punctual",
-       {{"lights",
-         {{{"name", "sun"}, {"type", "directional"}, {"color", {1.0, 0.96, 0.9}}, {"intensity", 2.5}}}}}}};
-  rootNodes.push_back(gltf.addNode({{"name", "sun"},
-                                    {"rotation", quaternionJson(sunRotation)},
-                                    {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}));
+  rootNodes.push_back(addSun(gltf, glm::vec3(-0.25f, -0.9f, -1.0f), {1.0, 0.96, 0.9}, 2.5));
 
   // Camera as in ../shared/reference/cornell.gltf: at (0, 1, 3.9) looking along -Z, 40 degree vertical fov.
   gltf.doc["cameras"] = {
@@ -346,5 +405,6 @@ int main(int argc, char** argv) {
   gltf.doc["scenes"] = {{{"name", "default"}, {"nodes", rootNodes}}};
   gltf.write(outDir, "default_scene");
   std::cout << "wrote " << (outDir / "default_scene.gltf").string() << "\n";
+  writeSunlitScene(outDir);
   return 0;
 }

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Shows the path tracer's accumulation (exposure + tonemap + sRGB) or one of its AOV debug views. Rows the
-// current sample has not reached yet show the low-resolution preview.
+// current sample has not reached yet show the low-resolution preview. With denoise on, the image right of the
+// split shows the denoised radiance, left of it the raw one, with a line between.
 #include "tonemap.glsl"
 
 layout(set = 0, binding = WB_DISPLAY_BIND_ACCUM, rgba32f) uniform readonly image2D accumImage;
@@ -10,6 +11,7 @@ layout(set = 0, binding = WB_DISPLAY_BIND_NORMAL, rgba16f) uniform readonly imag
 layout(set = 0, binding = WB_DISPLAY_BIND_INFO, rgba16f) uniform readonly image2D infoImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_PREVIEW, rgba32f) uniform readonly image2D previewImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_STATS, rgba32f) uniform readonly image2D statsImage;
+layout(set = 0, binding = WB_DISPLAY_BIND_DENOISED, rgba32f) uniform readonly image2D denoisedImage;
 layout(set = 0, binding = WB_DISPLAY_BIND_COST, rgba32f) uniform readonly image2D costImage;
 
 layout(push_constant) uniform Push { DisplayPush pc; };
@@ -30,10 +32,16 @@ void main() {
       (costView && pc.costFull <= 0.0)) {
     if (uint(p.y) >= pc.tracedRows && pc.previewSize.x > 0u) {
       color = imageLoad(previewImage, ivec2(uv * vec2(pc.previewSize))).rgb;
+    } else if (pc.view == WB_VIEW_BEAUTY && pc.denoiseSplit >= 0.0 && uv.x >= pc.denoiseSplit) {
+      color = imageLoad(denoisedImage, p).rgb;
     } else {
       color = imageLoad(accumImage, p).rgb;
     }
     color = tonemap(color, pc.exposureScale, pc.tonemap);
+    const float splitX = pc.viewRect.x + pc.denoiseSplit * pc.viewRect.z;
+    if (pc.view == WB_VIEW_BEAUTY && pc.denoiseSplit > 0.0 && pc.denoiseSplit < 1.0 &&
+        abs(gl_FragCoord.x - splitX) < 1.0)
+      color = vec3(1.0, 0.8, 0.1);
     if (pc.view == WB_VIEW_DROPPED) {
       const float dropped = imageLoad(albedoImage, p).a;
       color = dropped > 0.0 ? vec3(1.0, 0.0, 1.0) : color * 0.25;

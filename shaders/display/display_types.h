@@ -10,7 +10,8 @@
 #define WB_DISPLAY_BIND_INFO 3     // rgba16f AOV: geometric normal, a = path vertices
 #define WB_DISPLAY_BIND_PREVIEW 4  // rgba32f low-resolution preview shown under rows not yet traced
 #define WB_DISPLAY_BIND_STATS 5    // rgba32f AOV: the heat maps' data (WB_BIND_AOV_STATS in shared/bindings.h)
-#define WB_DISPLAY_BIND_COST 6     // rgba32f AOV: clocks per sample (WB_BIND_AOV_COST, the cost variant's)
+#define WB_DISPLAY_BIND_DENOISED 6  // rgba32f the denoised radiance (the accumulation when not denoising)
+#define WB_DISPLAY_BIND_COST 7      // rgba32f AOV: clocks per sample (WB_BIND_AOV_COST, the cost variant's)
 
 // What the display shows (the Inspect panel's debug view). Switching never resets accumulation.
 #define WB_VIEW_BEAUTY 0u
@@ -48,7 +49,7 @@ struct DisplayPush {
   float costFull;      // cost view: clocks per sample at the top of the ramp (0: no cost data, the dimmed image)
   float inefficiencyFull;  // inefficiency view: relative variance x clocks at the top of the ramp
   uint costMedian;     // 1: a pixel's cost is its running median (the cost AOV's a), 0: its mean (r)
-  float pad0;
+  float denoiseSplit;  // < 0: the accumulation only; else the denoised image right of this fraction of the view
 };
 
 WB_NAMESPACE_END

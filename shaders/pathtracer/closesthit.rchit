@@ -11,8 +11,7 @@
 #include "random.glsl"
 #include "environment.glsl"
 #include "emitters.glsl"
-#include "../shared/brdf.h"
-#include "../shared/sun.h"
+#include "guiding.glsl"
 
 layout(location = PATH_PAYLOAD_LOCATION) rayPayloadInEXT PathPayload payload;
 
@@ -23,7 +22,7 @@ void main() {
   const uint shadeStart = wbClock();  // the cost variants: this shading's clocks go back in the payload
 #endif
   wbDebugAtBounce(payload.bounce);
-  initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, pc.sampleIndex);
+  initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, WB_SAMPLE_INDEX);
   const GeometryInfo g = hitGeometry();
   const Material m = materials[g.materialIndex];
   const TriangleHit h = fetchTriangle(g, gl_PrimitiveID, attribs);
@@ -251,14 +250,14 @@ void main() {
 #if WB_INSPECT
       if (il != WB_INSPECT_NONE) {
         inspectVertices[iv].lights[il].brdfCos = f;
-        inspectVertices[iv].lights[il].brdfPdf = brdfPdf(sm, ns, wo, wi);
+        inspectVertices[iv].lights[il].brdfPdf = pathPdf(sm, ns, wo, position, ng, wi);
       }
 #endif
       if (max(f.x, max(f.y, f.z)) <= 0.0) continue;
       vec3 contribution = f * le;
       float misWeight = 1.0;  // delta lights, and light sampling alone (noMis): plain light sampling
       if (lightPdf != 0.0) {
-        if (!noMis) misWeight = powerHeuristic(1.0, lightPdf, 1.0, brdfPdf(sm, ns, wo, wi));
+        if (!noMis) misWeight = powerHeuristic(1.0, lightPdf, 1.0, pathPdf(sm, ns, wo, position, ng, wi));
         contribution *= misWeight / lightPdf;
       }
 #if WB_INSPECT
@@ -281,19 +280,18 @@ void main() {
   payload.radiance = radiance;
   payload.shadowRequestCount = shadowRequests;
 
-  // Continuation ray by BRDF sampling.
+  // Continuation ray by BRDF sampling (mixed with reflector directions: guiding.glsl).
   const vec3 uBrdf = vec3(VERTEX_SAMPLE(WB_DIM_LOBE), VERTEX_SAMPLE(WB_DIM_BRDF), VERTEX_SAMPLE(WB_DIM_BRDF + 1u));
-  const BrdfSample s = brdfSample(sm, ns, wo, uBrdf);
+  const BrdfSample s = pathSample(sm, ns, wo, position, ng, uBrdf);
 #if WB_INSPECT
   if (iv != WB_INSPECT_NONE) {
-    const float pDiffuse = brdfDiffuseProbability(sm, dot(ns, wo));
     const float cosine = dot(ns, s.wi);
     const vec3 fCos = brdfEval(sm, ns, wo, s.wi);
     inspectNan |= s.pdf > 0.0 ? inspectNonFinite(fCos, WB_INSPECT_NAN_BRDF) : 0u;
     inspectNan |= inspectNonFinite(s.pdf, WB_INSPECT_NAN_PDF) | inspectNonFinite(s.weight, WB_INSPECT_NAN_WEIGHT);
     inspectVertices[iv].lightSamples = inspectLights;
     inspectVertices[iv].lobe = s.lobe;
-    inspectVertices[iv].lobeProbability = s.lobe == WB_LOBE_DIFFUSE ? pDiffuse : 1.0 - pDiffuse;
+    inspectVertices[iv].lobeProbability = pathLobeProbability(sm, ns, wo, position, ng, s.lobe);
     inspectVertices[iv].direction = s.wi;
     inspectVertices[iv].pdf = s.pdf;
     inspectVertices[iv].weight = s.weight;

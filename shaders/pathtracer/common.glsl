@@ -55,6 +55,10 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 #define WB_SOBOL_DIR(dim, bit) sobolBuffer.dirs[(dim) * 32u + (bit)]
 #define WB_BLUE_NOISE(x, y) wbUnpackBlueNoise(blueNoiseBuffer.texels[(y) * 128u + (x)])
 
+// The sample this invocation traces: a launch of depth N traces samples pc.sampleIndex .. + N - 1 (raygen writes
+// them to the sample slots; resolve.comp accumulates them in order).
+#define WB_SAMPLE_INDEX (pc.sampleIndex + gl_LaunchIDEXT.z)
+
 #define PATH_PAYLOAD_LOCATION 0
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u

@@ -58,7 +58,7 @@ void wbDebugAssertFailed(uint label) {
   if (n >= assertHeader.capacity) return;
   AssertRecord r;
   r.pixel = gl_LaunchIDEXT.xy + pc.tileOffset;
-  r.sampleIndex = pc.sampleIndex;
+  r.sampleIndex = WB_SAMPLE_INDEX;
   r.bounce = wbDebugBounce;
   r.label = label;
   r.stage = WB_STAGE;

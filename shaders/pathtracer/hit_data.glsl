@@ -10,7 +10,7 @@ GeometryInfo hitGeometry() { return geometries[gl_InstanceCustomIndexEXT + gl_Ge
 float alphaHash(uint primitive, uint geometry) {
   uvec2 pixel = gl_LaunchIDEXT.xy + pc.tileOffset;
   uint h = hashCombine(pixel.x, pixel.y);
-  h = hashCombine(h, pc.sampleIndex ^ (pc.seed * 0x68bc21ebu));
+  h = hashCombine(h, WB_SAMPLE_INDEX ^ (pc.seed * 0x68bc21ebu));
   h = hashCombine(h, primitive);
   h = hashCombine(h, geometry);
   return uintToUnitFloat(h);

@@ -27,6 +27,10 @@
 // of the bounce where it ended them (0 for the others: b / g is the mean over those it ended), a = the lowest
 // bounce at which a sample became NaN/Inf (WB_NO_NON_FINITE: none)
 #define WB_BIND_AOV_STATS 20
+#define WB_BIND_REFLECTORS 21   // storage buffer vec4[]: glossy reflectors' bounding spheres (xyz centre, w radius)
+// storage buffer vec4[]: the radiance of each sample of a launch of several (launch depth > 1), [z][y][x]; the resolve
+// pass (pathtracer/resolve.comp) accumulates them into WB_BIND_ACCUM in sample order
+#define WB_BIND_SAMPLE_SLOTS 22
 // The path inspector's buffers, declared only by the WB_INSPECT build of the path tracer (shaders/pathtracer/inspect.glsl).
 #define WB_BIND_INSPECT_HEADER 17    // storage buffer InspectHeader: which pixel and how many records
 #define WB_BIND_INSPECT_SAMPLES 18   // storage buffer InspectSample[]: one per recorded sample
@@ -35,13 +39,13 @@
 // units per sample: means over the accumulated samples of r = the whole sample, g = its trace calls less the hit
 // and miss shaders they ran (traversal, any-hit), b = closest-hit and environment miss shading; a = a running
 // median of the whole sample (robust to preempted invocations on a CPU device)
-#define WB_BIND_AOV_COST 21
+#define WB_BIND_AOV_COST 23
 // wbPrint's records in the WB_INSPECT build (shaders/pathtracer/debug.glsl): storage buffer PrintRecord[],
 // WB_PRINTS_PER_SAMPLE per recorded sample
-#define WB_BIND_INSPECT_PRINTS 22
+#define WB_BIND_INSPECT_PRINTS 24
 // wbAssert's failures in the WB_ASSERTS build: storage buffers AssertHeader and AssertRecord[]
-#define WB_BIND_ASSERT_HEADER 23
-#define WB_BIND_ASSERT_RECORDS 24
+#define WB_BIND_ASSERT_HEADER 25
+#define WB_BIND_ASSERT_RECORDS 26
 
 // ---- the hybrid modes (G-buffer raster, shadow/AO and reflection ray tracing, composite compute) ----
 #define WB_BIND_HYBRID_FRAME 40      // uniform buffer HybridUniforms
@@ -55,5 +59,10 @@
 #define WB_BIND_REFLECTION 48        // rgba16f storage image: rgb reflected radiance, a 1 where traced
 #define WB_BIND_HYBRID_OUTPUT 49     // rgba32f storage image: composited linear radiance
 #define WB_BIND_HYBRID_INSPECT 50    // storage buffer HybridInspectRecord: the rays of the inspected pixel
+
+// ---- the bare-ray roofline (shaders/roofline; the scene's TLAS and geometries at their path tracer bindings) ----
+#define WB_BIND_ROOFLINE_HITS 60     // rgba32f storage image: camera ray hit position, a = 1 hit, 0 miss
+#define WB_BIND_ROOFLINE_NORMALS 61  // rgba32f storage image: geometric normal at the hit, facing the camera
+#define WB_BIND_ROOFLINE_RESULT 62   // rgba32f storage image: what a launch found (keeps its rays from being unused)
 
 #endif

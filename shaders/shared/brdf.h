@@ -47,6 +47,7 @@ struct BrdfSample {
 
 #define WB_LOBE_DIFFUSE 0u
 #define WB_LOBE_SPECULAR 1u
+#define WB_LOBE_REFLECTOR 2u  // the path tracer's direction towards a glossy reflector (pathtracer/guiding.glsl)
 
 WB_FN SurfaceMaterial makeSurfaceMaterial(vec3 baseColor, float metallic, float roughness) {
   SurfaceMaterial m;

@@ -41,7 +41,7 @@ struct FrameUniforms {
   uint emitterCount;  // emissive triangles in WB_BIND_EMITTERS
   float emitterTotalPower;  // sum over emitters of luminance(emissive factor) * world area
   float envSelectProbability;  // NEE picks the environment with this probability, emitters otherwise
-  float pad0;
+  uint reflectorCount;  // glossy reflectors in WB_BIND_REFLECTORS the continuation rays may be guided towards
 };
 
 // Per-dispatch push constants (at most 128 bytes).
@@ -57,6 +57,13 @@ struct PushConstants {
   uvec2 tileOffset;  // first pixel of the traced region
   uvec2 imageSize;   // full accumulation image size
   float rrExponent;  // Russian roulette survival = clamp(max throughput ^ rrExponent, rrMin, rrMax)
+};
+
+// The resolve pass's push constants (pathtracer/resolve.comp): the samples of one launch, in order.
+struct ResolveConstants {
+  uvec2 imageSize;
+  uint firstSample;  // the sample index of slot 0 (0: the accumulation restarts)
+  uint samples;      // slots to accumulate
 };
 
 // Counters the host reads back.

@@ -1,6 +1,7 @@
 #include "app/bench_window.h"
 #include "app/progress.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -167,12 +168,15 @@ void runWindow(const PrivateRoot& pr, const std::string& script, const std::vect
                              std::to_string(child.exitStatus) + ":\n" + readText(log));
 }
 
-// Paths per second of the headless path tracer at the window's trace size, after a warm-up.
-double headlessPathsPerSecond(uint32_t w, uint32_t h, int samples, const std::string& device, json& info) {
+// Paths per second of the headless path tracer at the window's trace size, after a warm-up; `denoise` as the
+// window's setting (the denoiser's inputs are then written with every sample, as in the window).
+double headlessPathsPerSecond(uint32_t w, uint32_t h, bool denoise, int samples, const std::string& device,
+                              json& info) {
   render::SessionOptions o;
   o.scenePath = defaultScenePath().string();
   o.settings.width = w;
   o.settings.height = h;
+  o.settings.denoise = denoise;
   o.context.deviceName = device;
   o.quiet = true;
   render::RenderSession s(o);
@@ -207,10 +211,123 @@ std::string editScript(const PrivateRoot& pr, int first, int count) {
   return s;
 }
 
+// Clicks on real widgets while the image converges, each timed from just before xdotool starts to the end of
+// the frame that drew its effect (the window's click_screen_ns, on the same steady clock), and checked in the
+// state the window reports after it: the "preview after changes" checkbox, the tonemap combo and one of its
+// items in turn, then points of the image (the inspector's pixel) for the last quarter of the clicks. A click
+// whose effect is missing is lost; a click the window never draws fails the run (its script's wait_clicks
+// times out).
+struct ClickFigures {
+  std::vector<double> ms;
+  int sent = 0, lost = 0;
+  json perClick = json::array();  // what each click hit, its time to the screen, whether it landed
+};
+
+ClickFigures clickSession(const PrivateRoot& pr, int clicks, const std::vector<std::string>& deviceArgs,
+                          const fs::path& log, const std::string& display) {
+  auto statsFile = [&](int i) { return pr.root / ("clicks" + std::to_string(i) + ".json"); };
+  std::string script = "wait_samples 1 1800\nsleep 2\nstats " + statsFile(0).string() + "\n";
+  for (int i = 1; i <= clicks; ++i)
+    script += "wait_clicks " + std::to_string(i) + " 120\nframes 2\nstats " + statsFile(i).string() + "\n";
+  script += "quit\n";
+  ClickFigures f;
+  const int imageClicks = std::max(1, clicks / 4);
+  runWindow(pr, script, deviceArgs, log, [&](ChildProcess& child) {
+    json last;
+    std::string chosenTonemap;
+    for (int i = 0; i < clicks; ++i) {
+      if (!waitFor([&] { return fs::exists(statsFile(i)); }, 1800, &child))
+        throw std::runtime_error("bench window: the session ended before click " + std::to_string(i + 1) +
+                                 ": " + readText(log));
+      last = readJson(statsFile(i));
+      // The window is back to converging untouched (it presents about once a second) before the next click.
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+      const auto& widgets = last["widgets"];
+      auto centre = [&](const std::string& name) {
+        if (!widgets.contains(name))
+          throw std::runtime_error("bench window: no widget '" + name + "' on screen: " + widgets.dump());
+        const auto& r = widgets[name];
+        return std::vector<std::string>{std::to_string(int(r[0].get<double>() + r[2].get<double>() / 2)),
+                                        std::to_string(int(r[1].get<double>() + r[3].get<double>() / 2))};
+      };
+      std::vector<std::string> at;
+      // The widgets in turn, then the image: a pick opens the Inspect section and scrolls the panel to it,
+      // so the widgets go first.
+      const int kind = i < clicks - imageClicks ? i % 3 : 3;
+      switch (kind) {
+        case 0:
+          at = centre("preview");
+          break;
+        case 1:
+          at = centre("param.tonemap");
+          break;
+        case 2:
+          chosenTonemap = last["parameters"]["tonemap"] == "aces" ? "reinhard" : "aces";
+          at = widgets.contains("param.tonemap." + chosenTonemap) ? centre("param.tonemap." + chosenTonemap)
+                                                                  : centre("param.tonemap");
+          break;
+        default: {
+          // A point of the image, another each time.
+          const auto& r = widgets["image"];
+          const double fx = 0.2 + 0.15 * double((clicks - i) % 4);
+          at = {std::to_string(int(r[0].get<double>() + fx * r[2].get<double>())),
+                std::to_string(int(r[1].get<double>() + 0.6 * r[3].get<double>()))};
+        }
+      }
+      std::vector<std::string> args = {"mousemove", at[0], at[1], "click", "1"};
+      const int64_t sent =
+          std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+      auto xdotool =
+          ChildProcess::spawn("xdotool", args, {{"DISPLAY", display}}, (pr.root / "xdotool.log").string());
+      if (xdotool.wait() != 0)
+        throw std::runtime_error("bench window: xdotool failed: " + readText(pr.root / "xdotool.log"));
+      ++f.sent;
+      if (!waitFor([&] { return fs::exists(statsFile(i + 1)); }, 1800, &child))
+        throw std::runtime_error("bench window: click " + std::to_string(i + 1) +
+                                 " never reached the screen: " + readText(log));
+      const json after = readJson(statsFile(i + 1));
+      f.ms.push_back(double(after["click_screen_ns"][size_t(i)].get<int64_t>() - sent) / 1e6);
+      bool landed = false;
+      switch (kind) {
+        case 0:
+          landed = after["preview_enabled"] != last["preview_enabled"];
+          break;
+        case 1:
+          landed = after["widgets"].contains("param.tonemap.aces");
+          break;
+        case 2:
+          landed = after["parameters"]["tonemap"] == chosenTonemap;
+          break;
+        default:
+          landed = after["inspect_pixel"].is_array() && after["inspect_pixel"] != last["inspect_pixel"];
+      }
+      f.lost += landed ? 0 : 1;
+      static const char* kWhat[] = {"checkbox", "combo", "combo item", "image"};
+      // The part of it the click waited for the window's loop to take it (a trace or a frame in flight).
+      const auto& events = after["click_event_ns"];
+      const double toEvent =
+          events.size() > size_t(i) ? double(events[size_t(i)].get<int64_t>() - sent) / 1e6 : -1.0;
+      f.perClick.push_back(
+          {{"what", kWhat[kind]}, {"ms", f.ms.back()}, {"to_event_ms", toEvent}, {"landed", landed}});
+    }
+  });
+  return f;
+}
+
+void putClickFigures(json& result, const ClickFigures& f, const std::string& suffix) {
+  result["click_to_screen_p50_ms" + suffix] = median(f.ms);
+  result["click_to_screen_p95_ms" + suffix] = percentile(f.ms, 0.95);
+  result["click_to_screen_max_ms" + suffix] = *std::max_element(f.ms.begin(), f.ms.end());
+  result["clicks_sent" + suffix] = f.sent;
+  result["clicks_lost" + suffix] = f.lost;
+  result["clicks" + suffix] = f.perClick;
+}
+
 }  // namespace
 
 int windowBenchSteps(const WindowBenchOptions& o) {
-  return o.rounds + 1 + (o.underLoad ? 1 : 0);
+  const bool clicks = o.clicks > 0;
+  return o.rounds + 1 + (o.underLoad ? 1 : 0) + (clicks ? 1 : 0) + (clicks && o.underLoad ? 1 : 0);
 }
 
 json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesaCache,
@@ -248,7 +365,9 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
                   {"trace_size", std::to_string(traceW) + "x" + std::to_string(traceH)},
                   {"present_mode", jb["present_mode"]},
                   {"trace_budget_ms", jb["trace_budget_ms"]}};
-    headlessRates.push_back(headlessPathsPerSecond(traceW, traceH, o.samples, o.device, result));
+    const bool denoise = jb["parameters"]["denoise"].get<bool>();
+    windowInfo["denoise"] = denoise;
+    headlessRates.push_back(headlessPathsPerSecond(traceW, traceH, denoise, o.samples, o.device, result));
     ratios.push_back(windowRates.back() / headlessRates.back());
   }
   result["window"] = windowInfo;
@@ -330,7 +449,19 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
     result["key_taps_note"] = "not measured: xdotool is missing (scripts/setup.sh installs it)";
   }
 
-  // 3. The same edits with two busy loops in another session.
+  // 3. Clicks while the image converges.
+  const bool clicks = o.clicks > 0 && !findProgram("xdotool").empty();
+  if (clicks) {
+    progress.step("window clicks while the image converges");
+    PrivateRoot cr(work, "clicks", display.name(), ownMesaCache);
+    putClickFigures(result,
+                    clickSession(cr, o.clicks, deviceArgs, work / "window_clicks.log", display.name()), "");
+  } else if (o.clicks > 0) {
+    result["clicks_lost"] = nullptr;
+    result["clicks_note"] = "not measured: xdotool is missing (scripts/setup.sh installs it)";
+  }
+
+  // 4. The same edits and clicks with two busy loops in another session.
   if (o.underLoad) {
     progress.step("window edits with two busy loops in another session");
     PrivateRoot lr(work, "load", display.name(), ownMesaCache);
@@ -353,12 +484,22 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
     // the driver needs (its single-threaded JIT alone slows down under the load).
     result["edit_to_first_frame_under_load_vs_idle_pipeline_build_p50"] =
         median(load.toFirstFrame) / buildIdle;
+    if (clicks) {
+      progress.step("window clicks with two busy loops in another session");
+      PrivateRoot cr(work, "clicks_load", display.name(), ownMesaCache);
+      putClickFigures(result,
+                      clickSession(cr, o.clicks, deviceArgs, work / "window_clicks_load.log", display.name()),
+                      "_under_load");
+    }
   }
   result["what"] =
       "window: the README's run command (default window size) under a script, on the display or on Xvfb; "
-      "headless: the path tracer in this process at the window's trace size; ratios are medians of rounds "
-      "that alternate the two. Edit: a closest-hit constant changed; first frame: the first frame drawn with "
-      "the new pipeline; pipeline build: the driver's build of it (warm-up included), from the same reload.";
+      "headless: the path tracer in this process at the window's trace size and denoise setting (with "
+      "denoise on, the denoiser's inputs are written every sample on both sides; the window's own denoiser "
+      "runs count against the window); ratios are medians of rounds that alternate the two. Edit: a closest-hit constant changed; first frame: the first frame drawn with "
+      "the new pipeline; pipeline build: the driver's build of it (warm-up included), from the same reload. "
+      "Click to screen: from just before xdotool starts (its start-up included) to the end of the frame that "
+      "drew the click's effect, clicks 1.5 s apart while the image converges.";
   return result;
 }
 

@@ -1,6 +1,7 @@
 // `bench --only window`: the live window measured as a user meets it: its trace rate
 // against headless rendering at the same size, edit to first new frame against the driver's pipeline build
-// (idle, and with two busy loops in another session), five quick saves, a mode switch and quick key taps.
+// (idle, and with two busy loops in another session), five quick saves, a mode switch, quick key taps, and
+// clicks on real widgets timed to the screen while the image converges (idle and under the same load).
 // The window runs as a child process on the display, or on an Xvfb server of its own when there is none.
 #pragma once
 #include <filesystem>
@@ -17,6 +18,7 @@ struct WindowBenchOptions {
   int samples = 8;   // throughput: samples timed per run (after two to warm up)
   int edits = 5;     // edits timed, idle and under load
   int keyTaps = 10;  // Tab taps sent within slow frames (even: the panel ends as it began)
+  int clicks = 12;   // synthetic clicks on widgets and the image while the image converges (0: none)
   bool underLoad = true;
   std::string device;  // Vulkan device name (substring) for the headless runs and the window
 };

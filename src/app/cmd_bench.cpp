@@ -15,6 +15,8 @@
 #include <CLI/CLI.hpp>
 
 #include "app/bench_cost.h"
+#include "app/bench_denoise.h"
+#include "app/bench_roofline.h"
 #include "app/bench_window.h"
 #include "app/debug_json.h"
 #include "app/process.h"
@@ -89,9 +91,11 @@ render::SessionOptions benchSession(const BenchScene& bs, uint32_t w, uint32_t h
   return o;
 }
 
-// Path tracer rates of one scene and variant: medians over `repeats` runs of `spp` samples after a warm-up.
+// Path tracer rates of one scene and variant: medians over `repeats` runs of `spp` samples after a warm-up;
+// the specialised variant also gets the roofline (bench_roofline.h).
 json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h, uint32_t spp, int repeats,
-                     const std::string& device, std::string& deviceName, std::string& driver) {
+                     const std::string& device, std::string& deviceName, std::string& driver,
+                     bool* cpuDevice = nullptr) {
   render::SessionOptions o = benchSession(bs, w, h, device);
   o.settings.generic = generic;
   render::RenderSession s(o);
@@ -122,6 +126,8 @@ json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h,
   j["tlas_build_ms"] = s.gpuScene().accel().tlasBuildMs();
   j["scene_device_bytes"] = s.gpuScene().deviceBytes();
   j["pass_ms"] = passMsJson(s.renderer().passTimer());  // GPU ms per sample, the last run's
+  if (!generic) j.update(benchRoofline(s, repeats));
+  if (cpuDevice) *cpuDevice = s.context().policy().compilesAtFirstDispatch;
   return j;
 }
 
@@ -375,23 +381,40 @@ std::vector<BenchScene> modesScenes() {
   return scenes;
 }
 
-// Rates of every scene, specialised and generic.
+// Rates of every scene, specialised and generic; then the default scene's specialised build at the other
+// roofline sizes (on a CPU device only those up to 512x512 unless the user named them).
 json benchPathTracerSection(const std::vector<BenchScene>& scenes, uint32_t w, uint32_t h, uint32_t spp,
-                            const std::string& size, int repeats, const std::string& device,
-                            std::string& deviceName, std::string& driver, StepProgress& progress) {
+                            const std::string& size, const std::vector<std::string>& rooflineSizes,
+                            bool sizesGiven, int repeats, const std::string& device, std::string& deviceName,
+                            std::string& driver, StepProgress& progress) {
   json rows = json::array();
+  bool cpuDevice = false;
+  const auto add = [&](const BenchScene& bs, bool generic, uint32_t rw, uint32_t rh) {
+    json r = benchPathTracer(bs, generic, rw, rh, spp, repeats, device, deviceName, driver, &cpuDevice);
+    r["scene"] = bs.name;
+    r["variant"] = generic ? "generic" : "specialised";
+    r["size"] = std::to_string(rw) + "x" + std::to_string(rh);
+    r["spp_per_run"] = spp;
+    r["repeats"] = repeats;
+    rows.push_back(r);
+  };
   for (const auto& bs : scenes) {
     for (bool generic : {false, true}) {
       progress.step("path tracer on " + bs.name + (generic ? " (generic)" : " (specialised)") + " at " +
-                    std::to_string(w) + "x" + std::to_string(h));
-      json r = benchPathTracer(bs, generic, w, h, spp, repeats, device, deviceName, driver);
-      r["scene"] = bs.name;
-      r["variant"] = generic ? "generic" : "specialised";
-      r["size"] = size;
-      r["spp_per_run"] = spp;
-      r["repeats"] = repeats;
-      rows.push_back(r);
+                    size);
+      add(bs, generic, w, h);
     }
+  }
+  for (const auto& extra : rooflineSizes) {
+    unsigned rw = 0, rh = 0;
+    std::sscanf(extra.c_str(), "%ux%u", &rw, &rh);
+    if (extra == size) continue;
+    if (cpuDevice && !sizesGiven && uint64_t(rw) * rh > 512u * 512u) {
+      progress.step("roofline at " + extra + ": skipped on a CPU device (--roofline-sizes runs it)");
+      continue;
+    }
+    progress.step("path tracer and roofline on " + scenes.front().name + " at " + extra);
+    add(scenes.front(), false, rw, rh);
   }
   return rows;
 }
@@ -410,6 +433,19 @@ void printSummary(const json& result, const std::string& cmdline) {
                   r["rays_per_second"].get<double>(), r["primary_rays_per_second"].get<double>(),
                   r["bounce_rays_per_second"].get<double>(), r["shadow_rays_per_second"].get<double>(),
                   r["blas_build_ms"].get<double>());
+    }
+  }
+  if (result.contains("pathtracer")) {
+    std::printf("%-14s %-10s %12s %12s %12s %12s %9s   (roofline: rays/s, GPU time)\n", "scene", "size",
+                "bare prim.", "bare diff.", "bare shadow", "pathtracer", "pt/diff");
+    for (const auto& r : result["pathtracer"]) {
+      if (!r.contains("pathtracer_vs_bare_diffuse_ratio")) continue;
+      std::printf("%-14s %-10s %12.3g %12.3g %12.3g %12.3g %9.3f\n", r["scene"].get<std::string>().c_str(),
+                  r["size"].get<std::string>().c_str(), r["bare_primary_rays_per_second"].get<double>(),
+                  r["bare_diffuse_rays_per_second"].get<double>(),
+                  r["bare_shadow_rays_per_second"].get<double>(),
+                  r["pathtracer_gpu_rays_per_second"].get<double>(),
+                  r["pathtracer_vs_bare_diffuse_ratio"].get<double>());
     }
   }
   if (result.contains("modes")) {
@@ -436,14 +472,15 @@ void printSummary(const json& result, const std::string& cmdline) {
                   r["variant"].get<std::string>().c_str(), r["seconds_per_sample"].get<double>(),
                   100.0 * r["overhead"].get<double>(), 100.0 * r["pathtracer_gpu_overhead"].get<double>());
   }
+  if (result.contains("denoise")) std::printf("denoise: %s\n", jsonText(result["denoise"]).c_str());
   std::printf("peak RSS: %.0f MB\n", result["peak_rss_mb"].get<double>());
 }
 
 }  // namespace
 
 const std::vector<std::string>& BenchCommand::sectionNames() {
-  static const std::vector<std::string> names = {"pathtracer", "startup", "reload",
-                                                 "modes",      "window",  "cost"};
+  static const std::vector<std::string> names = {"pathtracer", "startup", "reload", "modes",
+                                                 "window",     "denoise", "cost"};
   return names;
 }
 
@@ -457,9 +494,19 @@ void BenchCommand::addFlags(CLI::App& cli) {
       "--edits", edits,
       "reload: number of closest-hit edits (default 20, 4 with --quick); window: edits timed idle and "
       "under load (default 5, 2 with --quick)");
+  cli.add_option(
+      "--clicks", clicks,
+      "window: synthetic clicks on widgets timed to the screen, idle and under load (default 12, 8 "
+      "with --quick; 0: none)");
   cli.add_flag("--no-load", noLoad, "window: skip the edits with two busy loops in another session");
-  cli.add_option("--only", sections,
-                 "sections to run, comma or space separated: pathtracer,startup,reload,modes,window,cost")
+  cli.add_option(
+         "--roofline-sizes", rooflineSizes,
+         "pathtracer: more sizes WxH for the default scene with its roofline (default 256x256,2048x2048; "
+         "none with --quick; above 512x512 skipped on a CPU device unless given)")
+      ->delimiter(',');
+  cli.add_option(
+         "--only", sections,
+         "sections to run, comma or space separated: pathtracer,startup,reload,modes,window,denoise,cost")
       ->delimiter(',')
       ->check(CLI::IsMember(sectionNames()));
 }
@@ -467,6 +514,14 @@ void BenchCommand::addFlags(CLI::App& cli) {
 void BenchCommand::finish() {
   if (size.empty()) size = quick ? "128x128" : "512x512";
   if (repeats <= 0) repeats = quick ? 1 : 3;
+  if (clicks < -1 || clicks > 10000) throw std::invalid_argument("--clicks: expected 0 .. 10000");
+  rooflineSizesGiven = !rooflineSizes.empty();
+  if (!rooflineSizesGiven && !quick) rooflineSizes = {"256x256", "2048x2048"};
+  for (const auto& rs : rooflineSizes) {
+    unsigned rw = 0, rh = 0;
+    if (std::sscanf(rs.c_str(), "%ux%u", &rw, &rh) != 2 || !rw || !rh)
+      throw std::invalid_argument("--roofline-sizes: expected WxH, got '" + rs + "'");
+  }
   unsigned w = 0, h = 0;
   if (std::sscanf(size.c_str(), "%ux%u", &w, &h) != 2 || !w || !h)
     throw std::invalid_argument("--size: expected WxH, got '" + size + "'");
@@ -513,16 +568,26 @@ int BenchCommand::run() {
   wo.samples = quick ? 3 : 8;
   wo.edits = edits > 0 ? edits : quick ? 2 : 5;
   wo.underLoad = !noLoad;
+  wo.clicks = clicks >= 0 ? clicks : quick ? 8 : 12;
   wo.device = device;
-  const int steps = int(ptScenes.size()) * 2 + (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) +
+  DenoiseBenchOptions dno;
+  dno.width = w;
+  dno.height = h;
+  dno.repeats = repeats;
+  dno.quick = quick;
+  dno.device = device;
+  const int steps = int(ptScenes.size()) * 2 + (has("pathtracer") ? int(rooflineSizes.size()) : 0) +
+                    (has("startup") ? 1 : 0) + (has("reload") ? 1 : 0) +
                     (has("modes") ? int(mScenes.size()) * 4 + 3 : 0) +
-                    (has("window") ? windowBenchSteps(wo) : 0) + (has("cost") ? 1 : 0);
+                    (has("window") ? windowBenchSteps(wo) : 0) +
+                    (has("denoise") ? denoiseBenchSteps(dno) : 0) + (has("cost") ? 1 : 0);
   StepProgress progress("bench", steps);
   try {
     if (has("pathtracer")) {
       std::string deviceName, driver;
       result["pathtracer"] =
-          benchPathTracerSection(ptScenes, w, h, spp, size, repeats, device, deviceName, driver, progress);
+          benchPathTracerSection(ptScenes, w, h, spp, size, rooflineSizes, rooflineSizesGiven, repeats,
+                                 device, deviceName, driver, progress);
       result["device"] = deviceName;
       result["driver"] = driver;
     }
@@ -549,6 +614,11 @@ int BenchCommand::run() {
       result["window"] = benchWindow(wo, work, ownMesaCache, progress);
       result["device"] = result["window"]["device"];
       result["driver"] = result["window"]["driver"];
+    }
+    if (has("denoise")) {
+      result["denoise"] = benchDenoise(dno, progress);
+      result["device"] = result["denoise"]["cost"][0]["device"];
+      result["driver"] = result["denoise"]["cost"][0]["driver"];
     }
     if (has("cost")) {
       progress.step("cost, inspect and asserts variants");

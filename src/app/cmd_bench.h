@@ -22,9 +22,12 @@ class BenchCommand : public Command {
   static const std::vector<std::string>& sectionNames();
   bool quick = false;
   std::string out, device, size;
+  std::vector<std::string> rooflineSizes;  // --roofline-sizes (empty: the defaults, set by finish())
+  bool rooflineSizesGiven = false;
   int repeats = 0;
   int edits = 0;
   bool noLoad = false;
+  int clicks = -1;  // window: synthetic clicks (-1: the default)
   std::vector<std::string> sections = sectionNames();
 };
 

@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/converge_denoise.h"
 #include "app/converge_report.h"
 #include "app/converge_run.h"
 #include "app/render_options.h"
@@ -117,10 +118,14 @@ std::optional<eval::ImageRGBA> loadOrRenderReference(const ConvergeOptions& c, c
 }
 
 // Ctrl-C stops it after the sample in progress: the result holds the checkpoints reached.
+// With --denoise (path tracer) each checkpoint measures the raw image and the denoised one of the same
+// samples.
 ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, const eval::ImageRGBA& reference,
-                       ProgressLine& progress, size_t index, size_t count,
+                       uint32_t referenceSpp, ProgressLine& progress, size_t index, size_t count,
                        const InterruptRequest& interrupt) {
   ConfigResult result;
+  const bool denoise =
+      cfg.options.params.render.denoise && cfg.options.params.mode == render::RenderMode::PathTrace;
   result.name = cfg.name;
   for (const auto& f : cfg.flags) result.flags += (result.flags.empty() ? "" : " ") + f;
   render::RenderSession session(sessionOptions(cfg.options));
@@ -145,7 +150,17 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
       if (result.checkpoints.size() <= next) result.checkpoints.emplace_back();
       Checkpoint& cp = result.checkpoints[next];
       cp.spp = spp;
-      addMeasurement(cp, session.image(), reference, t);
+      if (denoise) {
+        render::PathTracer& tracer = session.pathTracer();
+        addMeasurement(cp, tracer.readEstimate(), reference, t);
+        if (result.denoised.size() <= next) result.denoised.emplace_back();
+        Checkpoint& d = result.denoised[next];
+        d.spp = spp;
+        const double denoiseSeconds = tracer.denoise();
+        addMeasurement(d, tracer.readDenoised(), reference, t + denoiseSeconds);
+      } else {
+        addMeasurement(cp, session.image(), reference, t);
+      }
       ++next;
     };
     while (!interrupt.requested()) {
@@ -186,14 +201,17 @@ ConfigResult runConfig(const ConvergeConfig& cfg, const ConvergeOptions& c, cons
       result.fireflies = eval::fireflyStats(result.checkpoints.back().images.back());
     }
   }
-  // Run-to-run variance at each checkpoint; keep only run 0's final image.
-  for (size_t i = 0; i < result.checkpoints.size(); ++i) {
-    Checkpoint& cp = result.checkpoints[i];
-    if (cp.images.size() >= 2) cp.variance = eval::runStats(cp.images).meanVariance();
-    if (i + 1 < result.checkpoints.size()) {
-      cp.images.clear();
-    } else {
-      cp.images.resize(1);
+  // Run-to-run variance and the pixel tests at each checkpoint; keep only run 0's final image.
+  testPixels(result, reference, referenceSpp);
+  for (auto* rows : {&result.checkpoints, &result.denoised}) {
+    for (size_t i = 0; i < rows->size(); ++i) {
+      Checkpoint& cp = (*rows)[i];
+      if (cp.images.size() >= 2) cp.variance = eval::runStats(cp.images).meanVariance();
+      if (i + 1 < rows->size()) {
+        cp.images.clear();
+      } else {
+        cp.images.resize(1);
+      }
     }
   }
   return result;
@@ -295,10 +313,13 @@ int ConvergeCommand::run() {
     }
     const eval::ImageRGBA reference = std::move(*loaded);
     const eval::Rgb refMean = eval::meanRgb(reference);
+    // A render of the path tracer: its own noise is modelled in the pixel tests (a file is taken as exact).
+    const uint32_t referenceSpp = c.reference.empty() ? (c.referenceSpp ? c.referenceSpp : 1024) : 0;
     std::vector<ConfigResult> results;
     std::string device;
     for (size_t i = 0; i < configs.size() && !interrupt.requested(); ++i) {
-      results.push_back(runConfig(configs[i], c, reference, progress, i, configs.size(), interrupt));
+      results.push_back(
+          runConfig(configs[i], c, reference, referenceSpp, progress, i, configs.size(), interrupt));
     }
     std::string partialNote;
     if (interrupt.requested()) {
@@ -337,6 +358,15 @@ int ConvergeCommand::run() {
     setup.targetRelMse = c.targetRelMse;
     setup.plotNote = plotNote;
     setup.partialNote = partialNote;
+    if (c.runs >= 2) {
+      setup.notes.push_back(
+          referenceSpp
+              ? "Pixel tests: the reference's own variance per pixel is modelled as one run's times spp / " +
+                    std::to_string(referenceSpp) + " (it is a render of the same path tracer)."
+              : "Pixel tests: the reference file is taken as exact (its own noise, if any, makes more "
+                "pixels look off: the raw image's rate shows how many).");
+    }
+    setup.moreSections = [&](std::ostream& md) { writeDenoiseComparison(md, results); };
     writeSummary(dir, results, setup, reference);
     std::printf("converge: %zu configuration(s) -> %s (converge.csv, converge.md%s)%s\n", results.size(),
                 dir.string().c_str(), plotNote.empty() ? ", converge.png" : "",

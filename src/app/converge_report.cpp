@@ -24,12 +24,16 @@ void writeErrorImages(const fs::path& dir, const std::vector<ConfigResult>& resu
   double scale = 0;
   md << "\n## Error images (final checkpoint of run 1)\n\n";
   for (const auto& r : results) {
-    if (r.checkpoints.empty() || r.checkpoints.back().images.empty()) continue;
-    const auto& img = r.checkpoints.back().images.front();
-    const auto rgba = eval::errorHeatmap(img, reference, scale, &scale);  // the first sets the scale
-    const std::string file = "error_" + safeName(r.name) + ".png";
-    writeFileAtomically(dir / file, eval::encodePng8(img.width, img.height, rgba), "converge");
-    md << "- `" << file << "`: " << r.name << " at " << r.checkpoints.back().spp << " spp\n";
+    for (const auto* rows : {&r.checkpoints, &r.denoised}) {
+      if (rows->empty() || rows->back().images.empty()) continue;
+      const bool denoised = rows == &r.denoised;
+      const auto& img = rows->back().images.front();
+      const auto rgba = eval::errorHeatmap(img, reference, scale, &scale);  // the first sets the scale
+      const std::string file = "error_" + safeName(r.name) + (denoised ? "_denoised" : "") + ".png";
+      writeFileAtomically(dir / file, eval::encodePng8(img.width, img.height, rgba), "converge");
+      md << "- `" << file << "`: " << r.name << (denoised ? " denoised" : "") << " at " << rows->back().spp
+         << " spp\n";
+    }
   }
   md << "\n|a - b| averaged over RGB, false colour black - blue - magenta - yellow - white, white = " << scale
      << " (the 99th percentile of the first configuration's error; same scale for all).\n";
@@ -55,12 +59,12 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-std::optional<double> timeToReach(const ConfigResult& r, double target) {
-  for (size_t i = 0; i < r.checkpoints.size(); ++i) {
-    const double e = mean(r.checkpoints[i].relMse), t = mean(r.checkpoints[i].seconds);
+std::optional<double> timeToReach(const std::vector<Checkpoint>& checkpoints, double target) {
+  for (size_t i = 0; i < checkpoints.size(); ++i) {
+    const double e = mean(checkpoints[i].relMse), t = mean(checkpoints[i].seconds);
     if (e <= target) {
       if (i == 0) return t;
-      const double e0 = mean(r.checkpoints[i - 1].relMse), t0 = mean(r.checkpoints[i - 1].seconds);
+      const double e0 = mean(checkpoints[i - 1].relMse), t0 = mean(checkpoints[i - 1].seconds);
       if (e0 <= 0 || e <= 0 || t0 <= 0 || e0 == e) return t;
       const double f = std::log(target / e0) / std::log(e / e0);
       return std::exp(std::log(t0) + f * (std::log(t) - std::log(t0)));
@@ -69,25 +73,67 @@ std::optional<double> timeToReach(const ConfigResult& r, double target) {
   return std::nullopt;
 }
 
+void testPixels(ConfigResult& r, const eval::ImageRGBA& reference, uint32_t referenceSpp) {
+  for (size_t i = 0; i < r.checkpoints.size(); ++i) {
+    Checkpoint& cp = r.checkpoints[i];
+    if (cp.images.size() < 2) continue;
+    std::optional<eval::ImageRGBA> refVariance;
+    if (referenceSpp > 0) {
+      // The reference is a render of the same estimator: its variance is one run's, scaled by the samples.
+      refVariance = eval::runStats(cp.images).variance;
+      const float scale = float(double(cp.spp) / double(referenceSpp));
+      for (float& v : refVariance->pixels) v *= scale;
+    }
+    const eval::ImageRGBA* rv = refVariance ? &*refVariance : nullptr;
+    cp.offReference = eval::pixelsOffReference(cp.images, reference, rv);
+    if (i < r.denoised.size() && r.denoised[i].images.size() == cp.images.size()) {
+      Checkpoint& d = r.denoised[i];
+      d.offReference = eval::pixelsOffReference(d.images, reference, rv);
+      d.offRaw = eval::pixelsOffPaired(d.images, cp.images);
+    }
+  }
+}
+
+namespace {
+
+// A pixel test's fraction for the CSV (empty when not tested).
+std::string fractionField(const eval::PixelTestResult& t) {
+  return t.runs ? fmt("%.6g", t.fraction()) : std::string();
+}
+
+}  // namespace
+
+eval::Rgb meanOfRuns(const Checkpoint& cp) {
+  eval::Rgb mm{0, 0, 0};
+  for (const auto& v : cp.mean)
+    for (int c = 0; c < 3; ++c) mm[c] += v[c] / double(cp.mean.size());
+  return mm;
+}
+
 void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, const eval::Rgb& refMean) {
   std::ostringstream f;
   f << "config,flags,spp,seconds,seconds_min,seconds_max,runs,mse,rmse,relmse,variance,bias2,mean_r,mean_g,"
-       "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency\n";
+       "mean_b,ref_mean_r,ref_mean_g,ref_mean_b,efficiency,image,pixels_significant,pixels_significant_vs_"
+       "raw,"
+       "pixel_test_alpha\n";
   for (const auto& r : results) {
-    for (const auto& cp : r.checkpoints) {
-      const double t = mean(cp.seconds), m = mean(cp.mse);
-      eval::Rgb mm{0, 0, 0};
-      for (const auto& v : cp.mean)
-        for (int c = 0; c < 3; ++c) mm[c] += v[c] / double(cp.mean.size());
-      char line[512];
-      std::snprintf(
-          line, sizeof line,
-          "%s,\"%s\",%u,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n",
-          r.name.c_str(), r.flags.c_str(), cp.spp, t, *std::min_element(cp.seconds.begin(), cp.seconds.end()),
-          *std::max_element(cp.seconds.begin(), cp.seconds.end()), cp.seconds.size(), m, std::sqrt(m),
-          mean(cp.relMse), cp.variance, std::max(0.0, m - cp.variance), mm[0], mm[1], mm[2], refMean[0],
-          refMean[1], refMean[2], (m > 0 && t > 0) ? 1.0 / (m * t) : 0.0);
-      f << line;
+    for (const auto* rows : {&r.checkpoints, &r.denoised}) {
+      const bool denoised = rows == &r.denoised;
+      for (const auto& cp : *rows) {
+        const double t = mean(cp.seconds), m = mean(cp.mse);
+        const eval::Rgb mm = meanOfRuns(cp);
+        char line[512];
+        std::snprintf(
+            line, sizeof line,
+            "%s,\"%s\",%u,%.6g,%.6g,%.6g,%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%s,",
+            r.name.c_str(), r.flags.c_str(), cp.spp, t,
+            *std::min_element(cp.seconds.begin(), cp.seconds.end()),
+            *std::max_element(cp.seconds.begin(), cp.seconds.end()), cp.seconds.size(), m, std::sqrt(m),
+            mean(cp.relMse), cp.variance, std::max(0.0, m - cp.variance), mm[0], mm[1], mm[2], refMean[0],
+            refMean[1], refMean[2], (m > 0 && t > 0) ? 1.0 / (m * t) : 0.0, denoised ? "denoised" : "raw");
+        f << line << fractionField(cp.offReference) << "," << fractionField(cp.offRaw) << ","
+          << (cp.offReference.runs ? fmt("%.6g", cp.offReference.alpha) : std::string()) << "\n";
+      }
     }
   }
   writeFileAtomically(path, f.str(), "converge");
@@ -101,9 +147,15 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
     g << "set terminal pngcairo size 1100,480 font 'sans,10' noenhanced\n";
     g << "set output '" << (dir / kPlotTemp).string() << "'\n";
     g << "set logscale xy\nset grid\nset key bottom left\nset xlabel 'time (s)'\n";
-    for (size_t i = 0; i < results.size(); ++i) {
+    // One curve per configuration, and one more for each denoised one.
+    std::vector<std::pair<std::string, const std::vector<Checkpoint>*>> curves;
+    for (const auto& r : results) {
+      curves.push_back({r.denoised.empty() ? r.name : r.name + " raw", &r.checkpoints});
+      if (!r.denoised.empty()) curves.push_back({r.name + " denoised", &r.denoised});
+    }
+    for (size_t i = 0; i < curves.size(); ++i) {
       g << "$d" << i << " << EOD\n";
-      for (const auto& cp : results[i].checkpoints) {
+      for (const auto& cp : *curves[i].second) {
         const double m = mean(cp.mse);
         g << mean(cp.seconds) << " " << mean(cp.relMse) << " " << std::sqrt(m) << "\n";
       }
@@ -112,8 +164,8 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
     g << "set multiplot layout 1,2 title '" << title << "'\n";
     for (int panel = 0; panel < 2; ++panel) {
       g << "set ylabel '" << (panel == 0 ? "relMSE" : "RMSE") << "'\nplot ";
-      for (size_t i = 0; i < results.size(); ++i) {
-        std::string name = results[i].name;
+      for (size_t i = 0; i < curves.size(); ++i) {
+        std::string name = curves[i].first;
         std::replace(name.begin(), name.end(), '_', '-');
         g << (i ? ", " : "") << "$d" << i << " using 1:" << (panel == 0 ? 2 : 3)
           << " with linespoints title '" << name << "'";
@@ -188,25 +240,28 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
         "efficiency | time to relMSE "
      << fmt("%.3g", target) << " | NaN/Inf dropped | max/mean | >10x mean |\n";
   md << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const auto& r : results) {
-    if (r.checkpoints.empty()) continue;
-    const auto& cp = r.checkpoints.back();
+  auto row = [&](const ConfigResult& r, const std::vector<Checkpoint>& rows, const std::string& name) {
+    if (rows.empty()) return;
+    const auto& cp = rows.back();
     const double t = mean(cp.seconds), m = mean(cp.mse);
-    eval::Rgb mm{0, 0, 0};
-    for (const auto& v : cp.mean)
-      for (int k = 0; k < 3; ++k) mm[k] += v[k] / double(cp.mean.size());
+    const eval::Rgb mm = meanOfRuns(cp);
     std::string bias;
     for (int k = 0; k < 3; ++k)
       bias += (k ? " " : "") + fmt("%+.2f", refMean[k] != 0 ? 100.0 * (mm[k] / refMean[k] - 1.0) : 0.0);
-    const auto ttr = timeToReach(r, target);
-    md << "| " << r.name << " | `" << (r.flags.empty() ? "(base)" : r.flags) << "` | " << cp.spp << " | "
+    const auto ttr = timeToReach(rows, target);
+    md << "| " << name << " | `" << (r.flags.empty() ? "(base)" : r.flags) << "` | " << cp.spp << " | "
        << fmt("%.2f", t) << " | " << fmt("%.4g", std::sqrt(m)) << " | " << fmt("%.4g", mean(cp.relMse))
        << " | " << fmt("%.3g", cp.variance) << " | " << fmt("%.3g", std::max(0.0, m - cp.variance)) << " | "
        << bias << " | " << fmt("%.4g", m > 0 && t > 0 ? 1.0 / (m * t) : 0.0) << " | "
        << (ttr ? fmt("%.2f", *ttr) : std::string("not reached")) << " | " << r.dropped << " | "
        << fmt("%.1f", r.fireflies.maxOverMean) << " | " << fmt("%.2g", r.fireflies.fractionAbove10x)
        << " |\n";
+  };
+  for (const auto& r : results) {
+    row(r, r.checkpoints, r.denoised.empty() ? r.name : r.name + " (raw)");
+    row(r, r.denoised, r.name + " (denoised)");
   }
+  if (setup.moreSections) setup.moreSections(md);
   writeErrorImages(dir, results, reference, md);
   writeFileAtomically(dir / "converge.md", md.str(), "converge");  // last: it names the files above
 }

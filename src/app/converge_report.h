@@ -4,6 +4,8 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +13,7 @@
 #include "app/render_options.h"
 #include "eval/image.h"
 #include "eval/metrics.h"
+#include "eval/pixel_test.h"
 
 namespace wb::app {
 
@@ -34,12 +37,18 @@ struct Checkpoint {
   std::vector<eval::Rgb> mean;
   std::vector<eval::ImageRGBA> images;  // per run (kept for the run-to-run variance)
   double variance = 0;                  // mean per-pixel variance of one run, from the runs
+  // With 2 runs or more: pixels whose mean over the runs is significantly off the reference, and (a denoised
+  // checkpoint) off the raw image of the same samples (the filter's own bias). runs == 0: not tested.
+  eval::PixelTestResult offReference, offRaw;
 };
 
 struct ConfigResult {
   std::string name;
   std::string flags;
   std::vector<Checkpoint> checkpoints;
+  // A configuration with --denoise (path tracer): the denoised image of the same samples at each checkpoint
+  // (its seconds include the denoiser's); `checkpoints` are then the raw images. Empty otherwise.
+  std::vector<Checkpoint> denoised;
   uint64_t dropped = 0;
   eval::FireflyStats fireflies;
   double setupSeconds = 0;
@@ -48,11 +57,20 @@ struct ConfigResult {
 double mean(const std::vector<double>& v);  // 0 for none
 // A file-name-safe version of a configuration name (letters, digits, - and _; others become _).
 std::string safeName(const std::string& name);
+// The image mean of a checkpoint, averaged over its runs.
+eval::Rgb meanOfRuns(const Checkpoint& cp);
 // printf-style formatting of one number.
 std::string fmt(const char* format, double v);
 
 // Seconds to reach `target` relMSE, interpolated in log-log between checkpoints; empty if never reached.
-std::optional<double> timeToReach(const ConfigResult& r, double target);
+std::optional<double> timeToReach(const std::vector<Checkpoint>& checkpoints, double target);
+inline std::optional<double> timeToReach(const ConfigResult& r, double target) {
+  return timeToReach(r.checkpoints, target);
+}
+// The pixel tests of every checkpoint with 2 runs or more (before the images are dropped): off the reference
+// (whose own variance is the raw runs' times spp / referenceSpp when it is a render of referenceSpp samples;
+// referenceSpp 0: exact), and the denoised images off the raw ones.
+void testPixels(ConfigResult& r, const eval::ImageRGBA& reference, uint32_t referenceSpp);
 void writeCsv(const std::filesystem::path& path, const std::vector<ConfigResult>& results,
               const eval::Rgb& refMean);
 // Writes the gnuplot script and runs gnuplot; returns an empty string or the reason the plot is missing.
@@ -71,6 +89,8 @@ struct ReportSetup {
   std::string plotNote;            // why the plot is missing; empty when it is there
   std::vector<std::string> notes;  // further lines of the set-up list
   std::string partialNote;  // non-empty: heads the report ("**Partial:** ..."): the run was interrupted
+  // Sections written after the table of final errors, before the error images (converge_denoise.h's).
+  std::function<void(std::ostream&)> moreSections;
 };
 // converge.md: the set-up, the table of final errors and time to error, and the error images.
 void writeSummary(const std::filesystem::path& dir, const std::vector<ConfigResult>& results,

@@ -74,6 +74,7 @@ double timedRender(render::RenderSession& session, uint32_t samples) {
 render::Parameters referenceParameters(const render::Parameters& base) {
   render::Parameters p = base;
   p.render.seed = kReferenceSeed;
+  p.render.denoise = false;  // a reference is the estimator's own image
   p.mode = render::RenderMode::PathTrace;
   return p;
 }

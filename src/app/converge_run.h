@@ -39,7 +39,7 @@ uint32_t runSeed(uint32_t base, uint32_t run);
 // Adds `samples` samples (hybrid modes: frames) to the current image; returns the seconds it took.
 double timedRender(render::RenderSession& session, uint32_t samples);
 
-// The parameters a reference of `base` renders with: the path tracer, kReferenceSeed.
+// The parameters a reference of `base` renders with: the path tracer, kReferenceSeed, not denoised.
 render::Parameters referenceParameters(const render::Parameters& base);
 
 struct ReferenceRender {

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/numbers.h"
 #include "shader/types.h"
 
 namespace wb::app {
@@ -17,6 +18,9 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
                  "write AOVs beside --out: albedo, normal, cost (the shader clock per sample, path tracer)");
   app.add_option("--device", o.device, "Vulkan device name (substring)");
   app.add_option("--tile", o.tile, "trace each sample in tiles of WxH (dispatch-shape experiments)");
+  app.add_option("--samples-per-launch", o.samplesPerLaunch,
+                 "samples one ray tracing launch traces, 0 to 64 (default 1; 0 = the device's choice: enough "
+                 "to fill a GPU, 1 on a CPU device)");
   app.add_option("--define", o.defines,
                  "preprocessor define K=V (or K) for the path tracer's shaders; repeatable");
   o.flags.addTo(app, o.params);
@@ -43,6 +47,12 @@ void finishRenderOptions(RenderOptions& o) {
     }
     s.tileWidth = tw;
     s.tileHeight = th;
+  }
+  if (!o.samplesPerLaunch.empty()) {
+    const auto n = parseDecimalUnsigned(o.samplesPerLaunch);
+    if (!n || *n > 64)
+      throw std::invalid_argument("--samples-per-launch: expected 0 to 64, got '" + o.samplesPerLaunch + "'");
+    s.samplesPerLaunch = uint32_t(*n);
   }
   s.defines.clear();
   for (const auto& d : o.defines) {

@@ -22,7 +22,8 @@ struct RenderOptions {
   bool aovCost = false;                       // the path tracer's cost variant and its cost map
   std::vector<std::string> defines;           // --define K=V
   std::string device;
-  std::string tile;  // "WxH": dispatch shape of a sample (default: the whole image)
+  std::string tile;              // "WxH": dispatch shape of a sample (default: the whole image)
+  std::string samplesPerLaunch;  // "N": samples per ray tracing launch (default: the device's choice)
   ParameterFlags flags;
 
   const render::RenderSettings& settings() const { return params.render; }

@@ -71,7 +71,7 @@ ABOutcome ABComparison::compareOne(const HotReload::InstalledPass& ip) {
       use(side);
       seed(k);
       s.render(1);
-      images[side].push_back(s.readImage());
+      images[side].push_back(s.readEstimate());  // the estimator's image: the verdict is not the denoiser's
     }
   }
   // The speed: rounds of one sample per side, back to back, the order flipping every round (ABBA) so that a

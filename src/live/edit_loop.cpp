@@ -8,7 +8,7 @@
 namespace wb::live {
 
 EditLoop::EditLoop(render::RenderSession& session, EditLoopOptions options)
-    : session_(session), budget_(options.budget) {
+    : session_(session), budget_(options.budget), adaptiveBudget_(options.adaptiveBudget) {
   if (options.watchDirs.empty()) options.watchDirs = {shaderDir()};
   hot_ = std::make_unique<HotReload>(session.library(), options.watchDirs);
   // Every renderer's passes, the modes made later too (and those compiled ahead while being made).
@@ -67,12 +67,18 @@ void EditLoop::frameFinished(Clock::time_point frameBegin) {
   if (abOn_) {
     const auto t0 = Clock::now();
     if (!comparison_) comparison_ = std::make_unique<ABComparison>(session_, budget_);
+    // The comparisons share the allowance: one per rebuilt pass of a session renderer.
+    uint32_t comparisons = 0;
+    for (const auto& ip : c.installed) comparisons += ip.owner != nullptr;
+    c.abPlan = planner_.plan(budget_, adaptiveBudget_ ? last->editToFirstFrameMs : -1.0, comparisons);
+    comparison_->setBudget(c.abPlan.budget);
     try {
       c.ab = comparison_->compare(c.installed);
       std::vector<ReloadAB> results;
       for (const auto& o : c.ab) results.push_back(o.result);
-      hot_->attachAB(std::move(results),
-                     std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      if (!c.ab.empty()) planner_.observe(c.abPlan, ms);
+      hot_->attachAB(std::move(results), ms);
     } catch (const std::exception& e) {
       comparison_->reset();
       c.ab.clear();

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "live/ab_budget.h"
 #include "live/ab_comparison.h"
 #include "live/hot_reload.h"
 #include "render/render_session.h"
@@ -26,6 +27,9 @@ struct EditLoopOptions {
   std::vector<std::filesystem::path> watchDirs;  // empty: shaders/
   bool ab = false;                               // compare old and new after each reload
   ABBudget budget;
+  // The budget follows the machine (ab_budget.h): each comparison is cut to fit kMaxCostRatio of its edit's
+  // time; false runs `budget` as given.
+  bool adaptiveBudget = false;
 };
 
 // A reload that is over: its event (with the A/B results attached when a comparison ran), the comparison's
@@ -35,6 +39,7 @@ struct CompletedReload {
   std::vector<ABOutcome> ab;
   std::vector<HotReload::InstalledPass> installed;
   std::string abError;  // the comparison failed (a device error): why
+  ABPlan abPlan;        // the budget the comparison ran with, and why
 };
 
 class EditLoop {
@@ -85,6 +90,9 @@ class EditLoop {
   void prepareAB();
   const ABBudget& abBudget() const { return budget_; }
   void setABBudget(const ABBudget& budget);
+  // The live renderer's trace rate (pixel samples per ms): the adaptive budget's first guess of the machine.
+  void setABRateHint(double pixelsPerMs) { planner_.setRateHint(pixelsPerMs); }
+  const ABBudgetPlanner& abPlanner() const { return planner_; }
   // Reinstalls the pipelines the last reload replaced (`installed` from its CompletedReload).
   void revert(const std::vector<HotReload::InstalledPass>& installed);
 
@@ -93,6 +101,8 @@ class EditLoop {
   std::unique_ptr<HotReload> hot_;
   bool abOn_ = false;
   ABBudget budget_;
+  bool adaptiveBudget_ = false;
+  ABBudgetPlanner planner_;
   std::unique_ptr<ABComparison> comparison_;  // made on the first comparison
   bool awaitingFirstFrame_ = false;
   std::deque<double> frameSeconds_;  // the last frames' durations

@@ -18,6 +18,7 @@ LiveSession::LiveSession(Options o) : state_(std::move(o.state)) {
   EditLoopOptions lo;
   lo.watchDirs = o.watchDirs;
   lo.ab = ab_.enabled;
+  lo.adaptiveBudget = true;  // a comparison costs at most ABBudgetPlanner::kMaxCostRatio of its edit
   loop_ = std::make_unique<EditLoop>(*session_, lo);  // every renderer, the modes made later too
   progressive_ = std::make_unique<render::ProgressiveTracer>(session_->context(), session_->pathTracer());
   state_.materials = session_->scene().materials;
@@ -52,6 +53,19 @@ void LiveSession::setCamera(const render::CameraState& camera) {
 }
 
 void LiveSession::setTraceSize(uint32_t width, uint32_t height) {
+  const uint32_t w0 = progressive_->targetWidth(), h0 = progressive_->targetHeight();
+  // A pixel clicked on the image keeps its point of the scene (the camera's vertical field of view spans the
+  // height); one given by number (--set, a script) stays as given.
+  if (picked_ && state_.inspectPixel == picked_->pixel && picked_->size == glm::uvec2(w0, h0) &&
+      (width != w0 || height != h0)) {
+    const double s = double(height) / double(h0);
+    const double x = (double(state_.inspectPixel->x) + 0.5 - 0.5 * w0) * s + 0.5 * width;
+    const double y = (double(state_.inspectPixel->y) + 0.5 - 0.5 * h0) * s + 0.5 * height;
+    if (x >= 0.0 && y >= 0.0 && x < double(width) && y < double(height)) {
+      state_.inspectPixel = glm::uvec2(uint32_t(x), uint32_t(y));
+      picked_ = Picked{*state_.inspectPixel, glm::uvec2(width, height)};
+    }
+  }
   progressive_->setTargetSize(width, height);
 }
 
@@ -103,6 +117,14 @@ void LiveSession::apply(bool waitForMode) {
       settingsChanged = true;
     }
   }
+  if (s.denoise != tracer.settings().denoise) {
+    // A filter of the accumulation: toggling it restarts nothing (the window writes the AOVs it reads).
+    const bool made = tracer.denoiser() != nullptr;
+    render::RenderSettings ts = tracer.settings();
+    ts.denoise = s.denoise;
+    tracer.setSettings(ts);
+    if (!made && tracer.denoiser()) loop_->hot().addRenderer(tracer);  // its passes hot-reload too
+  }
   if (settingsChanged) {
     tracer.setFeatures(render::featuresFor(session_->scene(), s));
     progressive_->setSettings(s);
@@ -120,8 +142,9 @@ void LiveSession::apply(bool waitForMode) {
     session_->setHybridSettings(st.params.hybrid);
     restart = true;
   }
-  if (st.params.mode != applied_.params.mode) restart = true;
+  const render::RenderMode shownBefore = session_->mode();
   applyMode(waitForMode);
+  const render::RenderMode shown = session_->mode();
   if (applyInspection()) restart = true;
   if (instruments_.apply(tracer, st)) restart = true;  // the cost view's and the asserts' variants
   if (st.referencePath != referenceTried_) {
@@ -154,8 +177,15 @@ void LiveSession::apply(bool waitForMode) {
   // A rebuild compiling gets the share of the cores the device's policy gives it.
   if (loop_->compiling())
     opts.budgetMs = st.budgetMs * session_->context().policy().windowTraceShareWhileCompiling;
-  if (restart) {
-    progressive_->invalidate();
+  // The path tracer's accumulation stays while another mode is shown: going back to it resumes the image
+  // unless something that alters it changed meanwhile. A hybrid mode restarts with each switch to it.
+  const bool pathTracing = shown == render::RenderMode::PathTrace;
+  if (!pathTracing && restart) pathTracerStale_ = true;
+  const bool restartPathTracer = restart || (pathTracing && shownBefore != shown && pathTracerStale_);
+  if (pathTracing) pathTracerStale_ = false;
+  const bool restartHybridMode = restart || (!pathTracing && shownBefore != shown);
+  if (restartPathTracer) progressive_->invalidate();
+  if (restartHybridMode) {
     if (auto* h = session_->hybrid()) {
       h->resetAccumulation();
       ++hybridResets_;
@@ -222,29 +252,45 @@ bool LiveSession::applyInspection() {
     if (pixel != hybrid->inspectPixel()) hybrid->setInspectPixel(pixel);
   }
   if (want == tracer.inspection()) return false;
-  tracer.setInspection(want);
   state_.inspectShown = -1;
-  return true;
+  // Another pixel keeps the accumulation (the image does not change); switching the variant restarts it.
+  return tracer.setInspection(want);
 }
 
 void LiveSession::applyAB() {
   if (ab_.revertRequested && !ab_.decided && !ab_.installed.empty()) {
     loop_->revert(ab_.installed);
-    ab_.note = "reverted to the old pipeline (the file on disk is unchanged)";
-    ab_.decided = true;
+    // The old pipeline's image is still valid: its accumulation goes on.
+    const uint32_t kept = progressive_->parkedSamples();
+    ab_.decide(progressive_->resumeParked() ? "reverted to the old pipeline and its " + std::to_string(kept) +
+                                                  " samples (the file on disk is unchanged)"
+                                            : "reverted to the old pipeline (the file on disk is unchanged)");
     std::printf("workbench: A/B revert: old pipeline reinstalled\n");
     std::fflush(stdout);
   }
   if (ab_.acceptRequested && !ab_.decided) {
-    ab_.note = "accepted";
-    ab_.decided = true;
+    progressive_->dropParked();
+    ab_.decide("accepted");
   }
   ab_.revertRequested = ab_.acceptRequested = false;
   loop_->setAB(ab_.enabled);
 }
 
 void LiveSession::beginFrame() {
-  loop_->beginFrame();
+  const auto reload = loop_->beginFrame();
+  // A new path tracer pipeline: while edits are compared, the old pipeline's accumulation is set aside until
+  // the comparison says what becomes of it (Revert or an identical image take it back); otherwise nothing
+  // parked (another size's accumulation) belongs to the new pipeline.
+  const auto& installed = loop_->hot().lastInstalled();
+  if (reload) denoised_ = {};  // a new pipeline (the denoiser's own too) makes the output stale
+  if (reload && std::any_of(installed.begin(), installed.end(),
+                            [&](const auto& ip) { return ip.owner == &session_->pathTracer(); })) {
+    if (ab_.enabled && !session_->hybrid()) {
+      progressive_->parkAccumulation();
+    } else {
+      progressive_->dropParked();
+    }
+  }
   render::HybridRenderer* hybrid = session_->hybrid();
   if (hybrid && (hybrid->settings().width != progressive_->targetWidth() ||
                  hybrid->settings().height != progressive_->targetHeight())) {
@@ -297,6 +343,52 @@ uint64_t LiveSession::recordTrace(VkCommandBuffer cmd) {
   return uint64_t(hybrid->settings().width) * hybrid->settings().height;
 }
 
+bool LiveSession::denoiseValid() const {
+  const auto& tracer = session_->pathTracer();
+  return tracer.denoiser() && denoised_.generation == progressive_->generation() &&
+         denoised_.width == tracer.settings().width && denoised_.height == tracer.settings().height;
+}
+
+void LiveSession::planDenoise(bool frameTraces) {
+  const auto& tracer = session_->pathTracer();
+  denoiseThisFrame_ = false;
+  if (!frameTraces || session_->hybrid() || !tracer.settings().denoise || !tracer.denoiser() ||
+      progressive_->inPreview() || progressive_->samples() == 0)
+    return;
+  if (!denoiseValid()) {
+    denoiseThisFrame_ = true;
+    return;
+  }
+  if (progressive_->samples() == denoised_.samples) return;  // nothing new since (paused, or a slow sample)
+  const double sinceMs = std::chrono::duration<double, std::milli>(Clock::now() - denoised_.at).count();
+  denoiseThisFrame_ = sinceMs >= denoised_.ms * (1.0 / kDenoiseShare - 1.0);
+}
+
+bool LiveSession::denoiseShown() const {
+  const auto& tracer = session_->pathTracer();
+  return !session_->hybrid() && tracer.settings().denoise && (denoiseThisFrame_ || denoiseValid());
+}
+
+void LiveSession::recordDenoise(VkCommandBuffer cmd) {
+  if (!denoiseThisFrame_) return;
+  const auto& tracer = session_->pathTracer();
+  tracer.recordDenoise(cmd,
+                       progressive_->samples() == 0 ? progressive_->cursorRow() : tracer.settings().height);
+  denoised_.generation = progressive_->generation();
+  denoised_.width = tracer.settings().width;
+  denoised_.height = tracer.settings().height;
+  denoised_.samples = progressive_->samples();
+  denoised_.at = Clock::now();
+  denoiseThisFrame_ = false;
+  denoiseInFlight_ = true;
+  ++denoiseRuns_;
+}
+
+void LiveSession::denoiseTimed(double ms) {
+  if (denoiseInFlight_) denoised_.ms = ms;
+  denoiseInFlight_ = false;
+}
+
 void LiveSession::traceTimed(uint64_t pixels, double ms) {
   if (!lastTraceHybrid_) progressive_->reportTraceTime(pixels, ms);
   if (progressive_->generation() != traceGeneration_) {
@@ -307,6 +399,7 @@ void LiveSession::traceTimed(uint64_t pixels, double ms) {
 }
 
 void LiveSession::frameFinished(Clock::time_point frameBegin) {
+  loop_->setABRateHint(progressive_->pixelsPerMs());  // the comparison's first guess of this machine
   loop_->frameFinished(frameBegin);
   for (auto& c : loop_->takeCompleted()) {
     if (!c.abError.empty()) {
@@ -314,8 +407,16 @@ void LiveSession::frameFinished(Clock::time_point frameBegin) {
       continue;
     }
     if (c.ab.empty()) continue;
-    ab_.set(c.ab, c.installed, c.event.abMs, c.event.editToFirstFrameMs);
-    loop_->setAB(ab_.enabled);  // the comparison may have switched itself off
+    ab_.set(c.ab, c.installed, c.abPlan, c.event.abMs, c.event.editToFirstFrameMs);
+    // The new path tracer renders the very same image as the old one: the old accumulation is its own.
+    bool identical = false, other = false;
+    for (const auto& o : c.ab) {
+      if (o.result.mode != render::renderModeName(render::RenderMode::PathTrace)) continue;
+      (o.result.image.verdict == eval::ImageVerdict::Identical ? identical : other) = true;
+    }
+    const uint32_t kept = progressive_->parkedSamples();
+    if (identical && !other && progressive_->resumeParked())
+      ab_.note = "identical image: its " + std::to_string(kept) + " samples go on";
   }
   counters_ = session_->renderer().readCounters();
   instruments_.submissionFinished(session_->renderer());
@@ -359,6 +460,11 @@ bool LiveSession::tracing() const {
   return !state_.paused && !progressive_->done();
 }
 
+bool LiveSession::imageStarted() const {
+  if (const auto* h = session_->hybrid()) return h->samplesAccumulated() > 0;
+  return progressive_->samples() > 0 || progressive_->cursorRow() > 0 || progressive_->previewValid();
+}
+
 bool LiveSession::busy() const {
   return loop_->hot().busy() || !modeSwitch_.empty();
 }
@@ -366,6 +472,10 @@ bool LiveSession::busy() const {
 double LiveSession::secondsSinceReset() const {
   if (session_->hybrid()) return std::chrono::duration<double>(Clock::now() - hybridReset_).count();
   return progressive_->secondsSinceReset();
+}
+
+uint32_t LiveSession::pathTracerSamplesKept() const {
+  return session_->mode() != render::RenderMode::PathTrace && !pathTracerStale_ ? progressive_->samples() : 0;
 }
 
 uint64_t LiveSession::resets() const {
@@ -390,6 +500,7 @@ DisplayFrame LiveSession::displayFrame() const {
     return d;
   }
   d.radiance = tracer.accumulationImage().view();
+  if (denoiseShown()) d.denoised = tracer.denoiser()->output().view();
   d.imageSize = {tracer.settings().width, tracer.settings().height};
   const bool usePreview = progressive_->previewValid() && progressive_->samples() == 0;
   if (usePreview)
@@ -416,14 +527,21 @@ void LiveSession::updateLiveError() {
   }
   const uint32_t n = samples();
   const double seconds = secondsSinceReset();
-  if (liveError_.wants(n, seconds)) liveError_.add(image(), n, seconds);
+  // The estimator's own image (never the denoised one): the error estimate models its noise.
+  if (liveError_.wants(n, seconds)) liveError_.add(session_->renderer().readEstimate(), n, seconds);
 }
 
 void LiveSession::updateInspection() {
   // The frame's traces have finished: every sample below the count is complete. The preview's samples are of
   // another resolution: none count.
   const uint32_t finished = progressive_->inPreview() ? 0 : progressive_->samples();
-  inspection_.update(session_->pathTracer(), finished, progressive_->generation());
+  inspection_.update(session_->pathTracer(), finished, progressive_->generation(), state_.inspectShown);
+  // The first sample to arrive is held (the table does not follow the newest under the mouse); the user picks
+  // another, or a new pixel starts over.
+  if (state_.inspectShown < 0 && !inspection_.samples().empty()) {
+    state_.inspectShown = int(inspection_.samples().back().record.sampleIndex);
+    inspection_.hold(state_.inspectShown);
+  }
   const auto* hybrid = session_->hybrid();
   inspection_.updateHybrid(hybrid && hybrid->inspectPixel() ? std::optional(hybrid->readInspection())
                                                             : std::nullopt);
@@ -433,6 +551,7 @@ void LiveSession::inspectAt(glm::vec2 rel) {
   if (!state_.inspectOnClick) return;
   const glm::uvec2 size(progressive_->targetWidth(), progressive_->targetHeight());
   state_.inspectPixel = glm::min(glm::uvec2(glm::max(rel, glm::vec2(0.0f)) * glm::vec2(size)), size - 1u);
+  picked_ = Picked{*state_.inspectPixel, size};
   state_.inspectOpenPanel = 2;
 }
 

@@ -36,6 +36,8 @@ struct DisplayFrame {
   VkImageView albedo = VK_NULL_HANDLE, normal = VK_NULL_HANDLE, info = VK_NULL_HANDLE, stats = VK_NULL_HANDLE;
   VkImageView cost = VK_NULL_HANDLE;  // the path tracer's cost AOV
   VkImageView preview = VK_NULL_HANDLE;
+  // The denoised radiance (the path tracer with denoise on, once recordDenoise() records it), else null.
+  VkImageView denoised = VK_NULL_HANDLE;
   glm::uvec2 imageSize{1u};
   glm::uvec2 previewSize{0u};  // 0: no preview under the rows not traced yet
   uint32_t tracedRows = 0;     // rows of the current sample traced so far (the rest shows the preview)
@@ -83,6 +85,19 @@ class LiveSession {
   // work is done (completed reloads, counters, running error, inspector records).
   void beginFrame();
   uint64_t recordTrace(VkCommandBuffer cmd);
+  // The denoiser of a shown frame (path tracer, denoise on). planDenoise() after beginFrame() decides whether
+  // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces, and then
+  // as new samples arrive, no more often than keeps the denoiser at kDenoiseShare of the time (the last
+  // output is shown meanwhile; it is of the same image, with fewer samples). While the first sample is
+  // traced in strips, the raw rows are shown. recordDenoise() after recordTrace() records the planned run;
+  // denoiseTimed() takes its measured GPU time. displayFrame().denoised is the output when it is (or becomes
+  // in this frame) the current image's.
+  static constexpr double kDenoiseShare = 0.05;
+  void planDenoise(bool frameTraces);
+  void recordDenoise(VkCommandBuffer cmd);
+  void denoiseTimed(double ms);
+  bool denoiseShown() const;
+  uint64_t denoiseRuns() const { return denoiseRuns_; }
   void traceTimed(uint64_t pixels, double ms);
   void frameFinished(Clock::time_point frameBegin);
   // After a trace-only submission finished (no reload completes with it): counters and running error.
@@ -113,7 +128,13 @@ class LiveSession {
   bool previews() const { return !session_->hybrid(); }
   bool inPreview() const;
   bool tracing() const;  // there is something left to trace (not paused, target not reached)
-  bool busy() const;     // a reload or a mode switch is in progress
+  // The image shown has something traced (a sample's strips, a preview, a hybrid frame): a frame may be drawn
+  // without tracing.
+  bool imageStarted() const;
+  bool busy() const;  // a reload or a mode switch is in progress
+  // While another mode is shown: the path tracer's samples that going back to it resumes (0: none, or its
+  // image is out of date).
+  uint32_t pathTracerSamplesKept() const;
   double secondsSinceReset() const;
   uint64_t resets() const;
   double gpuTraceSeconds() const { return traceSeconds_; }  // since the last restart
@@ -148,6 +169,12 @@ class LiveSession {
   std::unique_ptr<EditLoop> loop_;
   std::unique_ptr<render::ProgressiveTracer> progressive_;
   bool cameraChanged_ = false;
+  // The last pixel a click picked and the trace size it was picked at.
+  struct Picked {
+    glm::uvec2 pixel, size;
+  };
+  std::optional<Picked> picked_;
+  bool pathTracerStale_ = false;  // something that alters its image changed while another mode was shown
   render::CameraState camera_;
   // The hybrid modes' accumulation: restarts (a changed generation restarts the running error), when the
   // last one was, and how many frames the last check saw (fewer: a pipeline install restarted it).
@@ -155,6 +182,17 @@ class LiveSession {
   uint32_t hybridFramesSeen_ = 0;
   Clock::time_point hybridReset_ = Clock::now();
   bool lastTraceHybrid_ = false;
+  // The denoiser's output: of which accumulation (generation, size, samples), when it was recorded and what
+  // it cost; whether this frame denoises (planDenoise) and whether the frame in flight did.
+  struct Denoised {
+    uint64_t generation = ~0ull;
+    uint32_t width = 0, height = 0, samples = 0;
+    Clock::time_point at{};
+    double ms = 0;
+  } denoised_;
+  bool denoiseThisFrame_ = false, denoiseInFlight_ = false;
+  uint64_t denoiseRuns_ = 0;
+  bool denoiseValid() const;
   uint64_t traceGeneration_ = 0;
   double traceSeconds_ = 0;
   gpu::Counters counters_{};

@@ -33,8 +33,9 @@ struct SessionState {
 
   // The path inspector (Inspect tab): the pixel of the trace image whose paths are recorded (nullopt: off;
   // setting one switches the path tracer to its inspecting variant and restarts accumulation), how many of
-  // the latest samples are kept, which one the table and the overlay show (-1: the latest), whether a click
-  // on the image picks the pixel.
+  // the latest samples are kept, which one the table and the overlay show (-1: none chosen yet: the first to
+  // arrive is; it is held until another is chosen or the pixel changes), whether a click on the image picks
+  // the pixel.
   std::optional<glm::uvec2> inspectPixel;
   uint32_t inspectSamples = 64;
   int inspectShown = -1;

@@ -5,6 +5,7 @@
 
 #include "sampling/environment.h"
 #include "scene/emitters.h"
+#include "scene/reflectors.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -135,6 +136,9 @@ void GpuScene::buildEmitters(const std::vector<gpu::Material>& materials) {
   emitterCount_ = static_cast<uint32_t>(emitters.size());
   emitters_ = vk::makeBuffer(ctx_, emitters, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   emitterAlias_ = vk::makeBuffer(ctx_, alias, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const auto reflectors = scene::glossyReflectors(source_, materials);
+  reflectorCount_ = static_cast<uint32_t>(reflectors.size());
+  reflectors_ = vk::makeBuffer(ctx_, reflectors, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   ++emitterVersion_;
 }
 
@@ -163,6 +167,7 @@ void bindSceneResources(Pass& pass, const GpuScene& scene, const GpuEnvironment&
   pass.setSampledImages("textures", scene.textureDescriptors());
   pass.setBuffer("EmitterBlock", scene.emitters());
   pass.setBuffer("EmitterAliasBlock", scene.emitterAlias());
+  pass.setBuffer("ReflectorBlock", scene.reflectors());
   pass.setSampledImages("envMap", {env.descriptor()});
   pass.setBuffer("EnvAliasBlock", env.aliasTable());
 }

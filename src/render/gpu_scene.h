@@ -27,7 +27,13 @@ class GpuScene {
   const vk::Buffer& emitterAlias() const { return emitterAlias_; }
   uint32_t emitterCount() const { return emitterCount_; }
   float emitterTotalPower() const { return emitterTotalPower_; }
-  // Changes whenever the emitter buffers are rebuilt (a material edit): passes rewrite their descriptors.
+  // Glossy reflectors (scene/reflectors.h) as bounding spheres (vec4: centre, radius), and how many the path
+  // tracer guides towards: none in a scene without lights (directional or area), where no sharp highlight
+  // forms.
+  const vk::Buffer& reflectors() const { return reflectors_; }
+  uint32_t reflectorCount() const { return lightCount_ > 0 || emitterCount_ > 0 ? reflectorCount_ : 0; }
+  // Changes whenever the emitter (and reflector) buffers are rebuilt (a material edit): passes rewrite their
+  // descriptors.
   uint64_t emitterVersion() const { return emitterVersion_; }
   // One entry per scene texture (a 1x1 white image where a texture has no usable image).
   const std::vector<VkDescriptorImageInfo>& textureDescriptors() const { return textureInfos_; }
@@ -47,7 +53,8 @@ class GpuScene {
   const scene::Scene& source_;
   uint64_t emitterVersion_ = 0;
   std::vector<vk::Buffer> vertexBuffers_, indexBuffers_;
-  vk::Buffer geometries_, materials_, emitters_, emitterAlias_;
+  vk::Buffer geometries_, materials_, emitters_, emitterAlias_, reflectors_;
+  uint32_t reflectorCount_ = 0;
   uint32_t emitterCount_ = 0;
   float emitterTotalPower_ = 0.0f;
   uint32_t lightCount_ = 0;

@@ -111,14 +111,15 @@ std::vector<ParameterInfo> makeList() {
                           "samples per pixel (the window: stop there; 0 = keep refining)", 0, 1u << 20, 0, 0,
                           kAllModes, [](P& p) -> uint32_t& { return p.render.spp; }));
   l.back().resetsAccumulation = false;
-  l.push_back(unsignedInt("max_bounces", "Render", "max bounces", "maximum path bounces", 0, 1024, 0, 32,
-                          kPathTraceMode, [](P& p) -> uint32_t& { return p.render.maxBounces; }));
+  l.push_back(unsignedInt("max_bounces", "Render", "max bounces",
+                          "last bounce of a path (0 = the camera ray's hit)", 0, 1024, 0, 32, kPathTraceMode,
+                          [](P& p) -> uint32_t& { return p.render.maxBounces; }));
   l.push_back(boolean("russian_roulette", "--no-rr", false, "Render", "Russian roulette",
                       "Russian roulette (--no-rr: disable)", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.russianRoulette; }));
   l.push_back(unsignedInt("rr_start", "Render", "RR start bounce",
-                          "first bounce where Russian roulette may end a path", 0, 1024, 0, 16,
-                          kPathTraceMode, [](P& p) -> uint32_t& { return p.render.rrStart; }));
+                          "first bounce where Russian roulette may end a path (0 = the camera ray's hit)", 0,
+                          1024, 0, 16, kPathTraceMode, [](P& p) -> uint32_t& { return p.render.rrStart; }));
   l.push_back(real("rr_min", "Render", "RR min", "lowest Russian roulette survival probability", 0, 1, 0.01,
                    1, kPathTraceMode, [](P& p) -> float& { return p.render.rrMin; }));
   l.push_back(real("rr_max", "Render", "RR max", "highest Russian roulette survival probability", 0, 1, 0.01,
@@ -139,6 +140,12 @@ std::vector<ParameterInfo> makeList() {
       kPathTraceMode, [](P& p) -> SamplerKind& { return p.render.sampler; }));
   l.push_back(unsignedInt("seed", "Render", "seed", "random seed", 0, 4294967295.0, 0, 0, kAllModes,
                           [](P& p) -> uint32_t& { return p.render.seed; }));
+  l.push_back(
+      boolean("denoise", "--denoise", true, "Render", "denoise",
+              "denoise the path tracer's image (edge-avoiding a-trous guided by albedo, normal, depth "
+              "and variance; hands over to the raw image as samples accumulate; the window: on)",
+              kPathTraceMode, [](P& p) -> bool& { return p.render.denoise; }));
+  l.back().resetsAccumulation = false;  // a filter of the accumulation: part of no reference's key
   l.push_back(boolean("generic", "--generic", true, "Render", "generic shaders",
                       "all-features shaders instead of the scene-specialised build", kPathTraceMode,
                       [](P& p) -> bool& { return p.render.generic; }));
@@ -205,6 +212,13 @@ std::vector<ParameterInfo> makeList() {
   view.resetsAccumulation = false;
   view.flag.clear();  // window only (`--set view=...`)
   l.push_back(view);
+  l.push_back(
+      real("denoise_split", "Display", "split raw | denoised",
+           "the window with denoise on: raw image left of this fraction of the view, denoised right of "
+           "it (0: all denoised)",
+           0, 1, 0, 1, kPathTraceMode, [](P& p) -> float& { return p.display.denoiseSplit; }));
+  l.back().resetsAccumulation = false;
+  l.back().flag.clear();  // window only (`--set denoise_split=0.5`)
   return l;
 }
 

@@ -22,7 +22,8 @@ namespace wb::render {
 struct DisplaySettings {
   float exposure = 0.0f;  // stops
   eval::Tonemap tonemap = eval::Tonemap::Aces;
-  uint32_t view = 0;  // WB_VIEW_* (display/display_types.h)
+  uint32_t view = 0;          // WB_VIEW_* (display/display_types.h)
+  float denoiseSplit = 0.0f;  // with denoise on: raw left of this fraction of the view, denoised right of it
 };
 
 // Every parameter's value.

@@ -230,8 +230,8 @@ void Pass::pushRaw(VkCommandBuffer cmd, const void* data, size_t bytes) const {
   }
 }
 
-void Pass::traceRays(VkCommandBuffer cmd, uint32_t width, uint32_t height) const {
-  current_.pipeline->rayTracing->sbt().trace(ctx_, cmd, width, height);
+void Pass::traceRays(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t depth) const {
+  current_.pipeline->rayTracing->sbt().trace(ctx_, cmd, width, height, depth);
 }
 
 void Pass::dispatch(VkCommandBuffer cmd, uint32_t x, uint32_t y, uint32_t z) const {

@@ -122,7 +122,7 @@ class Pass final : public ReloadTarget {
   void push(VkCommandBuffer cmd, const T& constants) const {
     pushRaw(cmd, &constants, sizeof(T));
   }
-  void traceRays(VkCommandBuffer cmd, uint32_t width, uint32_t height) const;
+  void traceRays(VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t depth = 1) const;
   void dispatch(VkCommandBuffer cmd, uint32_t x, uint32_t y, uint32_t z = 1) const;
 
  private:

@@ -108,7 +108,7 @@ const char* inspectEndName(uint32_t end) {
 }
 
 const char* inspectLobeName(uint32_t lobe) {
-  return lobe == WB_LOBE_SPECULAR ? "specular" : "diffuse";
+  return lobe == WB_LOBE_SPECULAR ? "specular" : lobe == WB_LOBE_REFLECTOR ? "reflector" : "diffuse";
 }
 
 const char* inspectRrName(uint32_t outcome) {

@@ -68,7 +68,7 @@ RunningEstimate estimateOf(const std::vector<InspectedSample>& samples);
 
 // Names of the record's codes, as the JSON and the Inspect tab write them.
 const char* inspectEndName(uint32_t end);         // "escaped", "absorbed", "max_bounces", ...
-const char* inspectLobeName(uint32_t lobe);       // "diffuse" | "specular"
+const char* inspectLobeName(uint32_t lobe);       // "diffuse" | "specular" | "reflector"
 const char* inspectRrName(uint32_t outcome);      // "not_applied" | "survived" | "terminated"
 const char* inspectLightKindName(uint32_t kind);  // "directional" | "environment" | "emitter"
 const char* inspectLightStatusName(

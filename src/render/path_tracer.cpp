@@ -19,6 +19,7 @@ namespace {
 
 constexpr uint32_t kMaxRecursion = 1;             // raygen traces every ray (shadow rays too: payload.glsl)
 constexpr uint32_t kDefaultAssertRecords = 1024;  // the asserts variant's first failures kept
+constexpr size_t kSpareSets = 2;                  // image sets of earlier sizes kept for reuse
 
 }  // namespace
 
@@ -73,6 +74,10 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   pass_->setPushConstantBytes(sizeof(gpu::PushConstants));
   pass_->setOnInstall([this] { sampleIndex_ = 0; });
   timer_ = std::make_unique<PassTimer>(ctx_);
+  resolve_ = std::make_unique<Pass>(ctx_, library_, "pathtracer resolve", ComputeRecipe{});
+  resolve_->setPushConstantBytes(sizeof(gpu::ResolveConstants));
+  resolve_->useProgram("pathtracer resolve", {{shaderDir() / "pathtracer" / "resolve.comp"}});
+  sampleSlots_ = vk::Buffer(ctx_, sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   frameUniforms_ = vk::Buffer(ctx_, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   resetCounters();
@@ -88,7 +93,31 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   createInspectBuffers();
   createAssertBuffers(kDefaultAssertRecords);
   bindResources();
+  resolve_->rebuild();
   setFeatures(features);
+  makeDenoiser();
+}
+
+void PathTracer::makeDenoiser() {
+  if (!settings_.denoise || denoiser_) return;
+  denoiser_ = std::make_unique<Denoiser>(ctx_, library_);
+  bindResources();
+}
+
+std::vector<Pass*> PathTracer::passes() const {
+  std::vector<Pass*> out{pass_.get()};
+  if (denoiser_)
+    for (Pass* p : denoiser_->passes()) out.push_back(p);
+  return out;
+}
+
+void PathTracer::recordDenoise(VkCommandBuffer cmd, uint32_t rows) const {
+  if (denoiser_) denoiser_->record(cmd, rows);
+}
+
+void PathTracer::recordCompileOnly(VkCommandBuffer cmd) {
+  recordRegion(cmd, PixelRegion{});
+  if (denoiser_) denoiser_->recordCompileOnly(cmd);
 }
 
 bool PathTracer::setFeatures(const scene::SceneFeatures& features) {
@@ -114,7 +143,8 @@ bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
   inspection_ = request;
   createInspectBuffers();
   bindResources();
-  sampleIndex_ = 0;
+  // The same variant goes on accumulating (the records start with the next sample traced); another variant
+  // restarts with its install.
   if (request.has_value() == inspectVariant_) return false;
   useVariant(features_, request.has_value());
   return true;
@@ -217,21 +247,50 @@ PathTracer::~PathTracer() {
   ctx_.waitIdle();
 }
 
+void PathTracer::parkAccumulation(uint32_t samples) {
+  ctx_.waitIdle();
+  parked_ = takeImages();
+  parkedSamples_ = samples;
+  createImages();
+  bindResources();
+}
+
+bool PathTracer::unparkAccumulation() {
+  if (!parked_) return false;
+  ctx_.waitIdle();
+  spareImages_.insert(spareImages_.begin(), takeImages());
+  if (spareImages_.size() > kSpareSets) spareImages_.pop_back();
+  putImages(std::move(*parked_));
+  parked_.reset();
+  settings_.width = accum_.width();
+  settings_.height = accum_.height();
+  sampleIndex_ = parkedSamples_;
+  bindResources();
+  return true;
+}
+
+PathTracer::ImageSet PathTracer::takeImages() {
+  return ImageSet{std::move(accum_), std::move(albedo_), std::move(normal_),
+                  std::move(info_),  std::move(stats_),  std::move(cost_)};
+}
+
+void PathTracer::putImages(ImageSet&& set) {
+  accum_ = std::move(set.accum);
+  albedo_ = std::move(set.albedo);
+  normal_ = std::move(set.normal);
+  info_ = std::move(set.info);
+  stats_ = std::move(set.stats);
+  cost_ = std::move(set.cost);
+}
+
 void PathTracer::createImages() {
-  constexpr size_t kSpareSets = 2;
   const uint32_t w = settings_.width, h = settings_.height;
-  ImageSet current{std::move(accum_), std::move(albedo_), std::move(normal_),
-                   std::move(info_),  std::move(stats_),  std::move(cost_)};
+  ImageSet current = takeImages();
   auto spare = std::find_if(spareImages_.begin(), spareImages_.end(),
                             [&](const ImageSet& s) { return s.accum.width() == w && s.accum.height() == h; });
   const bool fresh = spare == spareImages_.end();
   if (!fresh) {
-    accum_ = std::move(spare->accum);
-    albedo_ = std::move(spare->albedo);
-    normal_ = std::move(spare->normal);
-    info_ = std::move(spare->info);
-    stats_ = std::move(spare->stats);
-    cost_ = std::move(spare->cost);
+    putImages(std::move(*spare));
     spareImages_.erase(spare);
   } else {
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -282,6 +341,13 @@ void PathTracer::bindResources() {
   // Used by the WB_ASSERTS variant only.
   p.setBuffer("AssertHeaderBlock", assertHeader_);
   p.setBuffer("AssertRecordBlock", assertRecords_);
+  if (denoiser_) {
+    denoiser_->resize(settings_.width, settings_.height);
+    denoiser_->setInputs({accum_.view(), albedo_.view(), normal_.view(), stats_.view()});
+  }
+  p.setBuffer("SampleSlotBlock", sampleSlots_);
+  resolve_->setStorageImage("accumImage", accum_.view());
+  resolve_->setBuffer("SampleSlotBlock", sampleSlots_);
 }
 
 std::unique_ptr<Renderer> PathTracer::makeLike(const RendererResources& resources,
@@ -300,7 +366,18 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   const bool inspectResized =
       inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
   const bool sunChanged = settings.sunAngleDeg != settings_.sunAngleDeg;
+  // Denoising filters the accumulation without changing it: turning it on or off restarts nothing, unless
+  // the AOVs it reads were not being written.
+  RenderSettings sameDenoise = settings;
+  sameDenoise.denoise = settings_.denoise;
+  const bool onlyDenoise = sameDenoise == settings_;
+  const bool aovsWritten = settings_.aov || settings_.denoise;
   settings_ = settings;
+  makeDenoiser();
+  if (onlyDenoise) {
+    if (!aovsWritten) sampleIndex_ = 0;
+    return;
+  }
   if (sunChanged) uploadLights();
   if (resized || inspectResized) {
     ctx_.waitIdle();
@@ -350,6 +427,7 @@ void PathTracer::updateFrameUniforms() {
   f.envTotalWeight = env_->totalWeight();
   f.emitterCount = gpuScene_.emitterCount();
   f.emitterTotalPower = gpuScene_.emitterTotalPower();
+  f.reflectorCount = gpuScene_.reflectorCount();
   // Light sampling splits between the environment and the area lights; a black environment gets none.
   const bool envBlack =
       settings_.envIntensity <= 0.0f || (!env_->isMap() && settings_.envColor == glm::vec3(0.0f));
@@ -357,7 +435,38 @@ void PathTracer::updateFrameUniforms() {
   std::memcpy(frameUniforms_.mapped(), &f, sizeof(f));
 }
 
-void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
+uint32_t PathTracer::samplesPerLaunch() const {
+  // The AOVs, the inspector's records and the cost variant's image are read and written per sample by raygen
+  // (samples of one launch would race on them); the asserts variant records its first failures in sample
+  // order. Only the radiance has the resolve pass.
+  if (settings_.aov || settings_.denoise || inspection_ || instrumentation_.cost ||
+      instrumentation_.asserts || settings_.tileWidth || settings_.tileHeight)
+    return 1;
+  if (settings_.samplesPerLaunch != 0) return settings_.samplesPerLaunch;
+  if (ctx_.policy().compilesAtFirstDispatch) return 1;
+  const uint64_t pixels = uint64_t(settings_.width) * settings_.height;
+  return uint32_t(std::clamp<uint64_t>(((uint64_t(1) << 20) + pixels - 1) / pixels, 1, 16));
+}
+
+uint32_t PathTracer::recordBatch(VkCommandBuffer cmd, uint32_t samples) {
+  const uint32_t n = std::min(samplesPerLaunch(), std::max(samples, 1u));
+  if (n <= 1) {
+    record(cmd);
+    advance();
+    return 1;
+  }
+  const VkDeviceSize bytes = VkDeviceSize(settings_.width) * settings_.height * n * sizeof(glm::vec4);
+  if (sampleSlots_.size() < bytes) {
+    ctx_.waitIdle();  // the smaller buffer may be in flight
+    sampleSlots_ = vk::Buffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+    bindResources();
+  }
+  recordRegion(cmd, PixelRegion{0, 0, settings_.width, settings_.height}, n);
+  sampleIndex_ += n;
+  return n;
+}
+
+void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_t samples) {
   // A material edit rebuilt the area lights' buffers (at a frame boundary, nothing in flight): point at them.
   if (gpuScene_.emitterVersion() != emitterVersion_) bindResources();
   if (sampleIndex_ == 0 && r.x == 0 && r.y == 0) updateFrameUniforms();
@@ -382,7 +491,8 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   pc.flags = (settings_.sampler == SamplerKind::Pcg ? WB_FLAG_SAMPLER_PCG : 0u) |
              (settings_.sampler == SamplerKind::Owen ? WB_FLAG_SAMPLER_OWEN : 0u) |
              (settings_.nee ? 0u : WB_FLAG_NO_NEE) | (settings_.mis ? 0u : WB_FLAG_NO_BRDF_MIS) |
-             (settings_.russianRoulette ? 0u : WB_FLAG_NO_RR) | (settings_.aov ? WB_FLAG_AOV : 0u);
+             (settings_.russianRoulette ? 0u : WB_FLAG_NO_RR) |
+             (settings_.aov || settings_.denoise ? WB_FLAG_AOV : 0u);
   pc.seed = settings_.seed;
   pc.debugView = settings_.debugView;
   pc.tileOffset = glm::uvec2(r.x, r.y);
@@ -391,8 +501,18 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r) {
   PassTimer::Scope timed(timer_.get(), cmd, "pathtracer");
   pass_->bind(cmd);
   pass_->push(cmd, pc);
-  pass_->traceRays(cmd, r.width, r.height);
+  pass_->traceRays(cmd, r.width, r.height, samples);
   vk::memoryBarrier(cmd);
+  if (samples > 1) {
+    gpu::ResolveConstants rc{};
+    rc.imageSize = pc.imageSize;
+    rc.firstSample = sampleIndex_;
+    rc.samples = samples;
+    resolve_->bind(cmd);
+    resolve_->push(cmd, rc);
+    resolve_->dispatch(cmd, (r.width + 7) / 8, (r.height + 7) / 8);
+    vk::memoryBarrier(cmd);
+  }
 }
 
 void PathTracer::record(VkCommandBuffer cmd) {
@@ -419,6 +539,36 @@ std::vector<double> PathTracer::renderPixel(uint32_t x, uint32_t y, uint32_t sam
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   return seconds;
+}
+
+double PathTracer::denoise() {
+  if (!denoiser_) {
+    denoiser_ = std::make_unique<Denoiser>(ctx_, library_);
+    bindResources();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) { denoiser_->record(cmd); });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+eval::ImageRGBA PathTracer::readImage() const {
+  if (!settings_.denoise || !denoiser_) return readEstimate();
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) { denoiser_->record(cmd); });
+  return readDenoised();
+}
+
+eval::ImageRGBA PathTracer::readDenoised() const {
+  if (!denoiser_) throw std::logic_error("readDenoised: the denoiser has not run");
+  eval::ImageRGBA img;
+  img.width = settings_.width;
+  img.height = settings_.height;
+  img.pixels = denoiser_->readOutput();
+  for (size_t i = 3; i < img.pixels.size(); i += 4) img.pixels[i] = 1.0f;
+  return img;
+}
+
+eval::ImageRGBA PathTracer::readEstimate() const {
+  return Renderer::readImage();
 }
 
 std::vector<float> PathTracer::readAccumulation() const {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/denoiser.h"
 #include "render/renderer.h"
 #include "scene/features.h"
 #include "vk/pipeline_layout.h"
@@ -84,8 +85,8 @@ class PathTracer final : public Renderer {
 
   // Path inspector: with a request the tracer switches to its WB_INSPECT variant (registered once, cached
   // like the scene variants; the images it renders are the same) and records the paths of the requested
-  // pixel; nullopt switches back. Returns true when the program changed.
-  // Restarts accumulation.
+  // pixel; nullopt switches back. Returns true when the program changed (its install restarts accumulation;
+  // another pixel with the same variant goes on accumulating, its records starting with the next sample).
   bool setInspection(const std::optional<InspectRequest>& request);
   const std::optional<InspectRequest>& inspection() const { return inspection_; }
   // The records so far (reads host-visible memory: call when the traces that wrote them finished).
@@ -114,10 +115,21 @@ class PathTracer final : public Renderer {
   void resetAccumulation() override { sampleIndex_ = 0; }
   void record(VkCommandBuffer cmd) override;  // every tile of one sample (settings' tile size)
   void advance() override { ++sampleIndex_; }
-  void recordCompileOnly(VkCommandBuffer cmd) override { recordRegion(cmd, PixelRegion{}); }
+  uint32_t recordBatch(VkCommandBuffer cmd, uint32_t samples) override;
+  // Samples one launch traces for a whole-image sample: settings' samplesPerLaunch (default 1), or for 0 (the
+  // device's choice) 1 on a device that compiles at the first dispatch (a CPU is full at any size) and enough
+  // for ~2^20 invocations on a GPU (at most 16); always 1 with AOVs, the inspector, the cost or asserts
+  // variant, or tiles.
+  uint32_t samplesPerLaunch() const;
+  void recordCompileOnly(VkCommandBuffer cmd) override;
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
   const vk::Image& outputImage() const override { return accum_; }
-  std::vector<Pass*> passes() const override { return {pass_.get()}; }
+  // The denoised image when settings().denoise, else the accumulation (waits for the device; alpha = 1).
+  eval::ImageRGBA readImage() const override;
+  // The accumulation, never denoised: the estimator's image (alpha = 1).
+  eval::ImageRGBA readEstimate() const override;
+  // The path tracer's pass, then the denoiser's once it is made (settings().denoise made it).
+  std::vector<Pass*> passes() const override;
   PassTimer* passTimer() const override { return timer_.get(); }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
@@ -126,7 +138,7 @@ class PathTracer final : public Renderer {
 
   // Records one sample for `region` into cmd (the window traces a sample in strips over several frames);
   // call advance() once every region of the image got this sample.
-  void recordRegion(VkCommandBuffer cmd, const PixelRegion& region);
+  void recordRegion(VkCommandBuffer cmd, const PixelRegion& region) { recordRegion(cmd, region, 1); }
   // Traces `samples` samples of pixel (x, y) alone from scratch, each submitted and waited for (the path
   // inspector without an image): the pixel gets the samples a full render gives it, the rest of the image
   // stays as it was. Returns each sample's wall time in seconds.
@@ -137,6 +149,17 @@ class PathTracer final : public Renderer {
   // per-group libraries: an edit recompiles only the changed group. nullptr when monolithic.
   const vk::RtLibraryCache* libraryCache() const { return libraries_.get(); }
   bool pipelineLinked() const { return pass_->pipeline().rayTracing->linked(); }
+
+  // The denoiser, made the first time settings().denoise is on (nullptr before); it filters the current
+  // accumulation into denoiser()->output() when recorded.
+  const Denoiser* denoiser() const { return denoiser_.get(); }
+  Denoiser* denoiser() { return denoiser_.get(); }
+  // Records the denoiser over the accumulation (rows [0, rows) hold the current samples; see Denoiser).
+  void recordDenoise(VkCommandBuffer cmd, uint32_t rows = ~0u) const;
+  // Runs the denoiser over the accumulation, submitted and waited for (makes it if none is made); returns
+  // its wall time in seconds. readDenoised() then reads its output (alpha = 1).
+  double denoise();
+  eval::ImageRGBA readDenoised() const;
 
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
@@ -149,11 +172,21 @@ class PathTracer final : public Renderer {
                                 : cost_;
   }
   const vk::Image& accumulationImage() const { return accum_; }
+  // The accumulation set aside (its images and finished samples) while another one renders, e.g. the old
+  // pipeline's while an edit's comparison is pending: park moves the current images aside (cleared ones take
+  // their place, sample 0), unpark swaps them back at their size with their samples (false: none parked),
+  // drop forgets them.
+  void parkAccumulation(uint32_t samples);
+  bool unparkAccumulation();
+  void dropParkedAccumulation() { parked_.reset(); }
+  bool hasParkedAccumulation() const { return parked_.has_value(); }
   // Image sets allocated so far (one per new size: a size used before reuses its set).
   uint32_t imageSetsAllocated() const { return imageSetsAllocated_; }
   const vk::PipelineLayout& layout() const { return pass_->layout(); }
 
  private:
+  // `samples` > 1: a launch of that depth over the whole image, then the resolve pass.
+  void recordRegion(VkCommandBuffer cmd, const PixelRegion& region, uint32_t samples);
   void createImages();
   // Sets every resource the path tracer binds on its pass.
   void bindResources();
@@ -163,6 +196,8 @@ class PathTracer final : public Renderer {
   void useVariant(const scene::SceneFeatures& features, bool inspect);
   void createAssertBuffers(uint32_t records);
   void createInspectBuffers();
+  // Makes the denoiser when settings_.denoise asks for it and none is made.
+  void makeDenoiser();
   // Writes the lights as the shaders shade them (the sun angle of the settings applied) when they changed.
   void uploadLights();
 
@@ -186,6 +221,10 @@ class PathTracer final : public Renderer {
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<Pass> pass_;
   std::unique_ptr<PassTimer> timer_;
+  // Accumulates the samples of a launch of several (not in passes(): a fixed part of the accumulation).
+  std::unique_ptr<Pass> resolve_;
+  vk::Buffer sampleSlots_;  // WB_BIND_SAMPLE_SLOTS, sized for the largest launch so far
+  std::unique_ptr<Denoiser> denoiser_;
   vk::Image accum_, albedo_, normal_, info_, stats_, cost_;
   // The image sets of the last sizes left (a preview's, the full one's): going back to a size reuses its
   // memory, already touched, instead of allocating and touching it anew (a CPU device pays for the first
@@ -193,7 +232,12 @@ class PathTracer final : public Renderer {
   struct ImageSet {
     vk::Image accum, albedo, normal, info, stats, cost;
   };
+  // Moves the current images out (they are left empty), and a set in.
+  ImageSet takeImages();
+  void putImages(ImageSet&& set);
   std::vector<ImageSet> spareImages_;
+  std::optional<ImageSet> parked_;
+  uint32_t parkedSamples_ = 0;
   uint32_t imageSetsAllocated_ = 0;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   std::vector<gpu::DirectionalLight> lights_;  // the scene's lights, or the session's edits of them

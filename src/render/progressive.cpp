@@ -41,11 +41,15 @@ void ProgressiveTracer::setTargetSize(uint32_t width, uint32_t height) {
   width = std::max(width, 1u);
   height = std::max(height, 1u);
   if (width == targetWidth_ && height == targetHeight_) return;
+  // The accumulation of the size left is set aside: going back to that size (Tab twice) resumes it.
+  const bool back = tracer_.hasParkedAccumulation() && parkedWidth_ == width && parkedHeight_ == height;
+  if (!back) parkAccumulation();
   targetWidth_ = width;
   targetHeight_ = height;
   previewValid_ = false;
+  if (back && resumeParked()) return;
   if (!inPreview_) resize(width, height);
-  invalidate();
+  pendingInvalidate_ = true;
 }
 
 void ProgressiveTracer::setSettings(RenderSettings settings) {
@@ -57,6 +61,35 @@ void ProgressiveTracer::setSettings(RenderSettings settings) {
 
 void ProgressiveTracer::invalidate() {
   pendingInvalidate_ = true;
+  tracer_.dropParkedAccumulation();
+}
+
+bool ProgressiveTracer::parkAccumulation() {
+  tracer_.dropParkedAccumulation();
+  if (inPreview_ || pendingInvalidate_ || expectedSamples_ == 0 || tracer_.settings().width != targetWidth_ ||
+      tracer_.settings().height != targetHeight_)
+    return false;
+  tracer_.parkAccumulation(expectedSamples_);
+  parkedSamples_ = expectedSamples_;
+  parkedWidth_ = targetWidth_;
+  parkedHeight_ = targetHeight_;
+  parkedRow_ = cursor_;
+  parkedResetTime_ = resetTime_;
+  return true;
+}
+
+bool ProgressiveTracer::resumeParked() {
+  if (parkedWidth_ != targetWidth_ || parkedHeight_ != targetHeight_) {
+    tracer_.dropParkedAccumulation();  // of a size no longer traced
+    return false;
+  }
+  if (!tracer_.unparkAccumulation()) return false;
+  inPreview_ = coarsePreview_ = pendingInvalidate_ = false;
+  cursor_ = parkedRow_;
+  expectedSamples_ = tracer_.samplesAccumulated();
+  resetTime_ = parkedResetTime_;
+  ++generation_;
+  return true;
 }
 
 void ProgressiveTracer::resize(uint32_t width, uint32_t height) {

@@ -27,7 +27,8 @@ class ProgressiveTracer {
   ProgressiveTracer(vk::Context& ctx, PathTracer& tracer);
 
   ProgressiveOptions& options() { return options_; }
-  // The full trace resolution (view size x resolution scale, or --size). A change restarts accumulation.
+  // The full trace resolution (view size x resolution scale, or --size). A change restarts accumulation; the
+  // accumulation of the size left is parked (parkAccumulation), and going back to that size resumes it.
   void setTargetSize(uint32_t width, uint32_t height);
   uint32_t targetWidth() const { return targetWidth_; }
   uint32_t targetHeight() const { return targetHeight_; }
@@ -56,6 +57,17 @@ class ProgressiveTracer {
   uint32_t coarseDivisor() const;
   const vk::Image& previewImage() const { return preview_; }
   bool previewValid() const { return previewValid_; }
+  // Right after a new pipeline's install, before anything is traced with it: sets the old pipeline's
+  // accumulation aside (images, samples, the row its next sample starts at) instead of letting the new image
+  // overwrite it. Returns false, keeping nothing, when there is nothing worth keeping (a preview, no finished
+  // sample). One accumulation is parked at a time: any restart (invalidate) and the next park forget it.
+  bool parkAccumulation();
+  // Takes the parked accumulation back (a revert, or a new pipeline that renders the same image): tracing
+  // goes on from its samples at full resolution. False when none is parked at the current target size.
+  bool resumeParked();
+  void dropParked() { tracer_.dropParkedAccumulation(); }
+  bool hasParked() const { return tracer_.hasParkedAccumulation(); }
+  uint32_t parkedSamples() const { return tracer_.hasParkedAccumulation() ? parkedSamples_ : 0; }
   // Seconds of wall time since the last restart (for the Stats panel).
   double secondsSinceReset() const;
 
@@ -78,6 +90,9 @@ class ProgressiveTracer {
   double pixelsPerMs_ = 250.0;  // lavapipe: a 512x512 sample in about a second
   vk::Image preview_;
   double resetTime_ = 0;
+  uint32_t parkedSamples_ = 0, parkedRow_ = 0;  // the parked accumulation's (see parkAccumulation)
+  uint32_t parkedWidth_ = 0, parkedHeight_ = 0;
+  double parkedResetTime_ = 0;
 };
 
 }  // namespace wb::render

@@ -34,14 +34,16 @@ std::vector<double> Renderer::render(uint32_t samples, const Progress& progress)
   std::vector<double> seconds;
   auto& ctx = context();
   const auto start = std::chrono::steady_clock::now();
-  for (uint32_t i = 0; i < samples; ++i) {
+  for (uint32_t i = 0; i < samples;) {
     const auto t0 = std::chrono::steady_clock::now();
-    ctx.submitAndWait([&](VkCommandBuffer cmd) { record(cmd); });
-    if (PassTimer* timer = passTimer()) timer->collect();
-    advance();
+    uint32_t n = 0;
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { n = recordBatch(cmd, samples - i); });
     const auto t1 = std::chrono::steady_clock::now();
-    seconds.push_back(std::chrono::duration<double>(t1 - t0).count());
-    if (progress && !progress(i + 1, std::chrono::duration<double>(t1 - start).count())) break;
+    // The batch's pass times, per sample (a scope of a launch of several samples divides by them).
+    if (PassTimer* timer = passTimer()) timer->collect();
+    seconds.insert(seconds.end(), n, std::chrono::duration<double>(t1 - t0).count() / n);
+    i += n;
+    if (progress && !progress(i, std::chrono::duration<double>(t1 - start).count())) break;
   }
   return seconds;
 }

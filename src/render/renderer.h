@@ -62,6 +62,14 @@ class Renderer {
   // once it ran.
   virtual void record(VkCommandBuffer cmd) = 0;
   virtual void advance() = 0;
+  // Records up to `samples` samples (at least one) into cmd and advances past them; returns how many. The
+  // path tracer traces several in one launch where its settings or device ask for it (samplesPerLaunch).
+  virtual uint32_t recordBatch(VkCommandBuffer cmd, uint32_t samples) {
+    (void)samples;
+    record(cmd);
+    advance();
+    return 1;
+  }
   // Records the dispatches of one sample with as little work as the renderer allows (the path tracer traces
   // zero rays): on a driver that compiles at the first dispatch this compiles every pipeline the sample uses
   // without running the shaders (the JIT warm-up).
@@ -70,14 +78,18 @@ class Renderer {
   virtual uint32_t samplesAccumulated() const = 0;
   // Called after each sample with the samples done and the seconds so far; returning false stops the render.
   using Progress = std::function<bool(uint32_t done, double seconds)>;
-  // Renders `samples` samples, submitting and waiting for each; returns each one's wall time in seconds
-  // (fewer than `samples` when `progress` stopped it).
+  // Renders `samples` samples, submitting and waiting for each batch (recordBatch); returns each one's wall
+  // time in seconds, a batch's shared equally among its samples (fewer than `samples` when `progress` stopped
+  // it).
   std::vector<double> render(uint32_t samples, const Progress& progress = {});
 
   // Linear radiance (RGBA32F storage image, GENERAL layout), for a display pass.
   virtual const vk::Image& outputImage() const = 0;
   // The same read back (waits for the device); alpha = 1.
-  eval::ImageRGBA readImage() const;
+  virtual eval::ImageRGBA readImage() const;
+  // The estimator's own image, before any filter of its output (the path tracer's denoiser): what the A/B
+  // comparison judges. The same as readImage() for a renderer without one.
+  virtual eval::ImageRGBA readEstimate() const { return readImage(); }
 
   // Its passes, in a fixed order: a renderer made with makeLike() lists the same passes in the same order
   // (the live-edit loop, the JIT warm-up and the A/B comparison address a pass by its index).

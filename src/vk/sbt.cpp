@@ -72,8 +72,9 @@ ShaderBindingTable::ShaderBindingTable(Context& ctx, VkPipeline pipeline, uint32
   handles_ = std::move(handles);
 }
 
-void ShaderBindingTable::trace(Context& ctx, VkCommandBuffer cmd, uint32_t width, uint32_t height) const {
-  ctx.vkCmdTraceRaysKHR(cmd, &raygen_, &miss_, &hit_, &callable_, width, height, 1);
+void ShaderBindingTable::trace(Context& ctx, VkCommandBuffer cmd, uint32_t width, uint32_t height,
+                               uint32_t depth) const {
+  ctx.vkCmdTraceRaysKHR(cmd, &raygen_, &miss_, &hit_, &callable_, width, height, depth);
 }
 
 }  // namespace wb::vk

@@ -30,7 +30,7 @@ class ShaderBindingTable {
   ShaderBindingTable() = default;
   ShaderBindingTable(Context& ctx, VkPipeline pipeline, uint32_t missCount, uint32_t hitCount,
                      uint32_t callableCount = 0);
-  void trace(Context& ctx, VkCommandBuffer cmd, uint32_t width, uint32_t height) const;
+  void trace(Context& ctx, VkCommandBuffer cmd, uint32_t width, uint32_t height, uint32_t depth = 1) const;
   const SbtLayout& layout() const { return layout_; }
   // The pipeline's group handles as the device returned them (groupCount * handleSize bytes, in group order).
   const std::vector<uint8_t>& groupHandles() const { return handles_; }

@@ -47,45 +47,60 @@ bool exitedWithin(pid_t pid, double seconds, int& status) {
   return false;
 }
 
+// `workbench watch --headless` on a copy of the project's shaders and assets under `root`, with
+// WB_HANG_SECONDS=3 (and WB_TRIAL_RUN=0 when `trialRuns` is false); killed with its process group when the
+// test ends. ready() waits until it watches.
+struct WatchSession {
+  fs::path root, log, out;
+  pid_t pid = -1;
+
+  WatchSession(const std::string& name, bool trialRuns)
+      : root(fs::temp_directory_path() / (name + std::to_string(::getpid()))),
+        log(root / "reloads.jsonl"),
+        out(root / "watch.out") {
+    fs::remove_all(root);
+    fs::create_directories(root / "shader_cache");
+    fs::copy(wb::projectRoot() / "shaders", root / "shaders", fs::copy_options::recursive);
+    fs::copy(wb::projectRoot() / "assets", root / "assets", fs::copy_options::recursive);
+    pid = fork();
+    if (pid == 0) {
+      setsid();
+      FILE* o = std::freopen(out.c_str(), "w", stdout);
+      (void)o;
+      dup2(fileno(stdout), fileno(stderr));
+      ::setenv("WB_ROOT", root.c_str(), 1);
+      ::setenv("WB_HANG_SECONDS", "3", 1);
+      if (!trialRuns) ::setenv("WB_TRIAL_RUN", "0", 1);
+      execl(WB_WORKBENCH_BIN, WB_WORKBENCH_BIN, "watch", "--headless", "--size", "32x32", "--log",
+            log.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+  }
+  ~WatchSession() {
+    int status = 0;
+    if (pid > 0 && waitpid(pid, &status, WNOHANG) == 0) {
+      kill(-pid, SIGKILL);
+      waitpid(pid, &status, 0);
+    }
+    fs::remove_all(root);
+  }
+  bool ready() const {
+    const auto started = std::chrono::steady_clock::now();
+    while (readFile(out).find("watching") == std::string::npos &&
+           std::chrono::steady_clock::now() - started < std::chrono::seconds(int(kEventCapSeconds)))
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    return readFile(out).find("watching") != std::string::npos;
+  }
+};
+
 }  // namespace
 
 TEST(EndlessLoop, WatchRefusesTheEditKeepsRenderingAndEndsOnSigterm) {
-  const fs::path root = fs::temp_directory_path() / ("wb_endless_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root / "shader_cache");
-  fs::copy(wb::projectRoot() / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(wb::projectRoot() / "assets", root / "assets", fs::copy_options::recursive);
-  const fs::path log = root / "reloads.jsonl", out = root / "watch.out";
-  const std::string rootEnv = "WB_ROOT=" + root.string();
-  // A hang is declared after WB_HANG_SECONDS (or many times the trial frames before it).
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    setsid();
-    FILE* o = std::freopen(out.c_str(), "w", stdout);
-    (void)o;
-    dup2(fileno(stdout), fileno(stderr));
-    ::setenv("WB_ROOT", root.c_str(), 1);
-    ::setenv("WB_HANG_SECONDS", "3", 1);
-    execl(WB_WORKBENCH_BIN, WB_WORKBENCH_BIN, "watch", "--headless", "--size", "32x32", "--log", log.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  struct KillOnExit {
-    pid_t pid;
-    ~KillOnExit() {
-      int status = 0;
-      if (waitpid(pid, &status, WNOHANG) == 0) {
-        kill(-pid, SIGKILL);
-        waitpid(pid, &status, 0);
-      }
-    }
-  } killOnExit{pid};
-  const auto started = std::chrono::steady_clock::now();
-  while (readFile(out).find("watching") == std::string::npos &&
-         std::chrono::steady_clock::now() - started < std::chrono::seconds(int(kEventCapSeconds)))
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_NE(readFile(out).find("watching"), std::string::npos) << readFile(out);
+  WatchSession w("wb_endless_", true);
+  ASSERT_GT(w.pid, 0);
+  ASSERT_TRUE(w.ready()) << readFile(w.out);
+  const fs::path &root = w.root, &log = w.log, &out = w.out;
+  const pid_t pid = w.pid;
 
   const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
   const std::string good = readFile(chit);
@@ -118,47 +133,16 @@ TEST(EndlessLoop, WatchRefusesTheEditKeepsRenderingAndEndsOnSigterm) {
   ASSERT_TRUE(exitedWithin(pid, 60, status)) << "watch did not end after SIGTERM:\n" << readFile(out);
   ASSERT_TRUE(WIFEXITED(status)) << readFile(out);
   EXPECT_EQ(WEXITSTATUS(status), 0) << readFile(out);
-  fs::remove_all(root);
 }
 
 // Without the trial frame the render device itself runs the endless loop: the frame watchdog says which edit
 // did it (log line and stderr) and ends the process with status 4 (no driver here stops a running shader).
 TEST(EndlessLoop, TheRenderDevicesWatchdogSaysWhichEditHungAndEnds) {
-  const fs::path root = fs::temp_directory_path() / ("wb_endless_main_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  fs::create_directories(root / "shader_cache");
-  fs::copy(wb::projectRoot() / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(wb::projectRoot() / "assets", root / "assets", fs::copy_options::recursive);
-  const fs::path log = root / "reloads.jsonl", out = root / "watch.out";
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    setsid();
-    FILE* o = std::freopen(out.c_str(), "w", stdout);
-    (void)o;
-    dup2(fileno(stdout), fileno(stderr));
-    ::setenv("WB_ROOT", root.c_str(), 1);
-    ::setenv("WB_TRIAL_RUN", "0", 1);
-    ::setenv("WB_HANG_SECONDS", "3", 1);
-    execl(WB_WORKBENCH_BIN, WB_WORKBENCH_BIN, "watch", "--headless", "--size", "32x32", "--log", log.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  struct KillOnExit {
-    pid_t pid;
-    ~KillOnExit() {
-      int status = 0;
-      if (waitpid(pid, &status, WNOHANG) == 0) {
-        kill(-pid, SIGKILL);
-        waitpid(pid, &status, 0);
-      }
-    }
-  } killOnExit{pid};
-  const auto started = std::chrono::steady_clock::now();
-  while (readFile(out).find("watching") == std::string::npos &&
-         std::chrono::steady_clock::now() - started < std::chrono::seconds(int(kEventCapSeconds)))
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_NE(readFile(out).find("watching"), std::string::npos) << readFile(out);
+  WatchSession w("wb_endless_main_", false);
+  ASSERT_GT(w.pid, 0);
+  ASSERT_TRUE(w.ready()) << readFile(w.out);
+  const fs::path &root = w.root, &log = w.log, &out = w.out;
+  const pid_t pid = w.pid;
   const fs::path chit = root / "shaders/pathtracer/closesthit.rchit";
   writeFile(chit, withEndlessLoop(readFile(chit)));
   int status = 0;
@@ -172,5 +156,4 @@ TEST(EndlessLoop, TheRenderDevicesWatchdogSaysWhichEditHungAndEnds) {
   EXPECT_NE(error.find("closesthit.rchit"), std::string::npos) << error;
   EXPECT_NE(error.find("endless loop"), std::string::npos) << error;
   EXPECT_NE(readFile(out).find("endless loop"), std::string::npos) << "not said on the terminal";
-  fs::remove_all(root);
 }

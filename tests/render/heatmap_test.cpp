@@ -60,7 +60,7 @@ TEST(HeatMaps, RussianRouletteEndMatchesTheInspectedPaths) {
   render::RenderSettings s;
   s.maxBounces = 6;
   s.rrStart = 2;
-  s.rrMin = s.rrMax = 0.5f;  // a coin at every bounce from 1 on
+  s.rrMin = s.rrMax = 0.5f;  // a coin at every bounce from 2 on
   auto session = makeSession(defaultScene(s));
   // Pixel 12,14 recorded by the inspector while the whole image accumulates the same samples.
   render::InspectRequest r;
@@ -77,8 +77,8 @@ TEST(HeatMaps, RussianRouletteEndMatchesTheInspectedPaths) {
     EXPECT_LE(fraction, 1.0f + 1e-6f);
     if (fraction <= 0.0f) continue;
     ++ended;
-    // Never before rr_start - 1, never at the last bounce (max bounces ends the path there first).
-    EXPECT_GE(bounceSum / fraction, 1.0f - 1e-5f) << "pixel " << i;
+    // Never before rr_start, never at the last bounce (max bounces ends the path there first).
+    EXPECT_GE(bounceSum / fraction, 2.0f - 1e-5f) << "pixel " << i;
     EXPECT_LE(bounceSum / fraction, 5.0f + 1e-5f) << "pixel " << i;
   }
   EXPECT_GT(ended, kSize * kSize / 4);

@@ -93,7 +93,8 @@ TEST(PathInspector, RecordsSumToThePixelTheTracerAccumulated) {
 
 TEST(PathInspector, ThroughputFollowsFromTheRecordedFactors) {
   auto o = defaultSceneOptions();
-  o.settings.rrStart = 1;  // Russian roulette from the first bounce: its probability enters every vertex
+  o.settings.rrStart =
+      0;  // Russian roulette from the camera ray's hit on: its probability enters every vertex
   o.settings.maxBounces = 12;
   auto session = makeSession(o);
   size_t checked = 0, rrApplied = 0, specular = 0;
@@ -128,6 +129,32 @@ TEST(PathInspector, ThroughputFollowsFromTheRecordedFactors) {
   EXPECT_GT(rrApplied, 5u);
   EXPECT_GT(specular, 0u) << "some vertex should sample the glossy lobe";
   expectNoValidationErrors(*session);
+}
+
+// One bounce numbering (docs/path_inspector.md): bounce 0 is the camera ray's hit, and --rr-start N runs
+// Russian roulette from bounce N on, so the first vertex whose record shows it is vertex N, never one before.
+TEST(PathInspector, RussianRouletteFirstRunsAtTheVertexNumberedRrStart) {
+  for (uint32_t rrStart : {1u, 3u}) {
+    auto o = defaultSceneOptions();
+    o.settings.rrStart = rrStart;
+    o.settings.rrMin = o.settings.rrMax = 0.98f;  // a coin that rarely ends paths: most reach later vertices
+    o.settings.maxBounces = 8;
+    auto session = makeSession(o);
+    size_t first = SIZE_MAX, atStart = 0;
+    for (auto [x, y] : {std::pair{12u, 14u}, std::pair{8u, 17u}, std::pair{16u, 16u}}) {
+      for (const auto& s : inspect(*session, x, y, 16)) {
+        for (size_t k = 0; k < s.vertices.size(); ++k) {
+          const auto& v = s.vertices[k].record;
+          if (v.rrOutcome == WB_INSPECT_RR_NOT_APPLIED) continue;
+          first = std::min(first, k);
+          atStart += k == rrStart;
+        }
+      }
+    }
+    EXPECT_EQ(first, size_t(rrStart)) << "--rr-start " << rrStart;
+    EXPECT_GT(atStart, 0u) << "--rr-start " << rrStart;
+    expectNoValidationErrors(*session);
+  }
 }
 
 TEST(PathInspector, WhiteFurnaceKeepsThroughputOne) {

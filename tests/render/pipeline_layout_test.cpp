@@ -45,6 +45,7 @@ TEST(PathTracerLayout, ReflectedBindingsMatchTheSharedHeader) {
       {WB_BIND_SOBOL, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen | chit, false}},
       {WB_BIND_EMITTERS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},
       {WB_BIND_EMITTER_ALIAS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},
+      {WB_BIND_SAMPLE_SLOTS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen, false}},
   };
   std::map<uint32_t, const shader::DescriptorBinding*> got;
   for (const auto& b : build.layout.bindings) {

@@ -114,6 +114,41 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
   expectNoValidationErrors(*session);
 }
 
+// Continuation rays towards glossy reflectors (pathtracer/guiding.glsl): the sun focused by a smooth metal
+// sphere onto the floor. The mixture's pdf weighs every estimate that weighs against BRDF sampling, so guided
+// MIS, guided BRDF sampling alone (no next-event estimation: the sun, here of angular size, is reached
+// through the miss shader) and unguided MIS (the default) must agree.
+TEST(Unbiased, ReflectorGuidingAgreesWithBrdfSampling) {
+  render::SessionOptions o;
+  o.sceneData = makeEnvSpheresScene();
+  gpu::DirectionalLight sun{};
+  sun.direction = glm::normalize(glm::vec3(0.6f, -0.7f, -0.3f));
+  sun.cosAngularRadius = std::cos(glm::radians(6.0f));
+  sun.radiance = glm::vec3(40.0f);
+  o.sceneData->lights.push_back(sun);
+  o.settings = envSettings();
+  o.settings.envPath.clear();
+  o.settings.envColor = glm::vec3(0.2f, 0.3f, 0.5f);
+  render::SessionOptions offOptions = o;
+  o.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}};
+  auto session = makeSession(o);
+  auto offSession = makeSession(offOptions);
+  render::RenderSettings mis = o.settings, brdfOnly = o.settings;
+  brdfOnly.nee = false;
+  const Estimate eMis = estimateMean(*session, mis, 16, 16, 100);
+  const Estimate eBrdf = estimateMean(*session, brdfOnly, 16, 64, 300);
+  const Estimate eOff = estimateMean(*offSession, offOptions.settings, 16, 16, 400);
+  expectClean("guided mis", eMis);
+  expectClean("guided brdf only", eBrdf);
+  expectClean("unguided mis", eOff);
+  std::printf(" sun and a glossy metal sphere:\n");
+  expectAgree("guided mis", eMis, "guided brdf only", eBrdf);
+  expectAgree("guided mis", eMis, "unguided mis", eOff);
+  expectAgree("guided brdf only", eBrdf, "unguided mis", eOff);
+  expectNoValidationErrors(*session);
+  expectNoValidationErrors(*offSession);
+}
+
 // Russian roulette only reweights surviving paths: on, off, from the first bounce with a tight survival clamp
 // (every path survives with probability 0.3 exactly), and with survival proportional to the throughput
 // (exponent 1) or its square root (0.5) estimate the same image.

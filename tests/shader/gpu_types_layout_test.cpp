@@ -12,9 +12,11 @@
 #include "display/display_types.h"
 #include "shader/library.h"
 #include "shared/debug_types.h"
+#include "shared/denoise_types.h"
 #include "shared/hybrid_types.h"
 #include "shared/inspect_types.h"
 #include "shared/pathtracer_types.h"
+#include "shared/roofline_types.h"
 #include "shared/scene_types.h"
 
 namespace {
@@ -127,4 +129,31 @@ TEST(GpuTypesLayout, DebugPrintAndAssertBlocksMatchTheHostStructs) {
   EXPECT_EQ(asserts.at("AssertHeaderBlock"), sizeof(AssertHeader));
   EXPECT_EQ(asserts.at("AssertRecordBlock"), sizeof(AssertRecord));
   EXPECT_FALSE(moduleBlocks("pathtracer/raygen.rgen").count("AssertRecordBlock"));
+}
+
+TEST(GpuTypesLayout, DenoiserPushConstantsMatchTheHostStruct) {
+  for (const char* stage :
+       {"denoise/prepare.comp", "denoise/variance.comp", "denoise/atrous.comp", "denoise/final.comp"}) {
+    const auto blocks = moduleBlocks(stage);
+    ASSERT_TRUE(blocks.count("PushBlock")) << stage;
+    EXPECT_EQ(blocks.at("PushBlock"), sizeof(wb::gpu::DenoisePush)) << stage;
+  }
+}
+
+TEST(GpuTypesLayout, RooflineBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  for (const char* stage : {"roofline/roofline.rgen", "roofline/roofline.rchit"}) {
+    const auto blocks = moduleBlocks(stage);
+    ASSERT_TRUE(blocks.count("PushBlock")) << stage;
+    EXPECT_EQ(blocks.at("PushBlock"), sizeof(RooflineConstants)) << stage;
+    EXPECT_EQ(blocks.at("GeometryBlock"), sizeof(GeometryInfo)) << stage;
+  }
+}
+
+TEST(GpuTypesLayout, ResolvePassBlocksMatchTheHostStructs) {
+  using namespace wb::gpu;
+  const auto blocks = moduleBlocks("pathtracer/resolve.comp");
+  ASSERT_TRUE(blocks.count("ResolveBlock"));
+  EXPECT_EQ(blocks.at("ResolveBlock"), sizeof(ResolveConstants));
+  EXPECT_EQ(blocks.at("SampleSlotBlock"), sizeof(float) * 4);  // vec4 per slot
 }

@@ -15,6 +15,7 @@ struct FakeHost : wb::app::ScriptHost {
   std::vector<std::string> log;
   uint32_t sampleCount = 0;
   size_t reloads = 0;
+  uint64_t clicks = 0;
   void scriptSet(const std::string& n, const std::string& v) override { log.push_back("set " + n + " " + v); }
   void scriptScreenshot(const std::string& p) override { log.push_back("screenshot " + p); }
   void scriptSave(const std::string& b) override { log.push_back("save " + b); }
@@ -24,6 +25,7 @@ struct FakeHost : wb::app::ScriptHost {
   void scriptCommand(const std::string& n) override { log.push_back(n); }
   size_t reloadCount() const override { return reloads; }
   uint32_t samples() const override { return sampleCount; }
+  uint64_t clicksPresented() const override { return clicks; }
 };
 
 }  // namespace
@@ -41,7 +43,7 @@ TEST(Script, AScreenshotIsTakenBeforeTheNextCommandsApply) {
 }
 
 TEST(Script, AWaitThatTimesOutFailsTheScript) {
-  for (const char* line : {"wait_samples 5 0.05", "wait_reload 0.05"}) {
+  for (const char* line : {"wait_samples 5 0.05", "wait_reload 0.05", "wait_clicks 2 0.05"}) {
     wb::app::Script s;
     s.addLine(line, "t:7");
     FakeHost host;
@@ -115,4 +117,21 @@ TEST(Script, ListsTheFilesItWrites) {
   EXPECT_EQ(paths,
             (std::vector<std::string>{"out/a.png", "out/a.exr", "out/a.json", "b.png", "c.json", "d.json"}));
   EXPECT_EQ(whats.front(), "t:1: save");
+}
+
+// wait_clicks N goes on once N clicks in all are on screen, and its count is a whole number.
+TEST(Script, WaitClicksWaitsForTheClicksOnScreen) {
+  wb::app::Script s;
+  s.addLine("wait_clicks 2 600", "t:1");
+  s.addLine("stats s.json", "t:2");
+  FakeHost host;
+  host.clicks = 1;
+  EXPECT_TRUE(s.step(host));
+  EXPECT_TRUE(s.step(host));
+  EXPECT_TRUE(host.log.empty());
+  host.clicks = 2;
+  EXPECT_FALSE(s.step(host));
+  EXPECT_EQ(host.log, (std::vector<std::string>{"stats s.json"}));
+  EXPECT_THROW(wb::app::Script().addLine("wait_clicks 1.5", "t:3"), std::runtime_error);
+  EXPECT_THROW(wb::app::Script().addLine("wait_clicks", "t:4"), std::runtime_error);
 }

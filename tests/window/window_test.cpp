@@ -894,3 +894,98 @@ TEST(Window, TheAssertsToggleMarksTheFailingPixels) {
   EXPECT_EQ(magenta(dir / "off.png"), 0u);
   EXPECT_GT(magenta(dir / "on.png"), 20u);
 }
+
+namespace {
+
+// Per column of the image area: the mean absolute difference of two same-size screenshots (-1: unreadable).
+std::vector<double> columnDifferences(const fs::path& a, const fs::path& b, int panelWidth) {
+  int w = 0, h = 0, n = 0, w2 = 0, h2 = 0;
+  unsigned char* pa = stbi_load(a.c_str(), &w, &h, &n, 4);
+  unsigned char* pb = stbi_load(b.c_str(), &w2, &h2, &n, 4);
+  std::vector<double> columns;
+  if (pa && pb && w == w2 && h == h2) {
+    for (int x = panelWidth + 4; x < w; ++x) {
+      double sum = 0;
+      for (int y = 0; y < h - 24; ++y)
+        for (int c = 0; c < 3; ++c)
+          sum += std::abs(int(pa[4 * (y * w + x) + c]) - int(pb[4 * (y * w + x) + c]));
+      columns.push_back(sum / double(3 * (h - 24)));
+    }
+  }
+  if (pa) stbi_image_free(pa);
+  if (pb) stbi_image_free(pb);
+  return columns;
+}
+
+// How noisy the image area is: the mean absolute difference between horizontally adjacent pixels.
+double imageAreaRoughness(const fs::path& png, int panelWidth) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* px = stbi_load(png.c_str(), &w, &h, &n, 4);
+  if (!px) return -1;
+  double sum = 0;
+  size_t count = 0;
+  for (int y = 0; y < h - 24; ++y)
+    for (int x = panelWidth + 5; x < w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        sum += std::abs(int(px[4 * (y * w + x) + c]) - int(px[4 * (y * w + x - 1) + c]));
+        ++count;
+      }
+  stbi_image_free(px);
+  return count ? sum / double(count) : -1;
+}
+
+}  // namespace
+
+// The window denoises its view by default; `set denoise 0` (the panel's checkbox) shows the raw image, and
+// denoise_split shows raw left of the split and denoised right of it. Paused: the same samples in every shot.
+TEST(Window, DenoiseToggleAndSplitView) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("denoise");
+  const auto raw = dir / "raw.png", den = dir / "den.png", split = dir / "split.png";
+  writeFile(dir / "s.txt", "wait_samples 2 300\nset paused 1\nframes 3\nscreenshot " + den.string() +
+                               "\nframes 1\nset denoise 0\nframes 3\nscreenshot " + raw.string() +
+                               "\nframes 1\nset denoise 1\nset denoise_split 0.5\nframes 3\nscreenshot " +
+                               split.string() + "\nframes 1\nstats " + (dir / "s.json").string() + "\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const int panelWidth = 144;
+  const double roughRaw = imageAreaRoughness(raw, panelWidth), roughDen = imageAreaRoughness(den, panelWidth);
+  EXPECT_LT(roughDen, 0.6 * roughRaw) << "the denoised view is smoother than the raw one";
+  EXPECT_GE(readJson(dir / "s.json")["samples"].get<int>(), 2);
+  // Split: each column of the image shows either the raw or the denoised image: raw on the left, denoised on
+  // the right, both over a good part of the width.
+  const auto toRaw = columnDifferences(split, raw, panelWidth),
+             toDen = columnDifferences(split, den, panelWidth);
+  ASSERT_EQ(toRaw.size(), toDen.size());
+  ASSERT_FALSE(toRaw.empty());
+  size_t rawColumns = 0, denColumns = 0, lastRaw = 0, firstDen = toRaw.size();
+  for (size_t x = 0; x < toRaw.size(); ++x) {
+    const bool isRaw = toRaw[x] < 0.5 && toDen[x] > 1.0, isDen = toDen[x] < 0.5 && toRaw[x] > 1.0;
+    if (isRaw) ++rawColumns, lastRaw = x;
+    if (isDen) ++denColumns, firstDen = std::min(firstDen, x);
+  }
+  EXPECT_GT(rawColumns, toRaw.size() / 5) << "raw columns on the left of the split";
+  EXPECT_GT(denColumns, toRaw.size() / 5) << "denoised columns on the right of the split";
+  EXPECT_LT(lastRaw, firstDen) << "raw left of the split, denoised right of it";
+}
+
+// The window's denoiser runs when the image gains samples, not every frame: paused, frame after frame shows the
+// same output and filters nothing again; its GPU time is measured apart from the trace's (the trace's time
+// paces the strips).
+TEST(Window, DenoiserRunsOnlyForNewSamples) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("denoise_runs");
+  const auto a = dir / "a.json", b = dir / "b.json", c = dir / "c.json";
+  writeFile(dir / "s.txt", "wait_samples 2 300\nset paused 1\nframes 3\nstats " + a.string() +
+                               "\nframes 12\nstats " + b.string() + "\nset paused 0\nwait_samples 4 300\nframes 3\n" +
+                               "stats " + c.string() + "\n");
+  auto r = runWindow("--script " + (dir / "s.txt").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto ja = readJson(a), jb = readJson(b), jc = readJson(c);
+  EXPECT_GE(ja["denoise_runs"].get<int>(), 1) << "the denoiser ran once the image had a whole sample";
+  EXPECT_EQ(jb["denoise_runs"], ja["denoise_runs"]) << "twelve frames of a paused image filter nothing again";
+  EXPECT_GT(jb["frames"].get<int>(), ja["frames"].get<int>() + 10);
+  EXPECT_GT(ja["denoise_gpu_ms_last"].get<double>(), 0.0);
+  EXPECT_GE(jc["samples"].get<int>(), 4);
+  EXPECT_GE(jc["denoise_runs"].get<int>(), ja["denoise_runs"].get<int>()) << jc.dump();
+}

@@ -7,7 +7,8 @@
 namespace wb::app {
 namespace {
 
-constexpr float kRadiansPerPixel = 0.005f;
+// A drag across the whole view turns by this much.
+constexpr float kRadiansPerViewWidth = 3.14159265f;
 constexpr float kMaxPitch = 1.55f;
 
 glm::vec3 directionFrom(float yaw, float pitch) {
@@ -42,18 +43,21 @@ glm::vec3 CameraController::forward() const {
 
 bool CameraController::update(const CameraInput& in) {
   bool changed = false;
+  const glm::vec2 view = glm::max(in.viewSize, glm::vec2(16.0f));
   if (in.dragRotate != glm::vec2(0.0f)) {
     // Orbit: dragging right moves the camera right around the target; fly: looks right.
     const float sign = mode_ == CameraMode::Orbit ? 1.0f : -1.0f;
-    yaw_ += sign * in.dragRotate.x * kRadiansPerPixel;
-    pitch_ = std::clamp(pitch_ + sign * in.dragRotate.y * kRadiansPerPixel, -kMaxPitch, kMaxPitch);
+    const float radiansPerPixel = kRadiansPerViewWidth / view.x;
+    yaw_ += sign * in.dragRotate.x * radiansPerPixel;
+    pitch_ = std::clamp(pitch_ + sign * in.dragRotate.y * radiansPerPixel, -kMaxPitch, kMaxPitch);
     changed = true;
   }
   const glm::vec3 fwd = forward();
   const glm::vec3 right = glm::normalize(glm::cross(fwd, glm::vec3(0.0f, 1.0f, 0.0f)));
   const glm::vec3 up = glm::cross(right, fwd);
   if (in.dragPan != glm::vec2(0.0f)) {
-    const float scale = distance_ * 2.0f * std::tan(yfov_ * 0.5f) / 500.0f;
+    // The view's height spans 2 d tan(fov / 2) at the target's depth d: the scene there follows the cursor.
+    const float scale = distance_ * 2.0f * std::tan(yfov_ * 0.5f) / view.y;
     const glm::vec3 delta = (-in.dragPan.x * right + in.dragPan.y * up) * scale;
     target_ += delta;
     eye_ += delta;

@@ -1,5 +1,7 @@
 // Interactive camera: orbit (drag to rotate about a target, wheel to dolly, shift-drag or middle-drag to pan)
-// and fly (right-drag to look, WASD + QE to move). Reset returns to the scene's camera.
+// and fly (right-drag to look, WASD + QE to move). Reset returns to the scene's camera. Drags are scaled to
+// the view: a drag across the view's width turns the camera by 180 degrees, and a pan moves the scene with
+// the cursor at the target's depth.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -11,12 +13,13 @@ namespace wb::app {
 enum class CameraMode { Orbit, Fly };
 
 struct CameraInput {
-  glm::vec2 dragRotate{0.0f};  // pixels of rotate drag this frame
-  glm::vec2 dragPan{0.0f};     // pixels of pan drag this frame
-  float wheel = 0.0f;          // scroll steps
-  glm::vec3 move{0.0f};        // fly: x right, y up, z forward, each -1..1
-  float dt = 0.0f;             // seconds since the last frame
-  bool fast = false;           // shift held
+  glm::vec2 dragRotate{0.0f};   // pixels of rotate drag this frame
+  glm::vec2 dragPan{0.0f};      // pixels of pan drag this frame
+  float wheel = 0.0f;           // scroll steps
+  glm::vec3 move{0.0f};         // fly: x right, y up, z forward, each -1..1
+  float dt = 0.0f;              // seconds since the last frame
+  bool fast = false;            // shift held
+  glm::vec2 viewSize{1000.0f};  // the image's size on screen in pixels (the drags' scale)
 };
 
 class CameraController {

@@ -38,6 +38,7 @@ void DisplayPass::setSources(const DisplaySources& sources) {
   pass_.setStorageImage("previewImage", sources_.preview);
   pass_.setStorageImage("statsImage", sources_.stats);
   pass_.setStorageImage("costImage", sources_.cost);
+  pass_.setStorageImage("denoisedImage", sources_.denoised ? sources_.denoised : sources_.accum);
 }
 
 void DisplayPass::record(VkCommandBuffer cmd, const gpu::DisplayPush& push) const {

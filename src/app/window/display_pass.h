@@ -15,6 +15,7 @@ namespace wb::app {
 struct DisplaySources {
   VkImageView accum = VK_NULL_HANDLE, albedo = VK_NULL_HANDLE, normal = VK_NULL_HANDLE, info = VK_NULL_HANDLE,
               preview = VK_NULL_HANDLE, stats = VK_NULL_HANDLE, cost = VK_NULL_HANDLE;
+  VkImageView denoised = VK_NULL_HANDLE;  // null: the accumulation is bound in its place
   bool operator==(const DisplaySources&) const = default;
 };
 

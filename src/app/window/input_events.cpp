@@ -1,5 +1,7 @@
 #include "app/window/input_events.h"
 
+#include <chrono>
+
 #include <utility>
 
 #include <GLFW/glfw3.h>
@@ -22,7 +24,7 @@ InputEvents::InputEvents(GLFWwindow* window) : window_(window) {
     if (auto* e = eventsOf(w)) e->onButton(button, action);
   });
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) {
-    if (auto* e = eventsOf(w)) e->onActivity();
+    if (auto* e = eventsOf(w)) e->onActivity(true);
   });
   glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) {
     if (auto* e = eventsOf(w)) e->onActivity();
@@ -35,7 +37,7 @@ InputEvents::~InputEvents() {
 
 void InputEvents::onKey(int key, int action, int mods) {
   std::lock_guard lock(mutex_);
-  activity_ = true;
+  activity_ = discrete_ = true;
   if (action == GLFW_PRESS) keys_.push_back({key, mods});
 }
 
@@ -48,13 +50,23 @@ void InputEvents::onButton(int button, int action) {
   const glm::vec2 pos(float(x) * float(fw) / float(ww > 0 ? ww : 1),
                       float(y) * float(fh) / float(wh > 0 ? wh : 1));
   std::lock_guard lock(mutex_);
-  activity_ = true;
+  activity_ = discrete_ = true;
   buttons_.push_back({button, action == GLFW_PRESS, pos});
+  if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_RELEASE)
+    releaseNs_.push_back(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             std::chrono::steady_clock::now().time_since_epoch())
+                             .count());
 }
 
-void InputEvents::onActivity() {
+std::vector<int64_t> InputEvents::leftReleaseTimes() const {
+  std::lock_guard lock(mutex_);
+  return releaseNs_;
+}
+
+void InputEvents::onActivity(bool discrete) {
   std::lock_guard lock(mutex_);
   activity_ = true;
+  discrete_ = discrete_ || discrete;
 }
 
 std::vector<KeyPress> InputEvents::takeKeyPresses() {
@@ -70,6 +82,11 @@ std::vector<ButtonChange> InputEvents::takeButtonChanges() {
 bool InputEvents::takeActivity() {
   std::lock_guard lock(mutex_);
   return std::exchange(activity_, false);
+}
+
+bool InputEvents::takeDiscrete() {
+  std::lock_guard lock(mutex_);
+  return std::exchange(discrete_, false);
 }
 
 }  // namespace wb::app

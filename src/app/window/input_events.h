@@ -3,6 +3,7 @@
 // would miss it. Every press is kept, with the cursor position of a button change (a drag starts where the
 // button went down, not where the cursor is when the next frame looks).
 #pragma once
+#include <cstdint>
 #include <mutex>
 #include <vector>
 
@@ -36,18 +37,27 @@ class InputEvents {
   std::vector<ButtonChange> takeButtonChanges();
   // Whether any input (key, button, scroll, cursor motion) arrived since the last call.
   bool takeActivity();
+  // Whether a discrete input (key, button, scroll: not cursor motion) arrived since the last call: the window
+  // redraws at once, without waiting for a trace.
+  bool takeDiscrete();
+
+  // When the window's event loop received each left button release (steady clock, ns since its epoch): a
+  // click's wait for the loop to poll, against the time it takes to reach the screen.
+  std::vector<int64_t> leftReleaseTimes() const;
 
   // The callbacks' entry points (public for the C callbacks).
   void onKey(int key, int action, int mods);
   void onButton(int button, int action);
-  void onActivity();
+  void onActivity(bool discrete = false);
 
  private:
   GLFWwindow* window_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::vector<KeyPress> keys_;
   std::vector<ButtonChange> buttons_;
+  std::vector<int64_t> releaseNs_;
   bool activity_ = false;
+  bool discrete_ = false;
 };
 
 }  // namespace wb::app

@@ -8,8 +8,10 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app/window/heat_legend.h"
 #include "app/window/instruments_panel.h"
 #include "app/window/parameter_panel.h"
+#include "app/window/widget_rects.h"
 #include "common/paths.h"
 
 namespace wb::app {
@@ -33,6 +35,8 @@ void renderPanel(PanelContext& c) {
   }
   if (const std::string inUse = c.session.modeInUse(); !inUse.empty())
     ImGui::TextDisabled("%s", inUse.c_str());
+  if (const uint32_t kept = c.session.pathTracerSamplesKept(); kept > 0)
+    ImGui::TextDisabled("pathtrace: %u samples kept, resumed on going back", kept);
   ImGui::Separator();
   if (ImGui::Button(st.paused ? "Resume" : "Pause")) st.paused = !st.paused;
   ImGui::SameLine();
@@ -43,7 +47,10 @@ void renderPanel(PanelContext& c) {
     ImGui::Text("trace size %ux%u (--size)", c.session.imageWidth(), c.session.imageHeight());
   }
   ImGui::SliderFloat("resolution scale", &st.resolutionScale, 0.1f, 1.0f, "%.2f");
-  if (c.session.previews()) ImGui::Checkbox("preview after changes", &st.preview);
+  if (c.session.previews()) {
+    ImGui::Checkbox("preview after changes", &st.preview);
+    widgetRects().noteLastItem("preview");
+  }
   ImGui::SliderFloat("trace budget ms", &st.budgetMs, 5.0f, 200.0f, "%.0f");
   ImGui::Checkbox("vsync", &st.vsync);
   ImGui::SameLine();
@@ -77,13 +84,13 @@ void inspectPanel(PanelContext& c) {
   drawInspectorSection(st, c.session.inspection(), debugViews);
   drawPrintsSection(c.session);
   ImGui::Separator();
-  ImGui::TextDisabled("hover the image to pick; click to pin");
-  if (!c.pick) {
-    ImGui::TextUnformatted("no hit under the cursor");
+  ImGui::TextDisabled("click the image to select an object (hover names it)");
+  if (!c.selected) {
+    ImGui::TextUnformatted("nothing selected");
     return;
   }
-  const PickResult& p = *c.pick;
-  ImGui::Text("instance %d (%s)", p.instance, p.nodeName.c_str());
+  const PickResult& p = *c.selected;
+  ImGui::Text("selected: instance %d (%s)", p.instance, p.nodeName.c_str());
   ImGui::Text("mesh %d (%s) primitive %d triangle %d", p.mesh, p.meshName.c_str(), p.primitive, p.triangle);
   ImGui::Text("position %.3f %.3f %.3f", p.position.x, p.position.y, p.position.z);
   ImGui::Text("distance %.4f", p.distance);
@@ -154,6 +161,9 @@ void shadersPanel(PanelContext& c) {
   if (ImGui::Checkbox("auto reload on save", &autoReload)) c.session.loop().hot().setAutoReload(autoReload);
   ImGui::SameLine();
   if (ImGui::Button("Reload all (F5)")) c.session.state().reloadShaders = true;
+  auto& ab = c.session.ab();
+  if (!ab.open && (!ab.results.empty() || !ab.note.empty()) && ImGui::Button("Show the last A/B comparison"))
+    ab.open = true;
   const std::string err = c.session.loop().hot().currentError();
   if (!err.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
@@ -241,6 +251,8 @@ void errorSection(PanelContext& c) {
   if (!last) {
     ImGui::TextDisabled(le.hasReference() ? "error vs reference: waiting for a sample"
                                           : "noise estimate: needs 2 samples (n vs n/2)");
+    // The plot's room stays: a restart does not move the sections below under the cursor.
+    ImGui::Dummy(ImVec2(ImGui::GetContentRegionAvail().x, 50));
     return;
   }
   ImGui::Text("%s at %u spp: RMSE %.4g  relMSE %.4g", last->estimated ? "noise est." : "error vs ref",
@@ -259,6 +271,8 @@ void errorSection(PanelContext& c) {
     std::snprintf(overlay, sizeof overlay, "log10 relMSE, %zu checkpoints", logRel.size());
     ImGui::PlotLines("##error", logRel.data(), int(logRel.size()), 0, overlay, FLT_MAX, FLT_MAX,
                      ImVec2(ImGui::GetContentRegionAvail().x, 50));
+  } else {
+    ImGui::Dummy(ImVec2(ImGui::GetContentRegionAvail().x, 50));
   }
 }
 
@@ -312,14 +326,21 @@ float sidePanelWidth(float windowWidth) {
   return std::min(400.0f, std::floor(windowWidth * 0.45f));
 }
 
-float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
+float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight, float& width) {
   if (!c.session.state().showPanel) return 0.0f;
-  const float width = sidePanelWidth(windowWidth);
+  // Resizable by its right edge, between a narrow panel and most of the window.
+  const float minWidth = std::min(200.0f, windowWidth), maxWidth = std::max(minWidth, windowWidth * 0.75f);
+  if (width <= 0.0f) width = sidePanelWidth(windowWidth);
+  width = std::clamp(width, minWidth, maxWidth);
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(width, windowHeight));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(minWidth, windowHeight), ImVec2(maxWidth, windowHeight));
   ImGui::Begin("workbench", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoTitleBar);
+  // A drag of the edge shows in the window's size this frame: the next frame starts from it.
+  width = ImGui::GetWindowWidth();
+  widgetRects().note("side_panel", Rect{0.0f, 0.0f, width, windowHeight});
   ImGui::PushItemWidth(std::floor(ImGui::GetContentRegionAvail().x * 0.55f));
   if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) renderPanel(c);
   if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) statsPanel(c);
@@ -337,6 +358,13 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight) {
   if (ImGui::CollapsingHeader(
           "Shaders", c.session.loop().hot().currentError().empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen))
     shadersPanel(c);
+  if (ImGui::CollapsingHeader("Keys")) {
+    ImGui::TextWrapped(
+        "left-drag: orbit (a drag across the image turns 180 degrees); shift-, middle- or right-drag: pan; "
+        "wheel: dolly; Home: reset the camera; click on the image: select the object and inspect the pixel; "
+        "Tab: hide the panels (the image takes the window); F5: reload every shader; F12: save the image; "
+        "Esc or Ctrl+Q: quit");
+  }
   ImGui::PopItemWidth();
   ImGui::End();
   return width;
@@ -351,6 +379,22 @@ void drawOverlays(PanelContext& c, const Rect& view) {
     drawAssertMarks(c.session, view);
   }
   ImDrawList* dl = ImGui::GetForegroundDrawList();
+  // Hovering names the object under the cursor (a click selects it for the material editor).
+  if (c.hover && !ImGui::GetIO().WantCaptureMouse) {
+    const std::string label =
+        c.hover->nodeName + (c.hover->materialName.empty() ? "" : " / ") + c.hover->materialName;
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    const ImVec2 ls = ImGui::CalcTextSize(label.c_str());
+    const ImVec2 at(std::min(m.x + 14, view.x + view.w - ls.x - 6), m.y + 14);
+    dl->AddRectFilled(ImVec2(at.x - 3, at.y - 2), ImVec2(at.x + ls.x + 3, at.y + ls.y + 2),
+                      IM_COL32(0, 0, 0, 170), 3.0f);
+    dl->AddText(at, IM_COL32(255, 255, 255, 255), label.c_str());
+  }
+  // A heat-map view's colour bar: what the colours mean, in which unit and scale.
+  if (const live::DisplayFrame d = c.session.displayFrame(); d.debugViews) {
+    if (const auto legend = heatLegend(c.session.state().params.display.view, d.maxVertices))
+      widgetRects().note("legend", drawHeatLegend(*legend, view));
+  }
   char status[192];
   const bool done = !c.session.tracing() && !c.session.state().paused;
   std::snprintf(status, sizeof status, "%s  %u %s%s  %ux%u  %.1f s  shown every %.0f ms%s",

@@ -20,17 +20,19 @@ namespace wb::app {
 struct PanelContext {
   live::LiveSession& session;
   CameraController& camera;
-  const std::optional<PickResult>& pick;
+  const std::optional<PickResult>& hover;     // under the cursor
+  const std::optional<PickResult>& selected;  // clicked: the material editor edits it
   const FrameStats& frames;
   std::string presentMode;
   std::string lastSaved;
   double displayGpuMs = 0;  // the display pass's GPU time in the last frame
 };
 
-// The side panel's width in a window of that width (when shown).
+// The side panel's default width in a window of that width.
 float sidePanelWidth(float windowWidth);
-// The side panel; returns its width in pixels (0 when hidden).
-float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight);
+// The side panel at `width` (0: the default; the user drags its right edge to resize it, which updates
+// `width`); returns its width in pixels (0 when hidden).
+float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight, float& width);
 // Status line and the shader error banner over the image area.
 void drawOverlays(PanelContext& c, const Rect& view);
 

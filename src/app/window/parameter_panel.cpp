@@ -6,6 +6,8 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "app/window/widget_rects.h"
+
 namespace wb::app {
 
 bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
@@ -44,12 +46,14 @@ bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
     }
     case ParameterType::Choice: {
       const std::string& current = std::get<std::string>(v);
-      if (ImGui::BeginCombo(p.label.c_str(), current.c_str())) {
+      // Every choice shown at once (the debug views are ten): no scrolling inside the list.
+      if (ImGui::BeginCombo(p.label.c_str(), current.c_str(), ImGuiComboFlags_HeightLarge)) {
         for (const auto& c : p.choices) {
           if (ImGui::Selectable(c.c_str(), c == current) && c != current) {
             next = c;
             changed = true;
           }
+          widgetRects().noteLastItem("param." + p.name + "." + c);
         }
         ImGui::EndCombo();
       }
@@ -70,6 +74,7 @@ bool drawParameter(const render::ParameterInfo& p, render::Parameters& values) {
       break;
     }
   }
+  widgetRects().noteLastItem("param." + p.name);
   if (ImGui::IsItemHovered() && !p.help.empty()) ImGui::SetTooltip("%s", p.help.c_str());
   if (changed) p.put(values, next);
   ImGui::PopID();

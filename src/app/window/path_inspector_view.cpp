@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <imgui.h>
 
+#include "app/window/widget_rects.h"
 #include "render/path_tracer.h"
 #include "shared/brdf.h"
 
@@ -229,22 +230,29 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
     const glm::dvec3 se = glm::sqrt(var / double(e.count()));
     ImGui::Text("std error %.3g %.3g %.3g", se.x, se.y, se.z);
   }
-  if (view.samples().empty()) {
+  const render::InspectedSample* s = view.shown(st.inspectShown);
+  if (view.samples().empty() && !s) {
     ImGui::TextDisabled("waiting for a finished sample");
     return;
   }
-  int last = int(view.samples().back().record.sampleIndex);
-  int first = int(view.samples().front().record.sampleIndex);
-  int chosen = st.inspectShown < 0 ? last : std::clamp(st.inspectShown, first, last);
-  if (ImGui::SliderInt("sample", &chosen, first, last)) st.inspectShown = chosen == last ? -1 : chosen;
+  // The slider picks among the kept samples and the held one; the choice stays until another is picked.
+  int first = view.samples().empty() ? st.inspectShown : int(view.samples().front().record.sampleIndex);
+  int last = view.samples().empty() ? st.inspectShown : int(view.samples().back().record.sampleIndex);
+  if (st.inspectShown >= 0) first = std::min(first, st.inspectShown), last = std::max(last, st.inspectShown);
+  int chosen = st.inspectShown < 0 ? last : st.inspectShown;
+  if (ImGui::SliderInt("sample", &chosen, first, last)) st.inspectShown = chosen;
+  widgetRects().noteLastItem("inspect_sample");
   ImGui::SameLine();
   ImGui::Checkbox("all", &st.inspectAllSamples);
-  const render::InspectedSample* s = view.shown(st.inspectShown);
+  widgetRects().noteLastItem("inspect_all");
   if (!s) return;
   const auto& r = s->record;
-  ImGui::Text("sample %u: %s after %u vertices%s, value %.4g %.4g %.4g", r.sampleIndex,
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::Text("sample %u%s: %s after %u vertices%s, value %.4g %.4g %.4g", r.sampleIndex,
+              view.heldFromEarlier() ? " (held, from before the image restarted)" : " (held)",
               render::inspectEndName(r.end), r.vertexCount, s->truncated ? " (truncated)" : "", r.radiance.x,
               r.radiance.y, r.radiance.z);
+  ImGui::PopTextWrapPos();
   if (s->firstNonFinite) {
     ImGui::TextColored(ImVec4(1, 0.3f, 1, 1), "first NaN/Inf: %s at %s",
                        render::inspectNonFiniteName(s->firstNonFinite->term),
@@ -252,11 +260,17 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
                            ? "the path's end"
                            : ("vertex " + std::to_string(s->firstNonFinite->vertex)).c_str());
   }
-  ImGui::TextDisabled("hover a row for the whole record; lines: throughput blue 0, green 1, red 2");
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextDisabled(
+      "# = bounce (0: the camera ray's hit); hover a row for the whole record; lines: "
+      "throughput blue 0, green 1, red 2");
+  ImGui::PopTextWrapPos();
+  // Columns keep their width: a narrow panel scrolls the table sideways instead of cutting columns off.
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_Borders |
-                                ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollY;
-  const float height =
-      std::min(12.0f, float(s->vertices.size()) + 1.5f) * ImGui::GetTextLineHeightWithSpacing();
+                                ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollY |
+                                ImGuiTableFlags_ScrollX;
+  const float height = (std::min(12.0f, float(s->vertices.size()) + 1.5f) + 1.0f) *
+                       ImGui::GetTextLineHeightWithSpacing();  // + 1: the horizontal scroll bar
   if (ImGui::BeginTable("inspect_vertices", 9, flags, ImVec2(0.0f, height))) {
     for (const char* h : {"#", "mat", "dist", "lobe p", "pdf", "thru", "RR", "NEE", "clocks"})
       ImGui::TableSetupColumn(h);
@@ -274,7 +288,11 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
       ImGui::TableNextColumn();
       ImGui::Text("%.3g", v.distance);
       ImGui::TableNextColumn();
-      ImGui::Text("%c %.2f", v.lobe == WB_LOBE_SPECULAR ? 'S' : 'D', v.lobeProbability);
+      ImGui::Text("%c %.2f",
+                  v.lobe == WB_LOBE_SPECULAR    ? 'S'
+                  : v.lobe == WB_LOBE_REFLECTOR ? 'R'
+                                                : 'D',
+                  v.lobeProbability);
       ImGui::TableNextColumn();
       ImGui::Text("%.3g", v.pdf);
       ImGui::TableNextColumn();
@@ -301,16 +319,17 @@ void drawInspectorSection(live::SessionState& st, const live::PixelInspection& v
     ImGui::EndTable();
   }
   if (r.escaped) {
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::Text("escaped: environment %s, MIS %.3g, sun %s", vec3Text(r.escapeEnvironment).c_str(),
                 r.escapeMis, vec3Text(r.escapeSun).c_str());
+    ImGui::PopTextWrapPos();
   }
 }
 
 void drawInspectorOverlay(const live::SessionState& st, const live::PixelInspection& view,
                           const render::CameraState& camera, uint32_t traceWidth, uint32_t traceHeight,
                           const Rect& image, float sceneRadius) {
-  if (!st.inspectPixel || (view.samples().empty() && !view.hybrid()) || traceWidth == 0 || traceHeight == 0)
-    return;
+  if (!st.inspectPixel || traceWidth == 0 || traceHeight == 0) return;
   glm::mat4 proj =
       glm::perspective(camera.yfov, float(traceWidth) / float(traceHeight), camera.znear, 1000.0f);
   proj[1][1] *= -1.0f;
@@ -318,12 +337,15 @@ void drawInspectorOverlay(const live::SessionState& st, const live::PixelInspect
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   dl->PushClipRect(ImVec2(image.x, image.y), ImVec2(image.x + image.w, image.y + image.h), true);
   if (view.hybrid()) drawHybridRays(dl, pr, *view.hybrid(), sceneRadius);
-  const render::InspectedSample* shown = view.shown(st.inspectShown);
-  if (st.inspectAllSamples) {
-    for (const auto& s : view.samples())
-      if (&s != shown) drawPath(dl, pr, s, sceneRadius, true);
+  // The records are the pixel's once the frame after the pick has read them; the marker shows at once.
+  if (view.pixel() == st.inspectPixel) {
+    const render::InspectedSample* shown = view.shown(st.inspectShown);
+    if (st.inspectAllSamples) {
+      for (const auto& s : view.samples())
+        if (&s != shown) drawPath(dl, pr, s, sceneRadius, true);
+    }
+    if (shown) drawPath(dl, pr, *shown, sceneRadius, false);
   }
-  if (shown) drawPath(dl, pr, *shown, sceneRadius, false);
   // The pixel itself.
   const float sx = image.w / float(traceWidth), sy = image.h / float(traceHeight);
   const ImVec2 a(image.x + float(st.inspectPixel->x) * sx, image.y + float(st.inspectPixel->y) * sy);

@@ -11,6 +11,9 @@
 
 namespace wb::app {
 
+// Timestamps of a shown frame: before the trace, after it, after the work after it, after the display.
+constexpr uint32_t kQueries = 4;
+
 Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindow* window, bool vsync,
                      const std::string& imguiIni)
     : ctx_(ctx), window_(window), vsync_(vsync) {
@@ -53,7 +56,7 @@ Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindo
   WB_VK(vkCreateSemaphore(ctx.device(), &si, nullptr, &imageAvailable_));
   VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = 3;
+  qi.queryCount = kQueries;
   WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &queries_));
 }
 
@@ -102,15 +105,17 @@ bool Presenter::beginFrame() {
 }
 
 void Presenter::readTimestamps(bool withDisplay) {
-  uint64_t ts[3] = {};
-  const uint32_t count = withDisplay ? 3 : 2;
+  uint64_t ts[kQueries] = {};
+  const uint32_t count = withDisplay ? kQueries : 2;
   if (vkGetQueryPoolResults(ctx_.device(), queries_, 0, count, sizeof(uint64_t) * count, ts, sizeof(uint64_t),
                             VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) {
     return;
   }
   const double period = ctx_.timestampPeriodNs() * 1e-6;
   traceMs_ = double(ts[1] - ts[0]) * period;
-  if (withDisplay) displayMs_ = double(ts[2] - ts[1]) * period;
+  if (!withDisplay) return;
+  afterTraceMs_ = double(ts[2] - ts[1]) * period;
+  displayMs_ = double(ts[3] - ts[2]) * period;
 }
 
 void Presenter::waitForFence() {
@@ -145,7 +150,7 @@ bool Presenter::traceOnly(const TraceRecorder& trace) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   WB_VK(vkBeginCommandBuffer(cmd_, &bi));
-  vkCmdResetQueryPool(cmd_, queries_, 0, 3);
+  vkCmdResetQueryPool(cmd_, queries_, 0, kQueries);
   vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
   tracedPixels_ = trace(cmd_);
   vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
@@ -165,8 +170,8 @@ bool Presenter::traceOnly(const TraceRecorder& trace) {
   return true;
 }
 
-bool Presenter::present(const TraceRecorder& trace, const gpu::DisplayPush& push,
-                        const std::string& screenshot) {
+bool Presenter::present(const TraceRecorder& trace, const AfterTraceRecorder& afterTrace,
+                        const gpu::DisplayPush& push, const std::string& screenshot) {
   auto index = swapchain_->acquire(imageAvailable_);
   if (!index) {
     ImGui::EndFrame();
@@ -177,10 +182,12 @@ bool Presenter::present(const TraceRecorder& trace, const gpu::DisplayPush& push
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   WB_VK(vkBeginCommandBuffer(cmd_, &bi));
-  vkCmdResetQueryPool(cmd_, queries_, 0, 3);
+  vkCmdResetQueryPool(cmd_, queries_, 0, kQueries);
   vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
   tracedPixels_ = trace(cmd_);
   vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+  afterTrace(cmd_);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
 
   VkClearValue clear{};
   clear.color = {{0.06f, 0.06f, 0.07f, 1.0f}};
@@ -194,7 +201,7 @@ bool Presenter::present(const TraceRecorder& trace, const gpu::DisplayPush& push
   if (push.viewRect.z >= 1 && push.viewRect.w >= 1) display_->record(cmd_, push);
   gui_->render(cmd_);
   vkCmdEndRenderPass(cmd_);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 3);
   if (!screenshot.empty()) {
     capture_->record(cmd_, *swapchain_, *index);
     captureTarget_ = screenshot;

@@ -14,9 +14,10 @@ namespace wb::app {
 namespace {
 
 const std::set<std::string> kCommands = {
-    "frames",      "set",          "screenshot",   "save",        "stats",     "copy",      "orbit",
-    "wait_reload", "wait_samples", "reset_camera", "reset",       "reload",    "quit",      "resize",
-    "wait_file",   "inspect",      "sleep",        "switch_mode", "wait_mode", "ab_revert", "ab_accept"};
+    "frames",    "set",         "screenshot",   "save",         "stats", "copy",
+    "orbit",     "wait_reload", "wait_samples", "reset_camera", "reset", "reload",
+    "quit",      "resize",      "wait_file",    "inspect",      "sleep", "switch_mode",
+    "wait_mode", "ab_revert",   "ab_accept",    "wait_clicks"};
 
 // Arguments are checked when the script is read (Script::addLine): every number here is a finite decimal.
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
@@ -77,7 +78,7 @@ void Script::addLine(const std::string& line, const std::string& where) {
   const size_t need = cmd == "set" || cmd == "copy" || cmd == "orbit" || cmd == "resize" ? 3
                       : cmd == "frames" || cmd == "screenshot" || cmd == "save" || cmd == "stats" ||
                               cmd == "wait_samples" || cmd == "wait_file" || cmd == "inspect" ||
-                              cmd == "sleep" || cmd == "switch_mode"
+                              cmd == "sleep" || cmd == "switch_mode" || cmd == "wait_clicks"
                           ? 2
                           : 1;
   if (c.words.size() < need) throw std::runtime_error(where + ": '" + cmd + "' needs more arguments");
@@ -91,7 +92,8 @@ void Script::addLine(const std::string& line, const std::string& where) {
   if (cmd == "wait_samples") checkNumber(w, 1, "N", 0, UINT32_MAX, true, where);
   if (cmd == "wait_reload" || cmd == "wait_mode")
     checkNumber(w, 1, "SECONDS", 1e-3, kMaxWaitSeconds, false, where);
-  if (cmd == "wait_samples" || cmd == "wait_file")
+  if (cmd == "wait_clicks") checkNumber(w, 1, "N", 0, 1e9, true, where);
+  if (cmd == "wait_samples" || cmd == "wait_file" || cmd == "wait_clicks")
     checkNumber(w, 2, "SECONDS", 1e-3, kMaxWaitSeconds, false, where);
   if (cmd == "sleep") checkNumber(w, 1, "SECONDS", 0, kMaxWaitSeconds, false, where);
   if (cmd == "orbit") {
@@ -123,7 +125,7 @@ bool Script::waitingForEvent() const {
   if (!waiting_ || next_ >= commands_.size()) return false;
   const std::string& cmd = commands_[next_].words[0];
   return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file" || cmd == "sleep" ||
-         cmd == "wait_mode";
+         cmd == "wait_mode" || cmd == "wait_clicks";
 }
 
 bool Script::step(ScriptHost& host) {
@@ -173,6 +175,18 @@ bool Script::step(ScriptHost& host) {
       if (!std::filesystem::exists(w[1], ec)) {
         if (clock::now() < deadline_) return true;
         throw std::runtime_error(c.where + ": wait_file: no '" + w[1] + "' after " +
+                                 std::to_string(numberArg(w, 2, 60, c.where)) + " s");
+      }
+    } else if (cmd == "wait_clicks") {
+      if (!waiting_) {
+        waiting_ = true;
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 2, 60, c.where)));
+      }
+      const uint64_t want = uint64_t(numberArg(w, 1, 1, c.where));
+      if (host.clicksPresented() < want) {
+        if (clock::now() < deadline_) return true;
+        throw std::runtime_error(c.where + ": wait_clicks: " + std::to_string(host.clicksPresented()) +
+                                 " of " + std::to_string(want) + " clicks on screen after " +
                                  std::to_string(numberArg(w, 2, 60, c.where)) + " s");
       }
     } else if (cmd == "sleep") {

@@ -10,6 +10,8 @@
 //                            script fails: exit status 1 with the reason)
 //   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails)
 //   wait_file PATH [SECONDS] render until PATH exists (another program's signal; default 60 s, then fails)
+//   wait_clicks N [SECONDS]  render until N left clicks in all (since the window opened) are on screen: the
+//                            frame that drew each click's effect finished (default 60 s, then fails)
 //   sleep SECONDS            render for SECONDS of wall time (benchmarks pace edits with it; tests wait for
 //                            events instead)
 //   switch_mode NAME         switch the render mode as the panel does: the other mode's renderer is made off
@@ -53,6 +55,8 @@ class ScriptHost {
     throw std::runtime_error("switch_mode: no render modes here");
   }
   virtual bool modeSwitchPending() const { return false; }
+  // Left clicks whose effect a finished frame drew, since the window opened (wait_clicks).
+  virtual uint64_t clicksPresented() const { return 0; }
   virtual size_t reloadCount() const = 0;
   virtual uint32_t samples() const = 0;
 };

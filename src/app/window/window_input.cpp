@@ -28,7 +28,18 @@ void WindowInput::resetCamera() {
 void WindowInput::orbit(float dx, float dy) {
   CameraInput in;
   in.dragRotate = {dx, dy};
+  in.viewSize = viewSize_;
   if (camera_.update(in)) cameraMoved();
+}
+
+std::optional<PickResult> WindowInput::pickAt(const Rect& img, glm::vec2 mouse) const {
+  if (!img.contains(mouse.x, mouse.y)) return std::nullopt;
+  const uint32_t tw = session_.traceWidth(), th = session_.traceHeight();
+  const float px = (mouse.x - img.x) / img.w * float(tw);
+  const float py = (mouse.y - img.y) / img.h * float(th);
+  glm::vec3 o, d;
+  cameraRay(camera_.state(), tw, th, px, py, o, d);
+  return pickRay(session_.render().scene(), o, d);
 }
 
 void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
@@ -48,6 +59,9 @@ void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
   // from there), and a click shorter than a frame still counts.
   const bool overPanel = io.WantCaptureMouse;
   bool clicked = false;
+  // A drag that ended this frame still moves the camera up to where its button went up.
+  std::optional<int> endedDrag;
+  glm::vec2 dragEnd(0.0f);
   for (const ButtonChange& b : events_.takeButtonChanges()) {
     if (b.pressed) {
       if (!dragging_ && view.contains(b.position.x, b.position.y) && !overPanel) {
@@ -57,26 +71,31 @@ void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
       }
     } else if (dragging_ && b.button == dragButton_) {
       dragging_ = false;
-      if (glm::length(b.position - pressMouse_) < 3.0f) clicked = true;
+      endedDrag = b.button;
+      dragEnd = b.position;
+      if (glm::length(b.position - pressMouse_) < 3.0f && b.button == GLFW_MOUSE_BUTTON_LEFT) clicked = true;
     }
   }
-  const glm::vec2 delta = lastMouse_.x < 0 ? glm::vec2(0.0f) : mouse - lastMouse_;
+  const glm::vec2 delta = lastMouse_.x < 0 ? glm::vec2(0.0f) : (endedDrag ? dragEnd : mouse) - lastMouse_;
   const bool overView = view.contains(mouse.x, mouse.y) && !overPanel;
 
   CameraInput in;
   in.dt = dt;
   in.fast = shift;
-  if (dragging_) {
+  in.viewSize = viewSize_ = glm::vec2(img.w, img.h);
+  if (dragging_ || endedDrag) {
+    const int button = endedDrag ? *endedDrag : dragButton_;
     const bool orbit = camera_.mode() == CameraMode::Orbit;
-    const bool left = dragButton_ == GLFW_MOUSE_BUTTON_LEFT, right = dragButton_ == GLFW_MOUSE_BUTTON_RIGHT;
-    const bool middle = dragButton_ == GLFW_MOUSE_BUTTON_MIDDLE;
+    const bool left = button == GLFW_MOUSE_BUTTON_LEFT, right = button == GLFW_MOUSE_BUTTON_RIGHT;
+    const bool middle = button == GLFW_MOUSE_BUTTON_MIDDLE;
     if ((orbit && left && !shift) || (!orbit && right)) in.dragRotate = delta;
     if ((orbit && (middle || right || (left && shift))) || (!orbit && middle)) in.dragPan = delta;
   }
-  if (clicked) {
-    pickPinned_ = !pickPinned_;  // a click pins the pick
-    if (img.contains(pressMouse_.x, pressMouse_.y))
-      session_.inspectAt((pressMouse_ - glm::vec2(img.x, img.y)) / glm::vec2(img.w, img.h));
+  if (clicked && img.contains(pressMouse_.x, pressMouse_.y)) {
+    // A click selects the object under it for the material editor (none: the selection is cleared) and picks
+    // the inspected pixel.
+    selected_ = pickAt(img, pressMouse_);
+    session_.inspectAt((pressMouse_ - glm::vec2(img.x, img.y)) / glm::vec2(img.w, img.h));
   }
   if (overView) in.wheel = io.MouseWheel;
   if (!io.WantCaptureKeyboard && camera_.mode() == CameraMode::Fly) {
@@ -84,24 +103,34 @@ void WindowInput::handle(const Rect& view, const Rect& img, float dt) {
     in.move = {key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q),
                key(GLFW_KEY_W) - key(GLFW_KEY_S)};
   }
-  if (camera_.update(in)) cameraMoved();
+  const bool moved = camera_.update(in);
+  if (moved) cameraMoved();
 
-  // Pixel picker: the CPU ray through the pixel under the cursor.
-  const uint32_t tw = session_.traceWidth(), th = session_.traceHeight();
-  if (overView && img.contains(mouse.x, mouse.y) && !pickPinned_ && (delta != glm::vec2(0.0f) || !pick_)) {
-    const float px = (mouse.x - img.x) / img.w * float(tw);
-    const float py = (mouse.y - img.y) / img.h * float(th);
-    glm::vec3 o, d;
-    cameraRay(camera_.state(), tw, th, px, py, o, d);
-    pick_ = pickRay(session_.render().scene(), o, d);
+  // Hover: the CPU ray through the pixel under the cursor names what is there (it selects nothing).
+  if (!overView || !img.contains(mouse.x, mouse.y)) {
+    hover_.reset();
+  } else if (mouse != hoverAt_ || !hover_ || moved) {
+    // The cursor moved since the last pick (a press resets the drag's origin, not this), or the camera did.
+    hover_ = pickAt(img, mouse);
+    hoverAt_ = mouse;
   }
   lastMouse_ = mouse;
 
   // Keys from the event queue: every press counts, however short and however slow the frame.
   for (const KeyPress& k : events_.takeKeyPresses()) {
+    // Ctrl+Q quits whatever has the keyboard; Esc closes an open popup first (ImGui does), else quits.
+    if (k.key == GLFW_KEY_Q && (k.mods & GLFW_MOD_CONTROL)) {
+      ++keyPresses_;
+      state.quit = true;
+      continue;
+    }
     if (io.WantCaptureKeyboard) continue;
+    if (k.key == GLFW_KEY_ESCAPE && ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId)) continue;
     ++keyPresses_;
     switch (k.key) {
+      case GLFW_KEY_ESCAPE:
+        state.quit = true;
+        break;
       case GLFW_KEY_F12:
         state.saveRequest = "";
         break;

@@ -1,6 +1,7 @@
-// The window's mouse and keyboard: drags move the camera (orbit, pan, fly), a click on the image picks the
-// inspected pixel and pins the hover pick, hovering picks what is under the cursor (a CPU ray against the
-// scene), and the window's keys (F5 reload, F12 save, Tab panel, Home camera) become session requests. Events
+// The window's mouse and keyboard: drags move the camera (orbit, pan, fly; scaled to the view), the wheel
+// dollies, a click on the image selects the object under it (the material editor edits it) and picks the
+// inspected pixel, hovering names what is under the cursor (a CPU ray against the scene), and the window's
+// keys (F5 reload, F12 save, Tab panels, Home camera, Esc or Ctrl+Q quit) become session requests. Events
 // come from the queue InputEvents keeps, so no press is lost however slow the frame.
 #pragma once
 #include <cstdint>
@@ -31,7 +32,9 @@ class WindowInput {
   void resetCamera();
 
   CameraController& camera() { return camera_; }
-  const std::optional<PickResult>& pick() const { return pick_; }
+  // What is under the cursor (hover), and the object the last click on the image selected.
+  const std::optional<PickResult>& hover() const { return hover_; }
+  const std::optional<PickResult>& selected() const { return selected_; }
   bool dragging() const { return dragging_; }
   uint64_t keyPresses() const { return keyPresses_; }
 
@@ -41,10 +44,14 @@ class WindowInput {
   GLFWwindow* window_;
   InputEvents& events_;
   live::LiveSession& session_;
+  // The object under `mouse` (framebuffer pixels) in the image rectangle, if any.
+  std::optional<PickResult> pickAt(const Rect& image, glm::vec2 mouse) const;
+
   CameraController camera_;
-  std::optional<PickResult> pick_;
-  bool pickPinned_ = false;
+  std::optional<PickResult> hover_, selected_;
+  glm::vec2 viewSize_{1000.0f};  // the image's size on screen at the last frame (the script's orbit uses it)
   glm::vec2 lastMouse_{-1.0f};
+  glm::vec2 hoverAt_{-1.0f};  // where the cursor was when hover_ was picked
   glm::vec2 pressMouse_{0.0f};
   bool dragging_ = false;
   int dragButton_ = -1;

@@ -61,6 +61,7 @@ nlohmann::json sessionStatsJson(live::LiveSession& session) {
   j["resets"] = session.resets();
   j["mode"] = render::renderModeName(session.mode());  // the mode shown (a switch may be in preparation)
   j["mode_switching_to"] = session.modeSwitch();       // empty: none
+  j["pathtrace_samples_kept"] = session.pathTracerSamplesKept();  // resumed on going back to pathtrace
   const auto& error = session.liveError();
   nlohmann::json le;
   le["reference"] = error.referenceName();
@@ -118,6 +119,27 @@ nlohmann::json sessionStatsJson(live::LiveSession& session) {
   j["ab_ms"] = ab.abMs;
   j["ab_edit_ms"] = ab.editMs;
   j["ab_note"] = ab.note;
+  j["ab_open"] = ab.open;
+  j["ab_pinned"] = ab.pinned;
+  j["ab_decided"] = ab.decided;
+  j["ab_budget"] =
+      ab.results.empty()
+          ? nlohmann::json(nullptr)
+          : nlohmann::json{{"width", ab.plan.budget.width},   {"height", ab.plan.budget.height},
+                           {"spp", ab.plan.budget.spp},       {"rounds", ab.plan.budget.rounds},
+                           {"reduced", ab.plan.reduced},      {"over_allowance", ab.plan.overAllowance},
+                           {"allowed_ms", ab.plan.allowedMs}, {"estimated_ms", ab.plan.estimatedMs},
+                           {"summary", ab.plan.summary()}};
+  // The path inspector's held sample (-1: none yet) and whether it is still among the kept ones.
+  j["inspect_pixel"] = state.inspectPixel
+                           ? nlohmann::json::array({state.inspectPixel->x, state.inspectPixel->y})
+                           : nlohmann::json(nullptr);
+  j["inspect_shown"] = state.inspectShown;
+  const auto* shown = session.inspection().shown(state.inspectShown);
+  bool kept = false;
+  for (const auto& s : session.inspection().samples()) kept = kept || &s == shown;
+  j["inspect_shown_vertices"] = shown ? nlohmann::json(shown->vertices.size()) : nlohmann::json(nullptr);
+  j["inspect_shown_kept"] = kept;
   j["reloads"] = nlohmann::json::array();
   for (const auto& e : hot.history()) j["reloads"].push_back(reloadEventJson(e));
   j["shader_files"] = nlohmann::json::array();

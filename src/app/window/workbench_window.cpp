@@ -14,6 +14,7 @@
 
 #include "app/progress.h"
 #include "app/window/ab_panel.h"
+#include "app/window/widget_rects.h"
 #include "app/window/window_report.h"
 #include "common/json_text.h"
 
@@ -26,6 +27,9 @@ constexpr double kIdlePresentSeconds = 1.0;
 constexpr double kInteractionSeconds = 0.5;
 // The trace time of one trace-only submission: input that arrives meanwhile waits at most this long.
 constexpr double kTraceOnlyBudgetMs = 50.0;
+// Frames drawn without a trace after a click or a key: ImGui acts on a click in the frame after the one that
+// saw its press when both came between two frames.
+constexpr int kRedrawOnlyFrames = 2;
 
 double secondsBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
@@ -35,6 +39,7 @@ live::LiveSession::Options sessionOptions(GLFWwindow* window, const WindowOption
   live::LiveSession::Options so;
   auto& st = so.state;
   st.params = o.render.params;
+  st.params.render.denoise = true;  // the window's view is denoised (the panel's toggle, `--set denoise=0`)
   // The target spp: --spp when given, else keep refining.
   st.params.render.spp = o.render.flags.given("spp") ? o.render.params.render.spp : 0;
   st.resolutionScale = o.scale;
@@ -57,7 +62,7 @@ live::LiveSession::Options sessionOptions(GLFWwindow* window, const WindowOption
 }  // namespace
 
 WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o)
-    : window_(window), options_(o), vsync_(!o.noVsync) {
+    : window_(window), options_(o), vsync_(!o.noVsync), panelWidth_(sidePanelWidth(float(o.windowWidth))) {
   session_ = std::make_unique<live::LiveSession>(sessionOptions(window, o));
   events_ = std::make_unique<InputEvents>(window_);  // first: ImGui's backend chains its callbacks to these
   presenter_ = std::make_unique<Presenter>(session_->render().context(), session_->render().library(),
@@ -119,6 +124,22 @@ void WorkbenchWindow::writeStats(const std::string& path) {
   j["trace_only_submits"] = traceOnlySubmits_;  // trace submissions between presents while converging
   j["key_presses"] = input_->keyPresses();      // the window's keys (F5, F12, Tab, Home) acted on
   j["panel_visible"] = session_->state().showPanel;
+  j["preview_enabled"] = session_->state().preview;  // the "preview after changes" checkbox
+  j["clicks_presented"] = clickScreenNs_.size();
+  j["click_screen_ns"] = clickScreenNs_;              // when each click's frame finished (steady clock, ns)
+  j["click_event_ns"] = events_->leftReleaseTimes();  // when the loop received each click's release
+  nlohmann::json widgets = nlohmann::json::object();
+  for (const auto& [name, r] : widgetRects().rects()) widgets[name] = {r.x, r.y, r.w, r.h};
+  j["widgets"] = widgets;  // where the last frame drew them (framebuffer pixels)
+  auto object = [](const std::optional<PickResult>& p) {
+    return p ? nlohmann::json{{"instance", p->instance},
+                              {"node", p->nodeName},
+                              {"material", p->material},
+                              {"material_name", p->materialName}}
+             : nlohmann::json(nullptr);
+  };
+  j["selected_object"] = object(input_->selected());  // the material editor's
+  j["hover_object"] = object(input_->hover());
   const auto& sc = presenter_->swapchain();
   j["window_width"] = sc.extent().width;
   j["window_height"] = sc.extent().height;
@@ -127,6 +148,8 @@ void WorkbenchWindow::writeStats(const std::string& path) {
       {"last", frames_.last()},           {"mean", frames_.mean()}, {"p50", frames_.percentile(0.5f)},
       {"p95", frames_.percentile(0.95f)}, {"max", frames_.max()},   {"count", frames_.count()}};
   j["trace_gpu_ms_last"] = presenter_->traceMs();
+  j["denoise_gpu_ms_last"] = presenter_->afterTraceMs();
+  j["denoise_runs"] = session_->denoiseRuns();
   j["display_gpu_ms_last"] = presenter_->displayMs();
   j["parameters"] = parametersJson(*session_, input_->camera());
   writeJsonFile(path, j, "stats");
@@ -141,7 +164,11 @@ Rect WorkbenchWindow::imageRect(const Rect& view) const {
 
 bool WorkbenchWindow::finishFrame(Clock::time_point frameBegin) {
   if (!presenter_->finish()) return false;
+  const int64_t now =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+  for (; clicksInFlight_ > 0; --clicksInFlight_) clickScreenNs_.push_back(now);
   session_->traceTimed(presenter_->tracedPixels(), presenter_->traceMs());
+  session_->denoiseTimed(presenter_->afterTraceMs());
   session_->frameFinished(frameBegin);
   // While a rebuild compiles on a CPU device, the loop rests after each frame so the compile gets most of the
   // cores: the panel and the present cost CPU time besides the trace budget.
@@ -170,10 +197,7 @@ bool WorkbenchWindow::traceWhileConverging(int& exitCode) {
     session_->traceOnlyFinished();
     ++traceOnlySubmits_;
     glfwPollEvents();
-    if (events_->takeActivity()) {
-      lastInput_ = Clock::now();
-      break;
-    }
+    if (takeInput()) break;
     if (hasScript_) {
       try {
         if (!script_.step(*this) || !script_.waitingForEvent()) break;
@@ -185,6 +209,13 @@ bool WorkbenchWindow::traceWhileConverging(int& exitCode) {
     }
   }
   return !session_->state().quit;
+}
+
+bool WorkbenchWindow::takeInput() {
+  if (events_->takeDiscrete()) redrawOnlyFrames_ = kRedrawOnlyFrames;
+  if (!events_->takeActivity()) return false;
+  lastInput_ = Clock::now();
+  return true;
 }
 
 bool WorkbenchWindow::nothingToDo() const {
@@ -218,26 +249,36 @@ void WorkbenchWindow::applyWindowRequests() {
 
 void WorkbenchWindow::drawFrame(float dt) {
   if (!presenter_->beginFrame()) return;
+  widgetRects().beginFrame();
+  // A click's release reaches ImGui in this frame: its widget acts now, and the frame shows it.
+  const int clicks = ImGui::GetIO().MouseReleased[ImGuiMouseButton_Left] ? 1 : 0;
   auto& st = session_->state();
   const auto& sc = presenter_->swapchain();
-  PanelContext pc{*session_, input_->camera(), input_->pick(), frames_, vk::presentModeName(sc.presentMode()),
+  PanelContext pc{*session_,          input_->camera(), input_->hover(),
+                  input_->selected(), frames_,          vk::presentModeName(sc.presentMode()),
                   lastSaved_};
   pc.displayGpuMs = presenter_->displayMs();
   const float W = float(sc.extent().width), H = float(sc.extent().height);
-  const float panelWidth = drawSidePanel(pc, W, H);
+  // Input first, in the layout of the last frame (ImGui's widgets take their clicks while the panel is laid
+  // out): what it changes (a picked pixel, the selection, Tab) is drawn in this frame.
+  const float shownPanel = st.showPanel ? panelWidth_ : 0.0f;
+  const Rect inputView{shownPanel, 0.0f, std::max(W - shownPanel, 1.0f), H};
+  input_->handle(inputView, imageRect(inputView), dt);
+  const float panelWidth = drawSidePanel(pc, W, H, panelWidth_);
   const Rect view{panelWidth, 0.0f, std::max(W - panelWidth, 1.0f), H};
   drawOverlays(pc, imageRect(view));
-  drawABPanel(session_->ab(), W, H);
-  input_->handle(view, imageRect(view), dt);
+  widgetRects().note("image", imageRect(view));
+  // Tab hides every panel: the image has the window.
+  if (st.showPanel) drawABPanel(session_->ab(), render::renderModeName(session_->mode()), W, H);
 
-  // The trace resolution follows the view beside the panel (times the resolution scale) unless --size
-  // fixed it; hiding the panel (Tab) shows the same image larger instead of restarting it.
+  // The trace resolution follows the view beside the panel (times the resolution scale) unless --size fixed
+  // it: hiding the panel (Tab) gives the image the whole window (the session resumes the other size's
+  // accumulation when the panel comes back).
   if (st.fixedSize) {
     session_->setTraceSize(uint32_t(std::lround(st.fixedWidth * st.resolutionScale)),
                            uint32_t(std::lround(st.fixedHeight * st.resolutionScale)));
   } else {
-    const float traceViewWidth = std::max(W - sidePanelWidth(W), 1.0f);
-    session_->setTraceSize(uint32_t(std::lround(traceViewWidth * st.resolutionScale)),
+    session_->setTraceSize(uint32_t(std::lround(view.w * st.resolutionScale)),
                            uint32_t(std::lround(view.h * st.resolutionScale)));
   }
   applyWindowRequests();
@@ -251,8 +292,14 @@ void WorkbenchWindow::drawFrame(float dt) {
     st.saveRequest.reset();
   }
   session_->beginFrame();
+  // After a click or a key the next frames redraw without tracing (their effect is on screen a display pass
+  // later), unless the image has nothing to show yet. The denoiser runs only in frames that trace.
+  const bool trace = redrawOnlyFrames_ == 0 || !session_->imageStarted();
+  if (redrawOnlyFrames_ > 0) --redrawOnlyFrames_;
+  session_->planDenoise(trace);
   const live::DisplayFrame d = session_->displayFrame();
-  presenter_->display().setSources({d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.cost});
+  presenter_->display().setSources(
+      {d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.cost, d.denoised});
 
   const Rect image = imageRect(view);
   gpu::DisplayPush push{};
@@ -271,14 +318,19 @@ void WorkbenchWindow::drawFrame(float dt) {
     push.inefficiencyFull = float(cost->inefficiencyP95);
     push.costMedian = cost->estimate == eval::CostEstimate::Median ? 1u : 0u;
   }
+  push.denoiseSplit = d.denoised ? st.params.display.denoiseSplit : -1.0f;
 
   const bool lastFrame = options_.frames && frameCount_ + 1 >= options_.frames;
   std::string screenshot;
   if (!screenshotPath_.empty() || (lastFrame && !options_.screenshot.empty()))
     screenshot = screenshotPath_.empty() ? options_.screenshot : screenshotPath_;
-  if (!presenter_->present([&](VkCommandBuffer cmd) { return session_->recordTrace(cmd); }, push, screenshot))
-    return;
+  const auto recordTrace = [&](VkCommandBuffer cmd) -> uint64_t {
+    return trace ? session_->recordTrace(cmd) : 0;
+  };
+  const auto recordDenoise = [&](VkCommandBuffer cmd) { session_->recordDenoise(cmd); };
+  if (!presenter_->present(recordTrace, recordDenoise, push, screenshot)) return;
   screenshotPath_.clear();
+  clicksInFlight_ += clicks;
   lastPresent_ = Clock::now();
   ++frameCount_;
 }
@@ -305,7 +357,7 @@ int WorkbenchWindow::frameLoop() {
   while (!glfwWindowShouldClose(window_) && !session_->state().quit && !interrupt.requested()) {
     glfwPollEvents();
     finishFrame(frameBegin);
-    if (events_->takeActivity()) lastInput_ = Clock::now();
+    takeInput();
     // Converging untouched: trace without drawing or presenting until the next present is due.
     if (!traceWhileConverging(exitCode)) break;
     // Nothing to trace and nothing happening: sleep until input (or a short timeout for the panel's clocks
@@ -313,7 +365,7 @@ int WorkbenchWindow::frameLoop() {
     if (!presenter_->frameInFlight() && nothingToDo() &&
         secondsBetween(lastInput_, Clock::now()) > kInteractionSeconds) {
       glfwWaitEventsTimeout(0.25);
-      if (events_->takeActivity()) lastInput_ = Clock::now();
+      takeInput();
     }
     const auto now = Clock::now();
     const float dt = std::chrono::duration<float>(now - last).count();

@@ -57,6 +57,7 @@ class WorkbenchWindow : public ScriptHost {
   bool modeSwitchPending() const override { return !session_->modeSwitch().empty(); }
   size_t reloadCount() const override { return session_->loop().hot().history().size(); }
   uint32_t samples() const override { return session_->inPreview() ? 0 : session_->samples(); }
+  uint64_t clicksPresented() const override { return clickScreenNs_.size(); }
 
  private:
   int frameLoop();
@@ -72,6 +73,9 @@ class WorkbenchWindow : public ScriptHost {
   bool traceOnlyAllowed(Clock::time_point now) const;
   // Whether the next frame has nothing new to show.
   bool nothingToDo() const;
+  // Takes the input events' flags: true when any input arrived (the user is interacting); a click or a key
+  // makes the next frames redraw without tracing.
+  bool takeInput();
   // The window's requests that are not the session's: a camera reset, vsync, a save.
   void applyWindowRequests();
   Rect imageRect(const Rect& view) const;
@@ -86,12 +90,19 @@ class WorkbenchWindow : public ScriptHost {
   bool vsync_ = true;
   Script script_;
   bool hasScript_ = false;
+  float panelWidth_ = 0;  // the side panel's width (0: its default); the user resizes it
   std::string screenshotPath_;
   std::string lastSaved_;
   std::string fatalScriptError_;
   FrameStats frames_;
   uint64_t frameCount_ = 0;
   uint64_t traceOnlySubmits_ = 0;
+  int redrawOnlyFrames_ = 0;
+  // Left clicks (releases ImGui saw) drawn by the frame in flight, and when each click's frame finished
+  // (steady clock, ns since its epoch: the same clock in every process on Linux, so that a program sending
+  // synthetic clicks can time them to the screen).
+  int clicksInFlight_ = 0;
+  std::vector<int64_t> clickScreenNs_;
   Clock::time_point lastPresent_ = Clock::now();
   Clock::time_point lastInput_ = Clock::now();
 };

@@ -1,0 +1,67 @@
+// What the denoiser's passes share: push constants, luminance, the albedo used to demodulate, normals packed
+// in two floats, and the edge-stopping weights of the a-trous filter (SVGF: Schied et al. 2017).
+#ifndef WB_DENOISE_COMMON_GLSL
+#define WB_DENOISE_COMMON_GLSL
+#include "../shared/denoise_types.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(push_constant) uniform PushBlock { DenoisePush pc; };
+
+float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+// The albedo radiance is divided by before filtering and multiplied by after: the first-hit base colour,
+// floored so that dark albedo does not amplify noise without bound; black (emitters, misses) is not demodulated.
+vec3 demodulationAlbedo(vec3 albedo) {
+  return max(albedo.r, max(albedo.g, albedo.b)) < 0.02 ? vec3(1.0) : max(albedo, vec3(0.02));
+}
+
+// Octahedral encoding of a unit vector; (0, 0, 0) (a miss) encodes to a value no unit vector has.
+vec2 octEncode(vec3 n) {
+  const float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+  if (l1 <= 0.0) return vec2(4.0);
+  vec2 e = n.xy / l1;
+  if (n.z < 0.0) e = (1.0 - abs(e.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
+  return e;
+}
+vec3 octDecode(vec2 e) {
+  if (e.x > 2.0) return vec3(0.0);
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
+
+bool insideImage(ivec2 q) {
+  return q.x >= 0 && q.y >= 0 && q.x < int(pc.imageSize.x) && q.y < int(min(pc.rows, pc.imageSize.y));
+}
+
+// The normals' part of the edge-stopping weight: their cosine to the power sigmaNormal (by squaring for the
+// default 128: no transcendental function per tap).
+float normalWeight(vec3 nP, vec3 nQ) {
+  float c = max(dot(nP, nQ), 0.0);
+  if (pc.sigmaNormal != 128.0) return pow(c, pc.sigmaNormal);
+  for (int i = 0; i < 7; ++i) c *= c;
+  return c;
+}
+
+// The depths' part, as the exponent of exp(-e) (a caller adds other exponents and calls exp once): the
+// difference of the depths against the change the depth gradient predicts over the taps' distance.
+float depthExponent(vec4 guideP, vec4 guideQ, float distance) {
+  const float expected = pc.sigmaDepth * guideP.w * distance + 1.0e-3 * guideP.z;
+  return abs(guideP.z - guideQ.z) / expected;
+}
+
+// The geometric part of the edge-stopping weight between a pixel p and a tap q `distance` pixels away: normals
+// and depths. A miss only meets misses. nP: guideP's normal, decoded once by the caller for all its taps.
+float geometryWeight(vec4 guideP, vec3 nP, vec4 guideQ, float distance) {
+  const bool missP = guideP.z < 0.0, missQ = guideQ.z < 0.0;
+  if (missP || missQ) return missP && missQ ? 1.0 : 0.0;
+  return normalWeight(nP, octDecode(guideQ.xy)) * exp(-depthExponent(guideP, guideQ, distance));
+}
+
+// The B3-spline a-trous kernel (1/16, 1/4, 3/8, 1/4, 1/16), index -2..2.
+float kernelWeight(int i) {
+  const int a = abs(i);
+  return a == 0 ? 0.375 : a == 1 ? 0.25 : 0.0625;
+}
+
+#endif

@@ -1,0 +1,61 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// The last pass: the filtered radiance modulated by the albedo again, then handed over to the raw mean as the
+// mean becomes precise. The output is raw + a (filtered - raw) with a = V / (V + Vf + B): V is the variance of
+// the raw mean, Vf the filtered one's and B the filter's squared bias, the larger of (tau L)^2 (an error
+// assumed relative to the filtered luminance L, which no variance shows) and the bias the pixel's 5x5
+// neighbourhood shows (the mean squared difference of filtered and raw beyond the raw means' variance). That is
+// the weight that minimises the error of two independent estimates of those errors; as samples accumulate V
+// falls as 1/N while B stays, so a tends to 0 and the output to the path tracer's own image: the denoiser is
+// consistent by construction. All in the demodulated luminance.
+#include "common.glsl"
+
+layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly image2D radianceImage;
+layout(set = 0, binding = WB_DENOISE_BIND_ALBEDO, rgba16f) uniform readonly image2D albedoImage;
+layout(set = 0, binding = WB_DENOISE_BIND_PING, rgba32f) uniform readonly image2D pingImage;
+layout(set = 0, binding = WB_DENOISE_BIND_PONG, rgba32f) uniform readonly image2D pongImage;
+layout(set = 0, binding = WB_DENOISE_BIND_VARIANCE, r32f) uniform readonly image2D varianceImage;
+layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
+
+vec4 filteredAt(ivec2 q) { return pc.source == 0u ? imageLoad(pingImage, q) : imageLoad(pongImage, q); }
+
+// The squared bias of the filter seen around p: over the 5x5 neighbourhood, the mean of (filtered - raw)^2
+// less the mean variance of the raw means (what noise alone puts there), floored at 0.
+float observedBias2(ivec2 p) {
+  float difference2 = 0.0, variance = 0.0;
+  int n = 0;
+  for (int y = -2; y <= 2; ++y) {
+    for (int x = -2; x <= 2; ++x) {
+      const ivec2 q = p + ivec2(x, y);
+      if (!insideImage(q)) continue;
+      const vec3 albedo = demodulationAlbedo(imageLoad(albedoImage, q).rgb);
+      const float raw = luminance(imageLoad(radianceImage, q).rgb / albedo);
+      const float d = luminance(filteredAt(q).rgb) - raw;
+      difference2 += d * d;
+      variance += imageLoad(varianceImage, q).r;
+      ++n;
+    }
+  }
+  return max(difference2 - variance, 0.0) / float(max(n, 1));
+}
+
+void main() {
+  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= int(pc.imageSize.x) || p.y >= int(pc.imageSize.y)) return;
+  const vec4 raw = imageLoad(radianceImage, p);
+  if (!insideImage(p)) {
+    imageStore(outputImage, p, raw);
+    return;
+  }
+  const vec4 filtered = filteredAt(p);
+  const vec3 albedo = demodulationAlbedo(imageLoad(albedoImage, p).rgb);
+  const vec3 denoised = filtered.rgb * albedo;
+  float a = 1.0;
+  if (pc.handoverTau >= 0.0) {
+    const float v = imageLoad(varianceImage, p).r;
+    const float assumed = pc.handoverTau * luminance(filtered.rgb);
+    const float total = v + max(filtered.a, 0.0) + max(assumed * assumed, observedBias2(p));
+    a = total > 0.0 ? v / total : 0.0;
+  }
+  imageStore(outputImage, p, vec4(raw.rgb + a * (denoised - raw.rgb), raw.a));
+}

@@ -1,0 +1,171 @@
+#include "app/bench_denoise.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "app/converge_run.h"
+#include "app/progress.h"
+#include "common/paths.h"
+#include "render/path_tracer.h"
+#include "render/render_session.h"
+#include "vk/check.h"
+#include "vk/context.h"
+
+namespace wb::app {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// Three timestamps around one sample and the denoiser after it, on the device.
+class SampleTimer {
+ public:
+  explicit SampleTimer(vk::Context& ctx) : ctx_(ctx) {
+    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    qi.queryCount = 3;
+    WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &pool_));
+  }
+  ~SampleTimer() { vkDestroyQueryPool(ctx_.device(), pool_, nullptr); }
+  SampleTimer(const SampleTimer&) = delete;
+  SampleTimer& operator=(const SampleTimer&) = delete;
+
+  // One sample traced then denoised; the milliseconds of each.
+  std::pair<double, double> run(render::PathTracer& tracer) {
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+      vkCmdResetQueryPool(cmd, pool_, 0, 3);
+      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_, 0);
+      tracer.record(cmd);
+      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, 1);
+      tracer.recordDenoise(cmd);
+      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, 2);
+    });
+    tracer.advance();
+    uint64_t ts[3] = {};
+    WB_VK(vkGetQueryPoolResults(ctx_.device(), pool_, 0, 3, sizeof ts, ts, sizeof(uint64_t),
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const double ns = ctx_.timestampPeriodNs();
+    return {double(ts[1] - ts[0]) * ns * 1e-6, double(ts[2] - ts[1]) * ns * 1e-6};
+  }
+
+ private:
+  vk::Context& ctx_;
+  VkQueryPool pool_ = VK_NULL_HANDLE;
+};
+
+json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device) {
+  render::SessionOptions o;
+  o.settings.width = w;
+  o.settings.height = h;
+  o.settings.denoise = true;
+  o.context.deviceName = device;
+  o.quiet = true;
+  render::RenderSession s(o);
+  render::PathTracer& tracer = s.pathTracer();
+  SampleTimer timer(s.context());
+  timer.run(tracer);  // warm-up: the driver compiles the pipelines at their first dispatch
+  std::vector<double> sampleMs, denoiseMs;
+  for (int r = 0; r < std::max(repeats, 1); ++r) {
+    const auto [sample, denoise] = timer.run(tracer);
+    sampleMs.push_back(sample);
+    denoiseMs.push_back(denoise);
+  }
+  const double d = median(denoiseMs), t = median(sampleMs);
+  return {{"size", std::to_string(w) + "x" + std::to_string(h)},
+          {"denoise_ms", d},
+          {"sample_ms", t},
+          {"denoise_share_of_sample", t > 0 ? d / t : 0.0},
+          {"iterations", tracer.denoiser()->options().iterations},
+          {"device", s.context().deviceName()},
+          {"driver", s.context().driverInfo()}};
+}
+
+// The Cornell box against Cycles, raw and denoised from the same samples, `runs` seeds, until both reach
+// relMSE 0.01 (or 4096 spp).
+json cornellTimeToRelMse(uint32_t size, int runs, const std::string& device, StepProgress& progress) {
+  const fs::path dir = sharedDir() / "reference";
+  const fs::path scene = dir / "cornell.gltf", exr = dir / "cornell_cycles.exr";
+  if (!fs::exists(scene) || !fs::exists(exr))
+    return {{"skipped", "no " + exr.string() + " (set WB_SHARED_DIR)"}};
+  std::string description;
+  const eval::ImageRGBA reference = loadReferenceFile(exr.string(), size, size, description);
+  const double target = 0.01;
+  std::vector<Checkpoint> raw, denoised;
+  for (int run = 0; run < std::max(runs, 1); ++run) {
+    progress.step("denoise: Cornell box to relMSE 0.01, run " + std::to_string(run + 1));
+    render::SessionOptions o;
+    o.scenePath = scene.string();
+    o.settings.width = o.settings.height = size;
+    o.settings.envColor = {0.0f, 0.0f, 0.0f};
+    o.settings.maxBounces = 64;
+    o.settings.denoise = true;
+    o.settings.seed = runSeed(0, uint32_t(run));
+    o.context.deviceName = device;
+    o.quiet = true;
+    render::RenderSession s(o);
+    render::PathTracer& tracer = s.pathTracer();
+    double traced = 0;
+    uint32_t spp = 0;
+    // The first run goes until both images reach the target (or 4096 spp), one checkpoint more for the
+    // interpolation; the others make the same checkpoints.
+    for (size_t i = 0; run == 0 ? spp < 4096 : i < raw.size(); ++i) {
+      const uint32_t next = std::max(spp + 1, spp * 2);
+      traced += timedRender(s, next - spp);
+      spp = next;
+      if (raw.size() <= i) {
+        raw.emplace_back();
+        denoised.emplace_back();
+      }
+      raw[i].spp = denoised[i].spp = spp;
+      addMeasurement(raw[i], tracer.readEstimate(), reference, traced);
+      const double denoiseSeconds = tracer.denoise();
+      addMeasurement(denoised[i], tracer.readDenoised(), reference, traced + denoiseSeconds);
+      raw[i].images.clear();
+      denoised[i].images.clear();
+      if (run == 0 && i > 0 && raw[i - 1].relMse.back() <= target && denoised[i - 1].relMse.back() <= target)
+        break;
+    }
+  }
+  const auto rawSeconds = timeToReach(raw, target), denoisedSeconds = timeToReach(denoised, target);
+  json j = {{"scene", "cornell (../shared/reference), Cycles reference " + description},
+            {"size", std::to_string(size) + "x" + std::to_string(size)},
+            {"runs", runs}};
+  j["raw_seconds"] = rawSeconds ? json(*rawSeconds) : json(nullptr);
+  j["denoised_seconds"] = denoisedSeconds ? json(*denoisedSeconds) : json(nullptr);
+  j["denoised_vs_raw_time_to_relmse_0.01"] =
+      rawSeconds && denoisedSeconds && *rawSeconds > 0 ? json(*denoisedSeconds / *rawSeconds) : json(nullptr);
+  return j;
+}
+
+}  // namespace
+
+int denoiseBenchSteps(const DenoiseBenchOptions& o) {
+  return 2 + std::max(o.repeats, 1);
+}
+
+json benchDenoise(const DenoiseBenchOptions& o, StepProgress& progress) {
+  json j;
+  json cost = json::array();
+  const uint32_t bigW = o.quick ? 128 : 1920, bigH = o.quick ? 128 : 1080;
+  progress.step("denoise: cost at " + std::to_string(o.width) + "x" + std::to_string(o.height));
+  cost.push_back(denoiseCost(o.width, o.height, o.repeats, o.device));
+  progress.step("denoise: cost at " + std::to_string(bigW) + "x" + std::to_string(bigH));
+  cost.push_back(denoiseCost(bigW, bigH, o.repeats, o.device));
+  j["cost"] = cost;
+  j["denoise_ms"] = cost[0]["denoise_ms"];
+  j["denoise_share_of_sample"] = cost[0]["denoise_share_of_sample"];
+  j["cornell"] = cornellTimeToRelMse(o.quick ? 64 : 256, o.repeats, o.device, progress);
+  if (j["cornell"].contains("denoised_vs_raw_time_to_relmse_0.01"))
+    j["denoised_vs_raw_time_to_relmse_0.01"] = j["cornell"]["denoised_vs_raw_time_to_relmse_0.01"];
+  return j;
+}
+
+}  // namespace wb::app

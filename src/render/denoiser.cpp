@@ -1,0 +1,144 @@
+#include "render/denoiser.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "common/paths.h"
+
+namespace wb::render {
+namespace {
+
+constexpr uint32_t kGroupSize = 8;  // local_size of shaders/denoise/*.comp
+const char* const kPassNames[] = {"denoise prepare (compute)", "denoise variance (compute)",
+                                  "denoise a-trous (compute)", "denoise final (compute)"};
+const char* const kProgramNames[] = {"denoise-prepare", "denoise-variance", "denoise-atrous",
+                                     "denoise-final"};
+const char* const kFiles[] = {"prepare.comp", "variance.comp", "atrous.comp", "final.comp"};
+
+}  // namespace
+
+std::vector<shader::ShaderKey> Denoiser::stageKeys() {
+  std::vector<shader::ShaderKey> keys;
+  for (const char* f : kFiles) keys.push_back({shaderDir() / "denoise" / f});
+  return keys;
+}
+
+Denoiser::Denoiser(vk::Context& ctx, shader::ShaderLibrary& library) : ctx_(ctx) {
+  const auto keys = stageKeys();
+  for (size_t i = 0; i < kPassCount; ++i) {
+    passes_[i] = std::make_unique<Pass>(ctx_, library, kPassNames[i], ComputeRecipe{});
+    passes_[i]->setPushConstantBytes(sizeof(gpu::DenoisePush));
+    passes_[i]->useProgram(kProgramNames[i], {keys[i]});
+  }
+  resize(1, 1);
+  for (auto& p : passes_) p->rebuild();
+}
+
+Denoiser::~Denoiser() {
+  ctx_.waitIdle();
+  for (auto& p : passes_) p.reset();
+}
+
+void Denoiser::resize(uint32_t width, uint32_t height) {
+  width_ = std::max(width, 1u);
+  height_ = std::max(height, 1u);
+  // The images only grow: the window's preview levels and resizes come back to sizes already held.
+  if (width_ <= capacityWidth_ && height_ <= capacityHeight_) return;
+  width = capacityWidth_ = std::max(width_, capacityWidth_);
+  height = capacityHeight_ = std::max(height_, capacityHeight_);
+  ctx_.waitIdle();
+  inputs_ = {};  // the caller's images may have been remade with the size: setInputs() binds them again
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  guide_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  ping_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  pong_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  variance_ = vk::Image(ctx_, width, height, VK_FORMAT_R32_SFLOAT, usage);
+  output_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    for (const vk::Image* img : {&guide_, &ping_, &pong_, &variance_, &output_}) {
+      vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+      VkClearColorValue zero{};
+      VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    }
+  });
+  bind();
+}
+
+void Denoiser::setInputs(const DenoiseInputs& inputs) {
+  inputs_ = inputs;
+  bind();
+}
+
+void Denoiser::bind() {
+  for (auto& p : passes_) {
+    p->setStorageImage("radianceImage", inputs_.radiance);
+    p->setStorageImage("albedoImage", inputs_.albedo);
+    p->setStorageImage("normalImage", inputs_.normal);
+    p->setStorageImage("statsImage", inputs_.stats);
+    p->setStorageImage("guideImage", guide_.view());
+    p->setStorageImage("pingImage", ping_.view());
+    p->setStorageImage("pongImage", pong_.view());
+    p->setStorageImage("varianceImage", variance_.view());
+    p->setStorageImage("outputImage", output_.view());
+  }
+}
+
+std::vector<float> Denoiser::readOutput() const {
+  const auto bytes = output_.download(VK_IMAGE_LAYOUT_GENERAL);
+  std::vector<float> rgba(size_t(width_) * height_ * 4);
+  const size_t row = size_t(width_) * 4 * sizeof(float), stride = size_t(capacityWidth_) * 4 * sizeof(float);
+  for (uint32_t y = 0; y < height_; ++y)
+    std::memcpy(reinterpret_cast<char*>(rgba.data()) + y * row, bytes.data() + y * stride, row);
+  return rgba;
+}
+
+std::vector<Pass*> Denoiser::passes() const {
+  std::vector<Pass*> out;
+  for (const auto& p : passes_) out.push_back(p.get());
+  return out;
+}
+
+void Denoiser::dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push,
+                        uint32_t rows) const {
+  pass.bind(cmd);
+  pass.push(cmd, push);
+  pass.dispatch(cmd, (width_ + kGroupSize - 1) / kGroupSize, (rows + kGroupSize - 1) / kGroupSize);
+  vk::memoryBarrier(cmd);
+}
+
+void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
+  gpu::DenoisePush push{};
+  push.imageSize = glm::uvec2(width_, height_);
+  push.rows = std::min(rows, height_);
+  push.sigmaLuminance = options_.sigmaLuminance;
+  push.sigmaNormal = options_.sigmaNormal;
+  push.sigmaDepth = options_.sigmaDepth;
+  push.handoverTau = options_.handoverTau;
+  vk::memoryBarrier(cmd);  // the path tracer's writes before the first read
+  dispatch(cmd, *passes_[kPrepare], push, push.rows);
+  dispatch(cmd, *passes_[kVariance], push, push.rows);  // ping -> pong
+  push.source = 1;
+  for (uint32_t i = 0; i < options_.iterations; ++i) {
+    push.step = 1u << i;
+    dispatch(cmd, *passes_[kAtrous], push, push.rows);
+    push.source ^= 1u;
+  }
+  dispatch(cmd, *passes_[kFinal], push, height_);  // every row: those not filtered are copied
+}
+
+void Denoiser::recordCompileOnly(VkCommandBuffer cmd) const {
+  gpu::DenoisePush push{};
+  push.imageSize = glm::uvec2(1, 1);
+  push.rows = 1;
+  push.step = 1;
+  for (const auto& p : passes_) {
+    p->bind(cmd);
+    p->push(cmd, push);
+    p->dispatch(cmd, 1, 1);
+    vk::memoryBarrier(cmd);
+  }
+}
+
+}  // namespace wb::render

@@ -1,0 +1,75 @@
+// Several samples per ray tracing launch (issue 29: filling a GPU at small sizes) accumulate into the same
+// image as one sample per launch: the same samples in the same order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpu_fixture.h"
+#include "test_scenes.h"
+
+using namespace wb;
+using namespace wb::testing;
+
+namespace {
+
+struct Rendered {
+  eval::ImageRGBA image;
+  gpu::Counters counters;
+};
+
+Rendered renderWithLaunchDepth(uint32_t samplesPerLaunch, uint32_t spp) {
+  render::SessionOptions o;
+  o.sceneData = makeShadowScene().scene;
+  o.settings.width = 24;
+  o.settings.height = 20;
+  o.settings.samplesPerLaunch = samplesPerLaunch;
+  auto session = makeSession(o);
+  EXPECT_EQ(session->pathTracer().samplesPerLaunch(), samplesPerLaunch);
+  session->render(spp);
+  EXPECT_EQ(session->pathTracer().samplesAccumulated(), spp);
+  Rendered r{session->image(), session->pathTracer().readCounters()};
+  expectNoValidationErrors(*session);
+  return r;
+}
+
+}  // namespace
+
+// 7 samples in launches of 3 (3 + 3 + 1: the resolve pass, then a plain launch) against 7 launches of one:
+// the same paths (the same ray counts) and the same running average per pixel.
+TEST(SamplesPerLaunch, SeveralSamplesPerLaunchAccumulateTheSameImage) {
+  const Rendered one = renderWithLaunchDepth(1, 7);
+  const Rendered three = renderWithLaunchDepth(3, 7);
+  EXPECT_EQ(one.counters.pathCount, 24u * 20u * 7u);
+  EXPECT_EQ(three.counters.pathCount, one.counters.pathCount);
+  EXPECT_EQ(three.counters.rayCount, one.counters.rayCount);
+  EXPECT_EQ(three.counters.shadowRayCount, one.counters.shadowRayCount);
+  EXPECT_EQ(three.counters.droppedSamples, 0u);
+  ASSERT_EQ(one.image.pixels.size(), three.image.pixels.size());
+  size_t differ = 0;
+  double sum = 0;
+  for (size_t i = 0; i < one.image.pixels.size(); ++i) {
+    const float a = one.image.pixels[i], b = three.image.pixels[i];
+    sum += a;
+    if (std::abs(a - b) > 1e-5f * std::max(1.0f, std::abs(a))) ++differ;
+  }
+  EXPECT_GT(sum, 0.0);
+  EXPECT_EQ(differ, 0u);
+}
+
+TEST(SamplesPerLaunch, TheDevicesChoiceIsOneOnACpuAndAlwaysOneWithAovs) {
+  render::SessionOptions o;
+  o.sceneData = makeShadowScene().scene;
+  o.settings.width = o.settings.height = 16;
+  o.settings.samplesPerLaunch = 0;
+  auto session = makeSession(o);
+  auto& pt = session->pathTracer();
+  if (session->context().policy().compilesAtFirstDispatch)
+    EXPECT_EQ(pt.samplesPerLaunch(), 1u);
+  else
+    EXPECT_EQ(pt.samplesPerLaunch(), 16u);  // 256 pixels: the cap
+  render::RenderSettings s = pt.settings();
+  s.samplesPerLaunch = 8;
+  s.aov = true;
+  pt.setSettings(s);
+  EXPECT_EQ(pt.samplesPerLaunch(), 1u);
+}

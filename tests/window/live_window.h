@@ -1,0 +1,88 @@
+// A live workbench window under xvfb-run that the test drives as a user does: the window runs on its own
+// thread (the real binary, under the validation layer), and the test sends synthetic X input with xdotool to
+// the same display while the window's script waits for it (wait_file, wait_clicks), reading where widgets are
+// from the stats JSON the script writes.
+#pragma once
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "../common/run_command.h"
+
+namespace wb::testing {
+
+inline bool waitForFile(const std::filesystem::path& p, double seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  while (!std::filesystem::exists(p)) {
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
+      return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return true;
+}
+
+// The JSON of a file another process writes atomically, once it exists (null after `seconds`).
+inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds = 600) {
+  if (!waitForFile(p, seconds)) return nullptr;
+  std::ifstream f(p);
+  return nlohmann::json::parse(f, nullptr, false);
+}
+
+class LiveWindow {
+ public:
+  // Starts `workbenchArgs` (after the binary) on a fresh virtual display; `dir` holds the display's name
+  // and its X authority file.
+  LiveWindow(const std::filesystem::path& dir, const std::string& workbenchArgs, const std::string& env = "")
+      : dir_(dir) {
+    const auto auth = dir / "xauth", displayFile = dir / "display";
+    std::filesystem::remove(displayFile);
+    const std::string cmd = std::string(kOwnSession) + "env WB_VALIDATION=1 " + env + " " + WB_XVFB_RUN +
+                            " -a -f " + auth.string() +
+                            " -s '-screen 0 1024x768x24' sh -c 'echo $DISPLAY > " + displayFile.string() +
+                            ".tmp && mv " + displayFile.string() + ".tmp " + displayFile.string() +
+                            " && exec " + WB_WORKBENCH_BIN + " " + workbenchArgs + "'";
+    thread_ = std::thread([this, cmd] { result_ = runCommand(cmd); });
+    if (waitForFile(displayFile, 300)) {
+      std::ifstream f(displayFile);
+      std::getline(f, display_);
+    }
+  }
+  ~LiveWindow() {
+    if (thread_.joinable()) thread_.join();
+  }
+  LiveWindow(const LiveWindow&) = delete;
+  LiveWindow& operator=(const LiveWindow&) = delete;
+
+  // xdotool ARGS on the window's display; its exit status.
+  int xdotool(const std::string& args) const {
+    return runCommand("env DISPLAY=" + display_ + " XAUTHORITY=" + (dir_ / "xauth").string() + " xdotool " +
+                      args)
+        .code;
+  }
+  // The centre of a widget the stats JSON lists (its "widgets" entry: x, y, w, h), as xdotool's "X Y".
+  static std::string centre(const nlohmann::json& stats, const std::string& widget) {
+    const auto& r = stats["widgets"][widget];
+    return std::to_string(int(r[0].get<double>() + r[2].get<double>() / 2)) + " " +
+           std::to_string(int(r[1].get<double>() + r[3].get<double>() / 2));
+  }
+  void signal(const std::string& name) const { std::ofstream(dir_ / name) << "go\n"; }
+  // Waits for the window to exit.
+  CommandResult finish() {
+    if (thread_.joinable()) thread_.join();
+    return result_;
+  }
+  const std::string& display() const { return display_; }
+
+ private:
+  std::filesystem::path dir_;
+  std::string display_;
+  std::thread thread_;
+  CommandResult result_;
+};
+
+}  // namespace wb::testing
