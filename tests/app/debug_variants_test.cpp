@@ -120,6 +120,22 @@ TEST(DebugVariants, AssertCatchesAZeroPdfExactlyWhereItHappens) {
   EXPECT_GT(continued.size(), 4u * 24u / 2);
   EXPECT_EQ(failed, continued);
 
+  // Asked for launches of 4 samples, the asserts variant still traces one sample at a time: its failures come
+  // in sample order, each with its own sample.
+  const auto deep =
+      workbench("render --size 24x24 --spp 4 --samples-per-launch 4 --max-bounces 2 --asserts --out " +
+                    (d / "deep.png").string() + " --stats " + (d / "deep.json").string(),
+                root);
+  EXPECT_EQ(deep.code, 1) << deep.output;
+  const json deepFirst = readJson(d / "deep.json")["asserts"]["first"];
+  ASSERT_FALSE(deepFirst.empty());
+  int lastSample = 0;
+  for (const auto& f : deepFirst) {
+    EXPECT_GE(f["sample"].get<int>(), lastSample) << f.dump();
+    lastSample = f["sample"].get<int>();
+  }
+  EXPECT_EQ(lastSample, 3);
+
   // OUT.asserts.png marks exactly the failing pixels (magenta) on the dimmed image.
   int w = 0, h = 0, n = 0;
   unsigned char* px = stbi_load((d / "bug.asserts.png").c_str(), &w, &h, &n, 4);

@@ -73,3 +73,35 @@ TEST(SamplesPerLaunch, TheDevicesChoiceIsOneOnACpuAndAlwaysOneWithAovs) {
   pt.setSettings(s);
   EXPECT_EQ(pt.samplesPerLaunch(), 1u);
 }
+
+// The cost, inspecting and asserts variants write per-pixel records one sample at a time (the cost image's
+// running mean and median, the inspector's slots, the asserts' failures in sample order): while one is on,
+// every launch traces one sample whatever the settings ask.
+TEST(SamplesPerLaunch, TheMeasuringVariantsTraceOneSampleAtATime) {
+  render::SessionOptions o;
+  o.sceneData = makeShadowScene().scene;
+  o.settings.width = o.settings.height = 16;
+  o.settings.samplesPerLaunch = 4;
+  auto session = makeSession(o);
+  auto& pt = session->pathTracer();
+  EXPECT_EQ(pt.samplesPerLaunch(), 4u);
+  for (const bool cost : {true, false}) {
+    render::Instrumentation i;
+    i.cost = cost;
+    i.asserts = !cost;
+    pt.setInstrumentation(i);
+    EXPECT_EQ(pt.samplesPerLaunch(), 1u) << (cost ? "cost" : "asserts");
+    session->render(3);
+    EXPECT_EQ(pt.samplesAccumulated(), 3u);
+  }
+  pt.setInstrumentation({});
+  EXPECT_EQ(pt.samplesPerLaunch(), 4u);
+  render::InspectRequest r;
+  r.x = r.y = 8;
+  r.samples = 4;
+  pt.setInspection(r);
+  EXPECT_EQ(pt.samplesPerLaunch(), 1u);
+  pt.setInspection(std::nullopt);
+  EXPECT_EQ(pt.samplesPerLaunch(), 4u);
+  expectNoValidationErrors(*session);
+}
