@@ -7,7 +7,7 @@ namespace wb::app {
 
 using nlohmann::json;
 
-json passMsJson(const render::PassTimer* timer) {
+json passMsJson(const vk::GpuTimer* timer) {
   json j = json::object();
   if (!timer) return j;
   for (const auto& t : timer->medians()) j[t.pass] = t.ms;

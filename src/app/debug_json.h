@@ -9,13 +9,13 @@
 
 #include "eval/cost_map.h"
 #include "render/path_inspector.h"
-#include "render/pass_timer.h"
+#include "vk/gpu_timer.h"
 
 namespace wb::app {
 
 // {"pass": ms, ...}: each pass's GPU ms per round (a sample or a frame of the render), the median over the
 // rounds since the render began; {} without times.
-nlohmann::json passMsJson(const render::PassTimer* timer);
+nlohmann::json passMsJson(const vk::GpuTimer* timer);
 // The cost summary: clock, units, clocks per sample (mean, p50, p99, max), the frame's clocks, the shares of
 // trace calls, shading and raygen, the inefficiency's mean and p99.
 nlohmann::json costJson(const eval::CostSummary& s);

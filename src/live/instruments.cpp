@@ -30,7 +30,7 @@ bool Instruments::apply(render::PathTracer& tracer, const SessionState& state) {
 }
 
 void Instruments::submissionFinished(render::Renderer& renderer) {
-  render::PassTimer* timer = renderer.passTimer();
+  vk::GpuTimer* timer = renderer.passTimer();
   if (!timer) return;
   const auto& round = timer->collect();
   if (round.empty()) return;  // a submission that recorded no pass keeps the last times

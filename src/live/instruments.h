@@ -1,5 +1,5 @@
 // What the live session measures and checks beside the image: the GPU time of each pass of every finished
-// frame (render::PassTimer), the path tracer's cost variant while a cost view (`cost`, `inefficiency`) is
+// frame (vk::GpuTimer), the path tracer's cost variant while a cost view (`cost`, `inefficiency`) is
 // shown with the summary its legend reads (about once a second), and the asserts variant while the asserts
 // toggle is on, with their failures. LiveSession drives it at frame boundaries.
 #pragma once
@@ -30,7 +30,7 @@ class Instruments {
   // When a frame finished (nothing in flight): the cost summary when due, the asserts' failures.
   void frameFinished(render::RenderSession& session, bool pathTracerShown);
 
-  const std::vector<render::PassTime>& passTimes() const { return passTimes_; }
+  const std::vector<vk::PassTime>& passTimes() const { return passTimes_; }
   uint64_t passTimesSerial() const { return passTimesSerial_; }  // bumped by every submission timed
   // The GPU milliseconds of the last kHistory timed submissions, all passes summed, oldest first (the
   // panel's GPU time graph).
@@ -43,7 +43,7 @@ class Instruments {
 
  private:
   bool costOn_ = false, assertsOn_ = false;
-  std::vector<render::PassTime> passTimes_;
+  std::vector<vk::PassTime> passTimes_;
   uint64_t passTimesSerial_ = 0;
   std::deque<float> passHistory_;
   std::optional<eval::CostSummary> cost_;

@@ -73,7 +73,7 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   pass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer", std::move(recipe));
   pass_->setPushConstantBytes(sizeof(gpu::PushConstants));
   pass_->setOnInstall([this] { sampleIndex_ = 0; });
-  timer_ = std::make_unique<PassTimer>(ctx_);
+  timer_ = std::make_unique<vk::GpuTimer>(ctx_);
   resolve_ = std::make_unique<Pass>(ctx_, library_, "pathtracer resolve", ComputeRecipe{});
   resolve_->setPushConstantBytes(sizeof(gpu::ResolveConstants));
   resolve_->useProgram("pathtracer resolve", {{shaderDir() / "pathtracer" / "resolve.comp"}});
@@ -498,7 +498,7 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_
   pc.tileOffset = glm::uvec2(r.x, r.y);
   pc.imageSize = glm::uvec2(settings_.width, settings_.height);
 
-  PassTimer::Scope timed(timer_.get(), cmd, "pathtracer");
+  vk::GpuTimer::Scope timed(timer_.get(), cmd, "pathtracer", samples);  // GPU time per sample
   pass_->bind(cmd);
   pass_->push(cmd, pc);
   pass_->traceRays(cmd, r.width, r.height, samples);

@@ -130,7 +130,7 @@ class PathTracer final : public Renderer {
   eval::ImageRGBA readEstimate() const override;
   // The path tracer's pass, then the denoiser's once it is made (settings().denoise made it).
   std::vector<Pass*> passes() const override;
-  PassTimer* passTimer() const override { return timer_.get(); }
+  vk::GpuTimer* passTimer() const override { return timer_.get(); }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   gpu::Counters readCounters() const override;
@@ -220,7 +220,7 @@ class PathTracer final : public Renderer {
   // Before pass_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<Pass> pass_;
-  std::unique_ptr<PassTimer> timer_;
+  std::unique_ptr<vk::GpuTimer> timer_;
   // Accumulates the samples of a launch of several (not in passes(): a fixed part of the accumulation).
   std::unique_ptr<Pass> resolve_;
   vk::Buffer sampleSlots_;  // WB_BIND_SAMPLE_SLOTS, sized for the largest launch so far

@@ -227,7 +227,7 @@ double RenderSession::render(uint32_t spp, const Renderer::Progress& progress) {
   Renderer& r = renderer();
   r.resetAccumulation();
   r.resetCounters();
-  if (PassTimer* timer = r.passTimer()) timer->resetTotals();  // the render's own per-pass times
+  if (vk::GpuTimer* timer = r.passTimer()) timer->resetTotals();  // the render's own per-pass times
   frameSeconds_ = r.render(spp, progress);
   return secondsSince(t0);
 }

@@ -40,7 +40,7 @@ std::vector<double> Renderer::render(uint32_t samples, const Progress& progress)
     ctx.submitAndWait([&](VkCommandBuffer cmd) { n = recordBatch(cmd, samples - i); });
     const auto t1 = std::chrono::steady_clock::now();
     // The batch's pass times, per sample (a scope of a launch of several samples divides by them).
-    if (PassTimer* timer = passTimer()) timer->collect();
+    if (vk::GpuTimer* timer = passTimer()) timer->collect();
     seconds.insert(seconds.end(), n, std::chrono::duration<double>(t1 - t0).count() / n);
     i += n;
     if (progress && !progress(i, std::chrono::duration<double>(t1 - start).count())) break;

@@ -14,7 +14,7 @@
 #include "render/environment.h"
 #include "render/gpu_scene.h"
 #include "render/pass.h"
-#include "render/pass_timer.h"
+#include "vk/gpu_timer.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 #include "shader/library.h"
@@ -104,9 +104,9 @@ class Renderer {
   // constants), before a pipeline of this renderer is built to match one of `other`'s.
   virtual void matchCompiledParameters(const Renderer& other) { (void)other; }
 
-  // GPU time per pass: record() brackets each pass it records (render/pass_timer.h). The caller collects a
-  // round once its submission finished (render() does after each sample). nullptr: not timed.
-  virtual PassTimer* passTimer() const { return nullptr; }
+  // GPU time per pass: record() brackets each pass it records (vk/gpu_timer.h). The caller collects a
+  // round once its submission finished (render() does after each batch). nullptr: not timed.
+  virtual vk::GpuTimer* passTimer() const { return nullptr; }
 
   // What the shaders counted since resetCounters() (paths, rays, NaN/Inf samples dropped); all zero for a
   // renderer that does not count.

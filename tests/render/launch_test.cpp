@@ -105,3 +105,26 @@ TEST(SamplesPerLaunch, TheMeasuringVariantsTraceOneSampleAtATime) {
   EXPECT_EQ(pt.samplesPerLaunch(), 4u);
   expectNoValidationErrors(*session);
 }
+
+// pass_ms is per sample: a launch of several samples is one timed scope, its time divided by its samples.
+TEST(SamplesPerLaunch, PassTimesArePerSample) {
+  render::SessionOptions o;
+  o.sceneData = makeShadowScene().scene;
+  o.settings.width = o.settings.height = 16;
+  o.settings.samplesPerLaunch = 4;
+  auto session = makeSession(o);
+  vk::GpuTimer* timer = session->renderer().passTimer();
+  ASSERT_NE(timer, nullptr);
+  if (!timer->supported()) GTEST_SKIP() << "the queue writes no timestamps";
+  session->render(8);  // resets the totals first: two launches of 4
+  ASSERT_EQ(timer->totals().size(), 1u);
+  const vk::PassTime& t = timer->totals().front();
+  EXPECT_EQ(t.pass, "pathtracer");
+  EXPECT_EQ(t.scopes, 2u);
+  EXPECT_EQ(t.samples, 8u);
+  EXPECT_EQ(timer->rounds(), 2u);
+  const auto medians = timer->medians();
+  ASSERT_EQ(medians.size(), 1u);
+  EXPECT_GT(medians.front().ms, 0.0);
+  expectNoValidationErrors(*session);
+}

@@ -145,7 +145,7 @@ HybridRenderer::HybridRenderer(const RendererResources& r, const RenderSettings&
   }
   static const char* programNames[kPassCount] = {"hybrid-gbuffer", "hybrid-shadow-ao", "hybrid-reflections",
                                                  "hybrid-composite"};
-  timer_ = std::make_unique<PassTimer>(ctx_);
+  timer_ = std::make_unique<vk::GpuTimer>(ctx_);
   for (size_t i = 0; i < kPassCount; ++i) {
     const HybridPass id = static_cast<HybridPass>(i);
     if (!hasPass(id)) continue;
@@ -351,7 +351,7 @@ void HybridRenderer::record(VkCommandBuffer cmd) {
   const uint32_t w = settings_.width, h = settings_.height;
 
   // 1. G-buffer (dynamic rendering). The previous contents are discarded.
-  std::optional<PassTimer::Scope> timed;  // each pass's GPU time
+  std::optional<vk::GpuTimer::Scope> timed;  // each pass's GPU time
   timed.emplace(timer_.get(), cmd, passKey(HybridPass::GBuffer));
   for (const vk::Image* img : {&albedo_, &normal_, &emissive_}) {
     vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);

@@ -25,7 +25,8 @@ class HybridRenderer final : public Renderer {
  public:
   static constexpr size_t kPassCount = 4;
   static const char* passName(HybridPass p);
-  // Its key in per-pass timings (PassTimer, `pass_ms`): "gbuffer", "shadow_ao", "reflections", "composite".
+  // Its key in per-pass timings (vk::GpuTimer, `pass_ms`): "gbuffer", "shadow_ao", "reflections",
+  // "composite".
   static const char* passKey(HybridPass p);
 
   // `shaderRoot` is the shaders/ folder (tests point it at a temporary copy); the library's include roots
@@ -63,7 +64,7 @@ class HybridRenderer final : public Renderer {
   // The composited linear radiance.
   const vk::Image& outputImage() const override { return output_; }
   std::vector<Pass*> passes() const override;
-  PassTimer* passTimer() const override { return timer_.get(); }
+  vk::GpuTimer* passTimer() const override { return timer_.get(); }
   std::unique_ptr<Renderer> makeLike(const RendererResources& resources,
                                      const RenderSettings& settings) const override;
   void matchCompiledParameters(const Renderer& other) override;
@@ -114,7 +115,7 @@ class HybridRenderer final : public Renderer {
   bool hasSun_ = false;
   std::vector<Draw> draws_;
   std::array<std::unique_ptr<Pass>, kPassCount> passes_;  // null where !hasPass()
-  std::unique_ptr<PassTimer> timer_;
+  std::unique_ptr<vk::GpuTimer> timer_;
   vk::Image albedo_, normal_, emissive_, depth_, shadowMask_, aoMask_, history_, reflection_, output_;
   VkSampler nearest_ = VK_NULL_HANDLE;
   vk::Buffer uniforms_;
