@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "display/display_types.h"
+#include "shared/heat_ramp.h"
 
 namespace wb::app {
 namespace {
@@ -26,13 +27,7 @@ ImU32 colour(glm::vec3 c) {
 }  // namespace
 
 glm::vec3 heatRampColour(float t) {
-  t = std::clamp(t, 0.0f, 1.0f);
-  const glm::vec3 c0(0.05f, 0.05f, 0.35f), c1(0.0f, 0.6f, 0.9f), c2(0.2f, 0.85f, 0.3f), c3(1.0f, 0.85f, 0.1f),
-      c4(0.95f, 0.1f, 0.05f);
-  if (t < 0.25f) return glm::mix(c0, c1, t * 4.0f);
-  if (t < 0.5f) return glm::mix(c1, c2, (t - 0.25f) * 4.0f);
-  if (t < 0.75f) return glm::mix(c2, c3, (t - 0.5f) * 4.0f);
-  return glm::mix(c3, c4, (t - 0.75f) * 4.0f);
+  return gpu::heatRamp(t);
 }
 
 std::optional<HeatLegend> heatLegend(uint32_t view, float maxVertices) {

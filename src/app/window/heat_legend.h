@@ -1,5 +1,5 @@
 // The colour bar of the window's heat-map views (bounces, rr_end, variance, nan_source): the display shader's
-// ramp (shaders/display/tonemap.glsl heatRamp) with what its colours mean, their units and scale, drawn at
+// ramp (shaders/shared/heat_ramp.h heatRamp) with what its colours mean, their units and scale, drawn at
 // the image's bottom right.
 #pragma once
 #include <optional>
