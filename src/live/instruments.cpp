@@ -19,6 +19,7 @@ bool Instruments::apply(render::PathTracer& tracer, const SessionState& state) {
   want.cost = state.params.mode == render::RenderMode::PathTrace && isCostView(state.params.display.view);
   want.asserts = state.asserts;
   costOn_ = want.cost;
+  denoiseOn_ = state.params.mode == render::RenderMode::PathTrace && tracer.settings().denoise;
   assertsOn_ = want.asserts;
   if (!costOn_) cost_.reset();
   if (!assertsOn_) asserts_ = {};
@@ -36,10 +37,16 @@ void Instruments::submissionFinished(render::Renderer& renderer) {
   if (round.empty()) return;  // a submission that recorded no pass keeps the last times
   passTimes_ = round;
   ++passTimesSerial_;
-  float total = 0;
+  float total = denoiseInRound_ ? float(*denoiseMs_) : 0.0f;
+  denoiseInRound_ = false;
   for (const auto& t : passTimes_) total += float(t.ms);
   passHistory_.push_back(total);
   if (passHistory_.size() > kHistory) passHistory_.pop_front();
+}
+
+void Instruments::denoiseTimed(double ms) {
+  denoiseMs_ = ms;
+  denoiseInRound_ = true;
 }
 
 void Instruments::frameFinished(render::RenderSession& session, bool pathTracerShown) {

@@ -385,7 +385,10 @@ void LiveSession::recordDenoise(VkCommandBuffer cmd) {
 }
 
 void LiveSession::denoiseTimed(double ms) {
-  if (denoiseInFlight_) denoised_.ms = ms;
+  if (denoiseInFlight_) {
+    denoised_.ms = ms;
+    instruments_.denoiseTimed(ms);  // the pass table's and pass_ms' "denoise"
+  }
   denoiseInFlight_ = false;
 }
 

@@ -944,6 +944,7 @@ TEST(Window, DenoiseToggleAndSplitView) {
   const auto raw = dir / "raw.png", den = dir / "den.png", split = dir / "split.png";
   writeFile(dir / "s.txt", "wait_samples 2 300\nset paused 1\nframes 3\nscreenshot " + den.string() +
                                "\nframes 1\nset denoise 0\nframes 3\nscreenshot " + raw.string() +
+                               "\nstats " + (dir / "raw.json").string() +
                                "\nframes 1\nset denoise 1\nset denoise_split 0.5\nframes 3\nscreenshot " +
                                split.string() + "\nframes 1\nstats " + (dir / "s.json").string() + "\n");
   auto r = runWindow("--script " + (dir / "s.txt").string());
@@ -952,6 +953,10 @@ TEST(Window, DenoiseToggleAndSplitView) {
   const double roughRaw = imageAreaRoughness(raw, panelWidth), roughDen = imageAreaRoughness(den, panelWidth);
   EXPECT_LT(roughDen, 0.6 * roughRaw) << "the denoised view is smoother than the raw one";
   EXPECT_GE(readJson(dir / "s.json")["samples"].get<int>(), 2);
+  // The pass table's denoiser: its last run's GPU time while denoising, none while off.
+  EXPECT_GT(readJson(dir / "s.json")["pass_ms"]["denoise"].get<double>(), 0.0);
+  EXPECT_FALSE(readJson(dir / "raw.json")["pass_ms"].contains("denoise"))
+      << readJson(dir / "raw.json").dump();
   // Split: each column of the image shows either the raw or the denoised image: raw on the left, denoised on
   // the right, both over a good part of the width.
   const auto toRaw = columnDifferences(split, raw, panelWidth),
@@ -986,6 +991,10 @@ TEST(Window, DenoiserRunsOnlyForNewSamples) {
   EXPECT_EQ(jb["denoise_runs"], ja["denoise_runs"]) << "twelve frames of a paused image filter nothing again";
   EXPECT_GT(jb["frames"].get<int>(), ja["frames"].get<int>() + 10);
   EXPECT_GT(ja["denoise_gpu_ms_last"].get<double>(), 0.0);
+  // pass_ms: the trace's passes, the denoiser's last run and the display pass (the Presenter's timestamps).
+  EXPECT_GT(ja["pass_ms"]["pathtracer"].get<double>(), 0.0);
+  EXPECT_GT(jb["pass_ms"]["denoise"].get<double>(), 0.0) << "paused: the last run's time stays shown";
+  EXPECT_GT(ja["pass_ms"]["display"].get<double>(), 0.0);
   EXPECT_GE(jc["samples"].get<int>(), 4);
   EXPECT_GE(jc["denoise_runs"].get<int>(), ja["denoise_runs"].get<int>()) << jc.dump();
 }

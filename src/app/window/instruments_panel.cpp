@@ -52,7 +52,8 @@ void drawPassTimes(const live::LiveSession& session, double displayMs) {
     ImGui::TextDisabled("GPU time per pass: no timestamps yet");
     return;
   }
-  double total = displayMs;
+  const auto denoiseMs = in.denoiseMs();  // its last run, while denoising
+  double total = displayMs + denoiseMs.value_or(0.0);
   for (const auto& t : times) total += t.ms;
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
   if (ImGui::BeginTable("pass_ms", 3, flags)) {
@@ -74,6 +75,7 @@ void drawPassTimes(const live::LiveSession& session, double displayMs) {
       ImGui::Text("%.0f%%", total > 0 ? 100.0 * ms / total : 0.0);
     };
     for (const auto& t : times) row(t.pass.c_str(), t.ms, t.scopes);
+    if (denoiseMs) row("denoise (last run)", *denoiseMs, 1);
     row("display", displayMs, 1);
     ImGui::EndTable();
   }

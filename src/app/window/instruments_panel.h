@@ -7,8 +7,8 @@
 
 namespace wb::app {
 
-// Stats: each pass's GPU milliseconds in the last frame (`displayMs`: the window's display pass) and the
-// graph of the frames' GPU time.
+// Stats: each pass's GPU milliseconds in the last frame (`displayMs`: the window's display pass; the
+// denoiser's at its last run while denoising) and the graph of the frames' GPU time.
 void drawPassTimes(const live::LiveSession& session, double displayMs);
 // Inspect, under the debug view: the cost and inefficiency views' legend.
 void drawCostLegend(const live::LiveSession& session);

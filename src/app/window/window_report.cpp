@@ -96,6 +96,7 @@ nlohmann::json sessionStatsJson(live::LiveSession& session) {
   const auto& in = session.instruments();
   j["pass_ms"] = nlohmann::json::object();
   for (const auto& t : in.passTimes()) j["pass_ms"][t.pass] = t.ms;
+  if (in.denoiseMs()) j["pass_ms"]["denoise"] = *in.denoiseMs();  // its last run
   j["cost"] = in.cost() ? costJson(*in.cost()) : nlohmann::json(nullptr);
   j["asserts"] = state.asserts ? assertsJson(in.asserts(), in.labels()) : nlohmann::json(nullptr);
   const auto& hot = session.loop().hot();

@@ -151,6 +151,7 @@ void WorkbenchWindow::writeStats(const std::string& path) {
   j["denoise_gpu_ms_last"] = presenter_->afterTraceMs();
   j["denoise_runs"] = session_->denoiseRuns();
   j["display_gpu_ms_last"] = presenter_->displayMs();
+  j["pass_ms"]["display"] = presenter_->displayMs();  // beside the renderer's passes and the denoiser
   j["parameters"] = parametersJson(*session_, input_->camera());
   writeJsonFile(path, j, "stats");
 }
