@@ -553,7 +553,11 @@ double PathTracer::denoise() {
 
 eval::ImageRGBA PathTracer::readImage() const {
   if (!settings_.denoise || !denoiser_) return readEstimate();
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) { denoiser_->record(cmd); });
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    vk::GpuTimer::Scope timed(timer_.get(), cmd, "denoise");
+    denoiser_->record(cmd);
+  });
+  timer_->collect();  // pass_ms' "denoise" (a round of its own)
   return readDenoised();
 }
 

@@ -124,7 +124,8 @@ class PathTracer final : public Renderer {
   void recordCompileOnly(VkCommandBuffer cmd) override;
   uint32_t samplesAccumulated() const override { return sampleIndex_; }
   const vk::Image& outputImage() const override { return accum_; }
-  // The denoised image when settings().denoise, else the accumulation (waits for the device; alpha = 1).
+  // The denoised image when settings().denoise, else the accumulation (waits for the device; alpha = 1). The
+  // denoiser's run is timed as pass "denoise" (call with nothing recorded into the pass timer's round).
   eval::ImageRGBA readImage() const override;
   // The accumulation, never denoised: the estimator's image (alpha = 1).
   eval::ImageRGBA readEstimate() const override;

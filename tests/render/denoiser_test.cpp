@@ -6,8 +6,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <random>
+#include <string>
 
 #include "common/paths.h"
 #include "gpu_fixture.h"
@@ -333,5 +335,25 @@ TEST(DenoiserRender, AtManySamplesTheDenoisedImageIsTheRawOneWithinItsNoise) {
   EXPECT_LT(diff2, 0.25 * noise) << "the denoised image moves less than a quarter of the raw variance";
   // The filter darkens a little where bright outliers are not gathered back; at 1024 spp that is ~0.15%.
   EXPECT_NEAR(denSum / rawSum, 1.0, 3e-3) << "means within 0.3%";
+  wb::testing::expectNoValidationErrors(*session);
+}
+
+// A denoised image's read times the denoiser as a pass of its own: `render --denoise --stats` has
+// pass_ms.denoise beside pass_ms.pathtracer.
+TEST(DenoiserRender, TheDenoisedImagesReadTimesTheDenoiser) {
+  render::SessionOptions o;
+  o.settings.width = o.settings.height = 32;
+  o.settings.denoise = true;
+  auto session = wb::testing::makeSession(o);
+  vk::GpuTimer* timer = session->renderer().passTimer();
+  ASSERT_NE(timer, nullptr);
+  if (!timer->supported()) GTEST_SKIP() << "the queue writes no timestamps";
+  session->render(2);
+  const auto image = session->image();
+  std::map<std::string, double> ms;
+  for (const auto& t : timer->medians()) ms[t.pass] = t.ms;
+  ASSERT_TRUE(ms.count("pathtracer") && ms.count("denoise")) << ms.size();
+  EXPECT_GT(ms["denoise"], 0.0);
+  EXPECT_EQ(image.width, 32u);
   wb::testing::expectNoValidationErrors(*session);
 }
