@@ -5,7 +5,9 @@
 
 #include <spirv_cross/spirv_cross.hpp>
 
+#include <fstream>
 #include <map>
+#include <regex>
 #include <string>
 
 #include "common/paths.h"
@@ -156,4 +158,24 @@ TEST(GpuTypesLayout, ResolvePassBlocksMatchTheHostStructs) {
   ASSERT_TRUE(blocks.count("ResolveBlock"));
   EXPECT_EQ(blocks.at("ResolveBlock"), sizeof(ResolveConstants));
   EXPECT_EQ(blocks.at("SampleSlotBlock"), sizeof(float) * 4);  // vec4 per slot
+}
+
+// Every descriptor binding of shared/bindings.h has a number of its own: two resources given one number (two
+// features added apart) alias where one shader declares both, and a pipeline layout keeps only one of them
+// (the other's records are written into the first's buffer), unnoticed while their types agree.
+TEST(GpuTypesLayout, EveryBindingNumberIsUsedOnce) {
+  std::ifstream in(wb::shaderDir() / "shared" / "bindings.h");
+  ASSERT_TRUE(in) << "shared/bindings.h";
+  const std::regex define(R"(^#define (WB_BIND_\w+) (\d+)\b)");
+  std::map<int, std::string> byNumber;
+  std::string line;
+  size_t defines = 0;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_search(line, m, define)) continue;
+    ++defines;
+    const auto [it, fresh] = byNumber.emplace(std::stoi(m[2]), m[1]);
+    EXPECT_TRUE(fresh) << m[1] << " and " << it->second << " are both binding " << m[2];
+  }
+  EXPECT_GT(defines, 20u) << "the bindings are #defines of shared/bindings.h";
 }
