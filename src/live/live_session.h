@@ -90,12 +90,15 @@ class LiveSession {
   // traced in strips, the raw rows are shown. recordDenoise() after recordTrace() records the planned run;
   // denoiseTimed() takes its measured GPU time. displayFrame().denoised is the output when it is (or becomes
   // in this frame) the current image's.
-  static constexpr double kDenoiseShare = 0.05;
+  static constexpr double kDenoiseShare = 0.03;
   void planDenoise(bool frameTraces);
   void recordDenoise(VkCommandBuffer cmd);
   void denoiseTimed(double ms);
   bool denoiseShown() const;
   uint64_t denoiseRuns() const { return denoiseRuns_; }
+  // The view is denoised as the settings ask: denoise off, a hybrid mode, or the denoiser's output of the
+  // current image recorded in a frame.
+  bool denoisedAsAsked() const;
   void traceTimed(uint64_t pixels, double ms);
   void frameFinished(Clock::time_point frameBegin);
   // After a trace-only submission finished (no reload completes with it): counters and running error.
@@ -189,6 +192,11 @@ class LiveSession {
   bool denoiseThisFrame_ = false, denoiseInFlight_ = false;
   uint64_t denoiseRuns_ = 0;
   bool denoiseValid() const;
+  // The old pipeline's accumulation parked for an edit's review, taken back (Revert, an identical image):
+  // resumed when it is of the size traced now (true); else it waits for its size in place of the other
+  // size's parked accumulation. `keepOtherSize`: the other size's accumulation stays valid (an identical
+  // image) rather than being the rejected pipeline's.
+  bool takeBackReviewed(bool keepOtherSize);
   uint64_t traceGeneration_ = 0;
   double traceSeconds_ = 0;
   gpu::Counters counters_{};

@@ -177,33 +177,40 @@ PathTracer::~PathTracer() {
   ctx_.waitIdle();
 }
 
-void PathTracer::parkAccumulation(uint32_t samples) {
+void PathTracer::parkAccumulation(ParkSlot slot, uint32_t samples) {
   ctx_.waitIdle();
-  parked_ = ImageSet{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
-                     std::move(stats_)};
-  parkedSamples_ = samples;
+  parked_[size_t(slot)] = ParkedSet{ImageSet{std::move(accum_), std::move(albedo_), std::move(normal_),
+                                             std::move(info_), std::move(stats_)},
+                                    samples};
   createImages();
   bindResources();
 }
 
-bool PathTracer::unparkAccumulation() {
-  if (!parked_) return false;
+bool PathTracer::unparkAccumulation(ParkSlot slot) {
+  auto& parked = parked_[size_t(slot)];
+  if (!parked) return false;
   ctx_.waitIdle();
   spareImages_.insert(spareImages_.begin(),
                       ImageSet{std::move(accum_), std::move(albedo_), std::move(normal_), std::move(info_),
                                std::move(stats_)});
   if (spareImages_.size() > kSpareSets) spareImages_.pop_back();
-  accum_ = std::move(parked_->accum);
-  albedo_ = std::move(parked_->albedo);
-  normal_ = std::move(parked_->normal);
-  info_ = std::move(parked_->info);
-  stats_ = std::move(parked_->stats);
-  parked_.reset();
+  accum_ = std::move(parked->images.accum);
+  albedo_ = std::move(parked->images.albedo);
+  normal_ = std::move(parked->images.normal);
+  info_ = std::move(parked->images.info);
+  stats_ = std::move(parked->images.stats);
+  sampleIndex_ = parked->samples;
+  parked.reset();
   settings_.width = accum_.width();
   settings_.height = accum_.height();
-  sampleIndex_ = parkedSamples_;
   bindResources();
   return true;
+}
+
+void PathTracer::moveParkedAccumulation(ParkSlot from, ParkSlot to) {
+  if (from == to) return;
+  parked_[size_t(to)] = std::move(parked_[size_t(from)]);
+  parked_[size_t(from)].reset();
 }
 
 void PathTracer::createImages() {
