@@ -372,9 +372,16 @@ void LiveSession::planDenoise(bool frameTraces) {
     denoiseThisFrame_ = true;
     return;
   }
-  if (progressive_->samples() == denoised_.samples) return;  // nothing new since (paused, or a slow sample)
+  const uint32_t samples = progressive_->samples();
+  if (samples == denoised_.samples) return;  // nothing new since (paused, or a slow sample)
+  if (state_.paused) {
+    denoiseThisFrame_ = true;
+    return;
+  }
+  // Within a share s of the time: at least ms (1/s - 1) since the last run.
   const double sinceMs = std::chrono::duration<double, std::milli>(Clock::now() - denoised_.at).count();
-  denoiseThisFrame_ = sinceMs >= denoised_.ms * (1.0 / kDenoiseShare - 1.0);
+  const auto within = [&](double share) { return sinceMs >= denoised_.ms * (1.0 / share - 1.0); };
+  denoiseThisFrame_ = within(samples >= 2 * denoised_.samples ? kDenoiseShareDoubling : kDenoiseShare);
 }
 
 bool LiveSession::denoiseShown() const {

@@ -84,13 +84,14 @@ class LiveSession {
   void beginFrame();
   uint64_t recordTrace(VkCommandBuffer cmd);
   // The denoiser of a shown frame (path tracer, denoise on). planDenoise() after beginFrame() decides whether
-  // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces, and then
-  // as new samples arrive, no more often than keeps the denoiser at kDenoiseShare of the time (the last
-  // output is shown meanwhile; it is of the same image, with fewer samples). While the first sample is
-  // traced in strips, the raw rows are shown. recordDenoise() after recordTrace() records the planned run;
-  // denoiseTimed() takes its measured GPU time. displayFrame().denoised is the output when it is (or becomes
-  // in this frame) the current image's.
-  static constexpr double kDenoiseShare = 0.03;
+  // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces; then,
+  // as new samples arrive, when their count has doubled since the last run and the denoiser stays within
+  // kDenoiseShareDoubling of the time (the image improves most early on), else within kDenoiseShare; and
+  // at once when paused (nothing traces meanwhile). The last output is shown in between (of the same image,
+  // with fewer samples). While the first sample is traced in strips, the raw rows are shown.
+  // recordDenoise() after recordTrace() records the planned run; denoiseTimed() takes its measured GPU
+  // time. displayFrame().denoised is the output when it is (or becomes in this frame) the current image's.
+  static constexpr double kDenoiseShare = 0.03, kDenoiseShareDoubling = 0.1;
   void planDenoise(bool frameTraces);
   void recordDenoise(VkCommandBuffer cmd);
   void denoiseTimed(double ms);
