@@ -362,7 +362,7 @@ bool LiveSession::denoiseValid() const {
          denoised_.width == tracer.settings().width && denoised_.height == tracer.settings().height;
 }
 
-void LiveSession::planDenoise(bool frameTraces) {
+void LiveSession::planDenoise(bool frameTraces, double secondsSinceInput) {
   const auto& tracer = session_->pathTracer();
   denoiseThisFrame_ = false;
   if (!frameTraces || session_->hybrid() || !tracer.settings().denoise || !tracer.denoiser() ||
@@ -381,7 +381,8 @@ void LiveSession::planDenoise(bool frameTraces) {
   // Within a share s of the time: at least ms (1/s - 1) since the last run.
   const double sinceMs = std::chrono::duration<double, std::milli>(Clock::now() - denoised_.at).count();
   const auto within = [&](double share) { return sinceMs >= denoised_.ms * (1.0 / share - 1.0); };
-  denoiseThisFrame_ = within(samples >= 2 * denoised_.samples ? kDenoiseShareDoubling : kDenoiseShare);
+  const bool doubled = samples >= 2 * denoised_.samples && secondsSinceInput >= kDenoiseQuietSeconds;
+  denoiseThisFrame_ = within(doubled ? kDenoiseShareDoubling : kDenoiseShare);
 }
 
 bool LiveSession::denoiseShown() const {

@@ -86,13 +86,14 @@ class LiveSession {
   // The denoiser of a shown frame (path tracer, denoise on). planDenoise() after beginFrame() decides whether
   // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces; then,
   // as new samples arrive, when their count has doubled since the last run and the denoiser stays within
-  // kDenoiseShareDoubling of the time (the image improves most early on), else within kDenoiseShare; and
-  // at once when paused (nothing traces meanwhile). The last output is shown in between (of the same image,
-  // with fewer samples). While the first sample is traced in strips, the raw rows are shown.
-  // recordDenoise() after recordTrace() records the planned run; denoiseTimed() takes its measured GPU
+  // kDenoiseShareDoubling of the time (the image improves most early on) unless the user gave input in the
+  // last kDenoiseQuietSeconds (a run delays the next input's frame by its whole time), else within
+  // kDenoiseShare; and at once when paused (nothing traces meanwhile). The last output is shown in between
+  // (of the same image, with fewer samples). While the first sample is traced in strips, the raw rows are
+  // shown. recordDenoise() after recordTrace() records the planned run; denoiseTimed() takes its measured GPU
   // time. displayFrame().denoised is the output when it is (or becomes in this frame) the current image's.
-  static constexpr double kDenoiseShare = 0.03, kDenoiseShareDoubling = 0.1;
-  void planDenoise(bool frameTraces);
+  static constexpr double kDenoiseShare = 0.03, kDenoiseShareDoubling = 0.1, kDenoiseQuietSeconds = 2.0;
+  void planDenoise(bool frameTraces, double secondsSinceInput);
   void recordDenoise(VkCommandBuffer cmd);
   void denoiseTimed(double ms);
   bool denoiseShown() const;
