@@ -340,6 +340,8 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
       o.device.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--device", o.device};
 
   // 1. Trace rate: the window converging untouched against headless rendering at the same size, alternating.
+  // Both are timed once started: the headless session after its warm-up samples, the window after two
+  // samples and its first denoised view (the denoiser's first dispatch compiles it on a lazy driver).
 
   std::vector<double> windowRates, headlessRates, ratios;
   uint32_t traceW = 0, traceH = 0;
@@ -350,8 +352,8 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
     PrivateRoot pr(work, "rate", display.name(), ownMesaCache);
     const fs::path a = pr.root / "a.json", b = pr.root / "b.json";
     runWindow(pr,
-              "wait_samples 2 900\nstats " + a.string() + "\nwait_samples " + std::to_string(2 + o.samples) +
-                  " 1800\nstats " + b.string() + "\nquit\n",
+              "wait_samples 2 900\nwait_denoised 900\nstats " + a.string() + "\nwait_samples +" +
+                  std::to_string(o.samples) + " 1800\nstats " + b.string() + "\nquit\n",
               deviceArgs, work / "window_rate.log");
     const json ja = readJson(a), jb = readJson(b);
     if (ja["resets"] != jb["resets"]) throw std::runtime_error("bench window: the accumulation restarted");
@@ -493,10 +495,12 @@ json benchWindow(const WindowBenchOptions& o, const fs::path& work, bool ownMesa
     }
   }
   result["what"] =
-      "window: the README's run command (default window size) under a script, on the display or on Xvfb; "
+      "window: the README's run command (default window size) under a script, on the display or on Xvfb, "
+      "its rate timed from its first denoised view (two samples at least) over the next samples; "
       "headless: the path tracer in this process at the window's trace size and denoise setting (with "
       "denoise on, the denoiser's inputs are written every sample on both sides; the window's own denoiser "
-      "runs count against the window); ratios are medians of rounds that alternate the two. Edit: a closest-hit constant changed; first frame: the first frame drawn with "
+      "runs count against the window); ratios are medians of rounds that alternate the two. Edit: a "
+      "closest-hit constant changed; first frame: the first frame drawn with "
       "the new pipeline; pipeline build: the driver's build of it (warm-up included), from the same reload. "
       "Click to screen: from just before xdotool starts (its start-up included) to the end of the frame that "
       "drew the click's effect, clicks 1.5 s apart while the image converges.";

@@ -257,19 +257,32 @@ bool LiveSession::applyInspection() {
   return tracer.setInspection(want);
 }
 
+bool LiveSession::takeBackReviewed(bool keepOtherSize) {
+  using Slot = render::ProgressiveTracer::ParkSlot;
+  if (progressive_->resumeParked(Slot::Review)) {
+    if (!keepOtherSize) progressive_->dropParked(Slot::Size);
+    return true;
+  }
+  // Parked at the size shown before Tab: it waits for that size to come back.
+  if (progressive_->hasParked(Slot::Review)) progressive_->moveParked(Slot::Review, Slot::Size);
+  return false;
+}
+
 void LiveSession::applyAB() {
   if (ab_.revertRequested && !ab_.decided && !ab_.installed.empty()) {
     loop_->revert(ab_.installed);
-    // The old pipeline's image is still valid: its accumulation goes on.
-    const uint32_t kept = progressive_->parkedSamples();
-    ab_.decide(progressive_->resumeParked() ? "reverted to the old pipeline and its " + std::to_string(kept) +
-                                                  " samples (the file on disk is unchanged)"
-                                            : "reverted to the old pipeline (the file on disk is unchanged)");
+    // The old pipeline's image is still valid: its accumulation goes on (at once, or when its size comes
+    // back); the new pipeline's of another size is not.
+    const uint32_t kept = progressive_->parkedSamples(render::ProgressiveTracer::ParkSlot::Review);
+    const bool resumed = takeBackReviewed(false);
+    ab_.decide(resumed ? "reverted to the old pipeline and its " + std::to_string(kept) +
+                             " samples (the file on disk is unchanged)"
+                       : "reverted to the old pipeline (the file on disk is unchanged)");
     std::printf("workbench: A/B revert: old pipeline reinstalled\n");
     std::fflush(stdout);
   }
   if (ab_.acceptRequested && !ab_.decided) {
-    progressive_->dropParked();
+    progressive_->dropParked(render::ProgressiveTracer::ParkSlot::Review);
     ab_.decide("accepted");
   }
   ab_.revertRequested = ab_.acceptRequested = false;
@@ -286,7 +299,8 @@ void LiveSession::beginFrame() {
   if (reload && std::any_of(installed.begin(), installed.end(),
                             [&](const auto& ip) { return ip.owner == &session_->pathTracer(); })) {
     if (ab_.enabled && !session_->hybrid()) {
-      progressive_->parkAccumulation();
+      progressive_->dropParked(render::ProgressiveTracer::ParkSlot::Size);
+      progressive_->parkAccumulation(render::ProgressiveTracer::ParkSlot::Review);
     } else {
       progressive_->dropParked();
     }
@@ -349,7 +363,7 @@ bool LiveSession::denoiseValid() const {
          denoised_.width == tracer.settings().width && denoised_.height == tracer.settings().height;
 }
 
-void LiveSession::planDenoise(bool frameTraces) {
+void LiveSession::planDenoise(bool frameTraces, double secondsSinceInput) {
   const auto& tracer = session_->pathTracer();
   denoiseThisFrame_ = false;
   if (!frameTraces || session_->hybrid() || !tracer.settings().denoise || !tracer.denoiser() ||
@@ -359,14 +373,26 @@ void LiveSession::planDenoise(bool frameTraces) {
     denoiseThisFrame_ = true;
     return;
   }
-  if (progressive_->samples() == denoised_.samples) return;  // nothing new since (paused, or a slow sample)
+  const uint32_t samples = progressive_->samples();
+  if (samples == denoised_.samples) return;  // nothing new since (paused, or a slow sample)
+  if (state_.paused) {
+    denoiseThisFrame_ = true;
+    return;
+  }
+  // Within a share s of the time: at least ms (1/s - 1) since the last run.
   const double sinceMs = std::chrono::duration<double, std::milli>(Clock::now() - denoised_.at).count();
-  denoiseThisFrame_ = sinceMs >= denoised_.ms * (1.0 / kDenoiseShare - 1.0);
+  const auto within = [&](double share) { return sinceMs >= denoised_.ms * (1.0 / share - 1.0); };
+  const bool doubled = samples >= 2 * denoised_.samples && secondsSinceInput >= kDenoiseQuietSeconds;
+  denoiseThisFrame_ = within(doubled ? kDenoiseShareDoubling : kDenoiseShare);
 }
 
 bool LiveSession::denoiseShown() const {
   const auto& tracer = session_->pathTracer();
   return !session_->hybrid() && tracer.settings().denoise && (denoiseThisFrame_ || denoiseValid());
+}
+
+bool LiveSession::denoisedAsAsked() const {
+  return session_->hybrid() || !session_->pathTracer().settings().denoise || denoiseValid();
 }
 
 void LiveSession::recordDenoise(VkCommandBuffer cmd) {
@@ -417,8 +443,8 @@ void LiveSession::frameFinished(Clock::time_point frameBegin) {
       if (o.result.mode != render::renderModeName(render::RenderMode::PathTrace)) continue;
       (o.result.image.verdict == eval::ImageVerdict::Identical ? identical : other) = true;
     }
-    const uint32_t kept = progressive_->parkedSamples();
-    if (identical && !other && progressive_->resumeParked())
+    const uint32_t kept = progressive_->parkedSamples(render::ProgressiveTracer::ParkSlot::Review);
+    if (identical && !other && takeBackReviewed(true))
       ab_.note = "identical image: its " + std::to_string(kept) + " samples go on";
   }
   counters_ = session_->renderer().readCounters();

@@ -86,18 +86,23 @@ class LiveSession {
   void beginFrame();
   uint64_t recordTrace(VkCommandBuffer cmd);
   // The denoiser of a shown frame (path tracer, denoise on). planDenoise() after beginFrame() decides whether
-  // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces, and then
-  // as new samples arrive, no more often than keeps the denoiser at kDenoiseShare of the time (the last
-  // output is shown meanwhile; it is of the same image, with fewer samples). While the first sample is
-  // traced in strips, the raw rows are shown. recordDenoise() after recordTrace() records the planned run;
-  // denoiseTimed() takes its measured GPU time. displayFrame().denoised is the output when it is (or becomes
-  // in this frame) the current image's.
-  static constexpr double kDenoiseShare = 0.05;
-  void planDenoise(bool frameTraces);
+  // this frame denoises: once the accumulation holds a whole sample, at its first frame that traces; then,
+  // as new samples arrive, when their count has doubled since the last run and the denoiser stays within
+  // kDenoiseShareDoubling of the time (the image improves most early on) unless the user gave input in the
+  // last kDenoiseQuietSeconds (a run delays the next input's frame by its whole time), else within
+  // kDenoiseShare; and at once when paused (nothing traces meanwhile). The last output is shown in between
+  // (of the same image, with fewer samples). While the first sample is traced in strips, the raw rows are
+  // shown. recordDenoise() after recordTrace() records the planned run; denoiseTimed() takes its measured GPU
+  // time. displayFrame().denoised is the output when it is (or becomes in this frame) the current image's.
+  static constexpr double kDenoiseShare = 0.03, kDenoiseShareDoubling = 0.1, kDenoiseQuietSeconds = 2.0;
+  void planDenoise(bool frameTraces, double secondsSinceInput);
   void recordDenoise(VkCommandBuffer cmd);
   void denoiseTimed(double ms);
   bool denoiseShown() const;
   uint64_t denoiseRuns() const { return denoiseRuns_; }
+  // The view is denoised as the settings ask: denoise off, a hybrid mode, or the denoiser's output of the
+  // current image recorded in a frame.
+  bool denoisedAsAsked() const;
   void traceTimed(uint64_t pixels, double ms);
   void frameFinished(Clock::time_point frameBegin);
   // After a trace-only submission finished (no reload completes with it): counters and running error.
@@ -193,6 +198,11 @@ class LiveSession {
   bool denoiseThisFrame_ = false, denoiseInFlight_ = false;
   uint64_t denoiseRuns_ = 0;
   bool denoiseValid() const;
+  // The old pipeline's accumulation parked for an edit's review, taken back (Revert, an identical image):
+  // resumed when it is of the size traced now (true); else it waits for its size in place of the other
+  // size's parked accumulation. `keepOtherSize`: the other size's accumulation stays valid (an identical
+  // image) rather than being the rejected pipeline's.
+  bool takeBackReviewed(bool keepOtherSize);
   uint64_t traceGeneration_ = 0;
   double traceSeconds_ = 0;
   gpu::Counters counters_{};

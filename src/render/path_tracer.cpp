@@ -247,24 +247,24 @@ PathTracer::~PathTracer() {
   ctx_.waitIdle();
 }
 
-void PathTracer::parkAccumulation(uint32_t samples) {
+void PathTracer::parkAccumulation(ParkSlot slot, uint32_t samples) {
   ctx_.waitIdle();
-  parked_ = takeImages();
-  parkedSamples_ = samples;
+  parked_[size_t(slot)] = ParkedSet{takeImages(), samples};
   createImages();
   bindResources();
 }
 
-bool PathTracer::unparkAccumulation() {
-  if (!parked_) return false;
+bool PathTracer::unparkAccumulation(ParkSlot slot) {
+  auto& parked = parked_[size_t(slot)];
+  if (!parked) return false;
   ctx_.waitIdle();
   spareImages_.insert(spareImages_.begin(), takeImages());
   if (spareImages_.size() > kSpareSets) spareImages_.pop_back();
-  putImages(std::move(*parked_));
-  parked_.reset();
+  putImages(std::move(parked->images));
+  sampleIndex_ = parked->samples;
+  parked.reset();
   settings_.width = accum_.width();
   settings_.height = accum_.height();
-  sampleIndex_ = parkedSamples_;
   bindResources();
   return true;
 }
@@ -281,6 +281,12 @@ void PathTracer::putImages(ImageSet&& set) {
   info_ = std::move(set.info);
   stats_ = std::move(set.stats);
   cost_ = std::move(set.cost);
+}
+
+void PathTracer::moveParkedAccumulation(ParkSlot from, ParkSlot to) {
+  if (from == to) return;
+  parked_[size_t(to)] = std::move(parked_[size_t(from)]);
+  parked_[size_t(from)].reset();
 }
 
 void PathTracer::createImages() {

@@ -1,6 +1,7 @@
 // The progressive path tracer pass: the ray tracing pipeline (raygen path loop, closest-hit shading, any-hit
 // alpha, environment and shadow miss), its accumulation and AOV images, and hot-swappable pipelines.
 #pragma once
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -173,14 +174,17 @@ class PathTracer final : public Renderer {
                                 : cost_;
   }
   const vk::Image& accumulationImage() const { return accum_; }
-  // The accumulation set aside (its images and finished samples) while another one renders, e.g. the old
-  // pipeline's while an edit's comparison is pending: park moves the current images aside (cleared ones take
-  // their place, sample 0), unpark swaps them back at their size with their samples (false: none parked),
-  // drop forgets them.
-  void parkAccumulation(uint32_t samples);
-  bool unparkAccumulation();
-  void dropParkedAccumulation() { parked_.reset(); }
-  bool hasParkedAccumulation() const { return parked_.has_value(); }
+  // Accumulations set aside (images and finished samples) while another one renders, one per slot: the size
+  // left (Tab), and the old pipeline's while an edit's comparison is pending. Park moves the current images
+  // into the slot (cleared ones take their place, sample 0; what the slot held is dropped), unpark swaps the
+  // slot's back at their size with their samples (false: none parked there), drop forgets them, move hands a
+  // slot's accumulation to another slot.
+  enum class ParkSlot { Size, Review };
+  void parkAccumulation(ParkSlot slot, uint32_t samples);
+  bool unparkAccumulation(ParkSlot slot);
+  void dropParkedAccumulation(ParkSlot slot) { parked_[size_t(slot)].reset(); }
+  bool hasParkedAccumulation(ParkSlot slot) const { return parked_[size_t(slot)].has_value(); }
+  void moveParkedAccumulation(ParkSlot from, ParkSlot to);
   // Image sets allocated so far (one per new size: a size used before reuses its set).
   uint32_t imageSetsAllocated() const { return imageSetsAllocated_; }
   const vk::PipelineLayout& layout() const { return pass_->layout(); }
@@ -237,8 +241,11 @@ class PathTracer final : public Renderer {
   ImageSet takeImages();
   void putImages(ImageSet&& set);
   std::vector<ImageSet> spareImages_;
-  std::optional<ImageSet> parked_;
-  uint32_t parkedSamples_ = 0;
+  struct ParkedSet {
+    ImageSet images;
+    uint32_t samples = 0;
+  };
+  std::array<std::optional<ParkedSet>, 2> parked_;  // by ParkSlot
   uint32_t imageSetsAllocated_ = 0;
   vk::Buffer frameUniforms_, counters_, blueNoise_, sobol_;
   std::vector<gpu::DirectionalLight> lights_;  // the scene's lights, or the session's edits of them

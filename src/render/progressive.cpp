@@ -42,12 +42,13 @@ void ProgressiveTracer::setTargetSize(uint32_t width, uint32_t height) {
   height = std::max(height, 1u);
   if (width == targetWidth_ && height == targetHeight_) return;
   // The accumulation of the size left is set aside: going back to that size (Tab twice) resumes it.
-  const bool back = tracer_.hasParkedAccumulation() && parkedWidth_ == width && parkedHeight_ == height;
-  if (!back) parkAccumulation();
+  const Parked& sized = parked_[size_t(ParkSlot::Size)];
+  const bool back = hasParked(ParkSlot::Size) && sized.width == width && sized.height == height;
+  if (!back) parkAccumulation(ParkSlot::Size);
   targetWidth_ = width;
   targetHeight_ = height;
   previewValid_ = false;
-  if (back && resumeParked()) return;
+  if (back && resumeParked(ParkSlot::Size)) return;
   if (!inPreview_) resize(width, height);
   pendingInvalidate_ = true;
 }
@@ -61,35 +62,44 @@ void ProgressiveTracer::setSettings(RenderSettings settings) {
 
 void ProgressiveTracer::invalidate() {
   pendingInvalidate_ = true;
-  tracer_.dropParkedAccumulation();
+  dropParked();
 }
 
-bool ProgressiveTracer::parkAccumulation() {
-  tracer_.dropParkedAccumulation();
+void ProgressiveTracer::dropParked() {
+  dropParked(ParkSlot::Size);
+  dropParked(ParkSlot::Review);
+}
+
+bool ProgressiveTracer::parkAccumulation(ParkSlot slot) {
+  dropParked(slot);
   if (inPreview_ || pendingInvalidate_ || expectedSamples_ == 0 || tracer_.settings().width != targetWidth_ ||
       tracer_.settings().height != targetHeight_)
     return false;
-  tracer_.parkAccumulation(expectedSamples_);
-  parkedSamples_ = expectedSamples_;
-  parkedWidth_ = targetWidth_;
-  parkedHeight_ = targetHeight_;
-  parkedRow_ = cursor_;
-  parkedResetTime_ = resetTime_;
+  tracer_.parkAccumulation(slot, expectedSamples_);
+  parked_[size_t(slot)] = {expectedSamples_, cursor_, targetWidth_, targetHeight_, resetTime_};
   return true;
 }
 
-bool ProgressiveTracer::resumeParked() {
-  if (parkedWidth_ != targetWidth_ || parkedHeight_ != targetHeight_) {
-    tracer_.dropParkedAccumulation();  // of a size no longer traced
-    return false;
-  }
-  if (!tracer_.unparkAccumulation()) return false;
+bool ProgressiveTracer::parkedAtTargetSize(ParkSlot slot) const {
+  const Parked& p = parked_[size_t(slot)];
+  return hasParked(slot) && p.width == targetWidth_ && p.height == targetHeight_;
+}
+
+bool ProgressiveTracer::resumeParked(ParkSlot slot) {
+  if (!parkedAtTargetSize(slot) || !tracer_.unparkAccumulation(slot)) return false;
+  const Parked& p = parked_[size_t(slot)];
   inPreview_ = coarsePreview_ = pendingInvalidate_ = false;
-  cursor_ = parkedRow_;
+  cursor_ = p.row;
   expectedSamples_ = tracer_.samplesAccumulated();
-  resetTime_ = parkedResetTime_;
+  resetTime_ = p.resetTime;
   ++generation_;
   return true;
+}
+
+void ProgressiveTracer::moveParked(ParkSlot from, ParkSlot to) {
+  if (from == to) return;
+  tracer_.moveParkedAccumulation(from, to);
+  parked_[size_t(to)] = parked_[size_t(from)];
 }
 
 void ProgressiveTracer::resize(uint32_t width, uint32_t height) {

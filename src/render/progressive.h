@@ -5,6 +5,7 @@
 // of two that traces in a few milliseconds at the measured rate (none on a device where the preview is that
 // fast).
 #pragma once
+#include <array>
 #include <cstdint>
 
 #include "render/path_tracer.h"
@@ -57,17 +58,24 @@ class ProgressiveTracer {
   uint32_t coarseDivisor() const;
   const vk::Image& previewImage() const { return preview_; }
   bool previewValid() const { return previewValid_; }
-  // Right after a new pipeline's install, before anything is traced with it: sets the old pipeline's
-  // accumulation aside (images, samples, the row its next sample starts at) instead of letting the new image
-  // overwrite it. Returns false, keeping nothing, when there is nothing worth keeping (a preview, no finished
-  // sample). One accumulation is parked at a time: any restart (invalidate) and the next park forget it.
-  bool parkAccumulation();
-  // Takes the parked accumulation back (a revert, or a new pipeline that renders the same image): tracing
-  // goes on from its samples at full resolution. False when none is parked at the current target size.
-  bool resumeParked();
-  void dropParked() { tracer_.dropParkedAccumulation(); }
-  bool hasParked() const { return tracer_.hasParkedAccumulation(); }
-  uint32_t parkedSamples() const { return tracer_.hasParkedAccumulation() ? parkedSamples_ : 0; }
+  // Accumulations set aside, one per slot (PathTracer::ParkSlot): Size holds the size left (setTargetSize),
+  // Review the old pipeline's while an edit's comparison is pending. parkAccumulation() moves the current
+  // accumulation (images, samples, the row its next sample starts at) into a slot, dropping what the slot
+  // held; false, keeping nothing, when there is nothing worth keeping (a preview, no finished sample). Any
+  // restart (invalidate) forgets every slot.
+  using ParkSlot = PathTracer::ParkSlot;
+  bool parkAccumulation(ParkSlot slot);
+  // Takes a slot's accumulation back (a revert, a new pipeline that renders the same image, a size come back
+  // to): tracing goes on from its samples at full resolution. False when the slot holds none of the current
+  // target size (one of another size stays parked).
+  bool resumeParked(ParkSlot slot);
+  void dropParked(ParkSlot slot) { tracer_.dropParkedAccumulation(slot); }
+  void dropParked();
+  bool hasParked(ParkSlot slot) const { return tracer_.hasParkedAccumulation(slot); }
+  uint32_t parkedSamples(ParkSlot slot) const { return hasParked(slot) ? parked_[size_t(slot)].samples : 0; }
+  bool parkedAtTargetSize(ParkSlot slot) const;
+  // Hands a slot's accumulation to another (dropping what that one held).
+  void moveParked(ParkSlot from, ParkSlot to);
   // Seconds of wall time since the last restart (for the Stats panel).
   double secondsSinceReset() const;
 
@@ -90,9 +98,12 @@ class ProgressiveTracer {
   double pixelsPerMs_ = 250.0;  // lavapipe: a 512x512 sample in about a second
   vk::Image preview_;
   double resetTime_ = 0;
-  uint32_t parkedSamples_ = 0, parkedRow_ = 0;  // the parked accumulation's (see parkAccumulation)
-  uint32_t parkedWidth_ = 0, parkedHeight_ = 0;
-  double parkedResetTime_ = 0;
+  // What each slot's parked accumulation was (see parkAccumulation), by ParkSlot.
+  struct Parked {
+    uint32_t samples = 0, row = 0, width = 0, height = 0;
+    double resetTime = 0;
+  };
+  std::array<Parked, 2> parked_{};
 };
 
 }  // namespace wb::render

@@ -3,8 +3,10 @@
 // the same display while the window's script waits for it (wait_file, wait_clicks), reading where widgets are
 // from the stats JSON the script writes.
 #pragma once
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -16,9 +18,12 @@
 
 namespace wb::testing {
 
-inline bool waitForFile(const std::filesystem::path& p, double seconds) {
+// Waits for `p` to exist, at most `seconds`, and no longer than `alive` says the writer runs.
+inline bool waitForFile(const std::filesystem::path& p, double seconds,
+                        const std::function<bool()>& alive = {}) {
   const auto start = std::chrono::steady_clock::now();
   while (!std::filesystem::exists(p)) {
+    if (alive && !alive()) return std::filesystem::exists(p);
     if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds)
       return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -46,7 +51,10 @@ class LiveWindow {
                             " -s '-screen 0 1024x768x24' sh -c 'echo $DISPLAY > " + displayFile.string() +
                             ".tmp && mv " + displayFile.string() + ".tmp " + displayFile.string() +
                             " && exec " + WB_WORKBENCH_BIN + " " + workbenchArgs + "'";
-    thread_ = std::thread([this, cmd] { result_ = runCommand(cmd); });
+    thread_ = std::thread([this, cmd] {
+      result_ = runCommand(cmd);
+      exited_ = true;
+    });
     if (waitForFile(displayFile, 300)) {
       std::ifstream f(displayFile);
       std::getline(f, display_);
@@ -77,12 +85,19 @@ class LiveWindow {
     return result_;
   }
   const std::string& display() const { return display_; }
+  // awaitJson, giving up as soon as the window has exited (a script that failed writes nothing more).
+  nlohmann::json awaitJson(const std::filesystem::path& p, double seconds = 600) const {
+    if (!waitForFile(p, seconds, [this] { return !exited_.load(); })) return nullptr;
+    std::ifstream f(p);
+    return nlohmann::json::parse(f, nullptr, false);
+  }
 
  private:
   std::filesystem::path dir_;
   std::string display_;
   std::thread thread_;
   CommandResult result_;
+  std::atomic<bool> exited_{false};
 };
 
 }  // namespace wb::testing

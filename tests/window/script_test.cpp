@@ -26,6 +26,8 @@ struct FakeHost : wb::app::ScriptHost {
   size_t reloadCount() const override { return reloads; }
   uint32_t samples() const override { return sampleCount; }
   uint64_t clicksPresented() const override { return clicks; }
+  bool denoised = true;
+  bool denoisedAsAsked() const override { return denoised; }
 };
 
 }  // namespace
@@ -43,11 +45,13 @@ TEST(Script, AScreenshotIsTakenBeforeTheNextCommandsApply) {
 }
 
 TEST(Script, AWaitThatTimesOutFailsTheScript) {
-  for (const char* line : {"wait_samples 5 0.05", "wait_reload 0.05", "wait_clicks 2 0.05"}) {
+  for (const char* line : {"wait_samples 5 0.05", "wait_samples +1 0.05", "wait_reload 0.05",
+                           "wait_clicks 2 0.05", "wait_denoised 0.05"}) {
     wb::app::Script s;
     s.addLine(line, "t:7");
     FakeHost host;
     host.sampleCount = 1;
+    host.denoised = false;
     bool threw = false;
     // Waits for the deadline to pass (the event), however long that takes on a busy machine.
     for (int i = 0; i < 100000 && !threw; ++i) {
@@ -73,9 +77,11 @@ TEST(Script, AWaitThatTimesOutFailsTheScript) {
 // line is read, naming the file and line (issue 33: `frames nan`, `frames -1`, `orbit nan inf` were taken).
 TEST(Script, CountsDurationsAndMovesAreCheckedWhenRead) {
   for (const char* line :
-       {"frames nan", "frames -1", "frames 0", "frames 2.5", "frames 0x10", "wait_reload inf",
-        "wait_reload 0", "wait_samples -1", "wait_samples 4 nan", "wait_file x -3", "sleep -1",
-        "wait_mode 1e999", "orbit nan 0", "orbit 0 inf", "orbit 1e30 0", "resize 10 10", "resize 640 nan"}) {
+       {"frames nan",       "frames -1",       "frames 0",         "frames 2.5",         "frames 0x10",
+        "wait_reload inf",  "wait_reload 0",   "wait_samples -1",  "wait_samples 4 nan", "wait_file x -3",
+        "sleep -1",         "wait_mode 1e999", "wait_samples +-2", "wait_samples +",     "wait_samples +nan",
+        "wait_denoised -1", "orbit nan 0",     "orbit 0 inf",      "orbit 1e30 0",       "resize 10 10",
+        "resize 640 nan"}) {
     wb::app::Script s;
     try {
       s.addLine(line, "t.txt:3");
@@ -85,8 +91,9 @@ TEST(Script, CountsDurationsAndMovesAreCheckedWhenRead) {
     }
   }
   wb::app::Script ok;
-  for (const char* line : {"frames 3", "wait_reload 0.5", "wait_samples 4", "wait_samples 4 10", "sleep 0",
-                           "orbit -20.5 3", "resize 640 480", "wait_file x 2"})
+  for (const char* line :
+       {"frames 3", "wait_reload 0.5", "wait_samples 4", "wait_samples 4 10", "wait_samples +4 10",
+        "wait_denoised", "wait_denoised 5", "sleep 0", "orbit -20.5 3", "resize 640 480", "wait_file x 2"})
     EXPECT_NO_THROW(ok.addLine(line, "t.txt:1")) << line;
 }
 
@@ -134,4 +141,26 @@ TEST(Script, WaitClicksWaitsForTheClicksOnScreen) {
   EXPECT_EQ(host.log, (std::vector<std::string>{"stats s.json"}));
   EXPECT_THROW(wb::app::Script().addLine("wait_clicks 1.5", "t:3"), std::runtime_error);
   EXPECT_THROW(wb::app::Script().addLine("wait_clicks", "t:4"), std::runtime_error);
+}
+
+// wait_samples +N counts from the samples when the wait begins; wait_denoised goes on once the view is
+// denoised as asked.
+TEST(Script, RelativeSampleWaitsAndTheDenoisedView) {
+  wb::app::Script s;
+  s.addLine("wait_samples +3 600", "t:1");
+  s.addLine("wait_denoised 600", "t:2");
+  s.addLine("stats s.json", "t:3");
+  FakeHost host;
+  host.sampleCount = 5;
+  host.denoised = false;
+  EXPECT_TRUE(s.step(host));  // the wait begins at 5 samples
+  host.sampleCount = 7;
+  EXPECT_TRUE(s.step(host));
+  host.sampleCount = 8;
+  EXPECT_TRUE(s.step(host));  // 5 + 3 reached: now waiting for the denoised view
+  EXPECT_TRUE(s.step(host));
+  EXPECT_TRUE(host.log.empty());
+  host.denoised = true;
+  EXPECT_FALSE(s.step(host));
+  EXPECT_EQ(host.log, (std::vector<std::string>{"stats s.json"}));
 }

@@ -942,9 +942,9 @@ TEST(Window, DenoiseToggleAndSplitView) {
   REQUIRE_XVFB();
   const auto dir = tempDir("denoise");
   const auto raw = dir / "raw.png", den = dir / "den.png", split = dir / "split.png";
-  writeFile(dir / "s.txt", "wait_samples 2 300\nset paused 1\nframes 3\nscreenshot " + den.string() +
-                               "\nframes 1\nset denoise 0\nframes 3\nscreenshot " + raw.string() +
-                               "\nstats " + (dir / "raw.json").string() +
+  writeFile(dir / "s.txt", "wait_samples 2 300\nwait_denoised 300\nset paused 1\nframes 3\nscreenshot " +
+                               den.string() + "\nframes 1\nset denoise 0\nframes 3\nscreenshot " +
+                               raw.string() + "\nstats " + (dir / "raw.json").string() +
                                "\nframes 1\nset denoise 1\nset denoise_split 0.5\nframes 3\nscreenshot " +
                                split.string() + "\nframes 1\nstats " + (dir / "s.json").string() + "\n");
   auto r = runWindow("--script " + (dir / "s.txt").string());
@@ -974,16 +974,17 @@ TEST(Window, DenoiseToggleAndSplitView) {
   EXPECT_LT(lastRaw, firstDen) << "raw left of the split, denoised right of it";
 }
 
-// The window's denoiser runs when the image gains samples, not every frame: paused, frame after frame shows the
-// same output and filters nothing again; its GPU time is measured apart from the trace's (the trace's time
-// paces the strips).
+// The window's denoiser runs when the image gains samples, not every frame: paused, frame after frame shows
+// the same output and filters nothing again; its GPU time is measured apart from the trace's (the trace's
+// time paces the strips).
 TEST(Window, DenoiserRunsOnlyForNewSamples) {
   REQUIRE_XVFB();
   const auto dir = tempDir("denoise_runs");
   const auto a = dir / "a.json", b = dir / "b.json", c = dir / "c.json";
-  writeFile(dir / "s.txt", "wait_samples 2 300\nset paused 1\nframes 3\nstats " + a.string() +
-                               "\nframes 12\nstats " + b.string() + "\nset paused 0\nwait_samples 4 300\nframes 3\n" +
-                               "stats " + c.string() + "\n");
+  writeFile(dir / "s.txt", "wait_samples 2 300\nwait_denoised 300\nset paused 1\nframes 3\nstats " +
+                               a.string() + "\nframes 12\nstats " + b.string() +
+                               "\nset paused 0\nwait_samples 4 300\nframes 3\n" + "stats " + c.string() +
+                               "\n");
   auto r = runWindow("--script " + (dir / "s.txt").string());
   ASSERT_EQ(r.code, 0) << r.output;
   const auto ja = readJson(a), jb = readJson(b), jc = readJson(c);

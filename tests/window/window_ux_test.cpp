@@ -406,6 +406,53 @@ TEST(WindowUx, RevertAndAnIdenticalRebuildKeepTheSamples) {
       << "an identical rebuild threw the samples away: " << same["ab_note"];
 }
 
+// Both accumulations set aside survive each other: Tab while an edit's comparison is pending parks the size
+// left without losing the old pipeline's samples, so Revert after Tab and back goes on with them; Revert
+// while the other size shows keeps the old pipeline's samples for when its size comes back.
+TEST(WindowUx, TabDuringAPendingComparisonKeepsTheOldSamples) {
+  REQUIRE_TOOLS();
+  const auto dir = tempDir("kept_tab");
+  const fs::path root = privateRoot(dir);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  const std::string original = readFile(watched);
+  const std::string needle = "  sm.baseColor = baseColor.rgb;";
+  ASSERT_NE(original.find(needle), std::string::npos);
+  std::string first = original, second = original;
+  first.replace(first.find(needle), needle.size(), "  sm.baseColor = baseColor.rgb * 1.05;");
+  second.replace(second.find(needle), needle.size(), "  sm.baseColor = baseColor.rgb * 1.1;");
+  writeFile(dir / "first.rchit", first);
+  writeFile(dir / "second.rchit", second);
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  auto edit = [&](const std::string& file) {
+    return "copy " + p(file) + " " + watched.string() + "\nwait_reload 600\nframes 3\n";
+  };
+  // The script says it is ready for a Tab (a stats file), then waits until the test has sent it.
+  auto tab = [&](const std::string& go) {
+    return "stats " + p(go + ".json") + "\nwait_file " + p(go) + " 600\nframes 3\n";
+  };
+  writeFile(dir / "s.txt",
+            "wait_samples 4 600\nstats " + p("before.json") + "\n" + edit("first.rchit") + tab("go1") +
+                "wait_samples +1 600\n" + tab("go2") + "ab_revert\nframes 1\nstats " + p("reverted.json") +
+                "\nwait_samples +1 600\nstats " + p("before2.json") + "\n" + edit("second.rchit") +
+                tab("go3") + "ab_revert\nframes 1\n" + tab("go4") + "stats " + p("back.json") + "\nquit\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"), "WB_ROOT=" + root.string());
+  for (const std::string go : {"go1", "go2", "go3", "go4"}) {
+    ASSERT_TRUE(w.awaitJson(dir / (go + ".json")).is_object()) << go << "\n" << w.finish().output;
+    EXPECT_EQ(w.xdotool("mousemove 500 200 key Tab"), 0);
+    w.signal(go);
+  }
+  const auto r = w.finish();
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto before = awaitJson(dir / "before.json", 1), reverted = awaitJson(dir / "reverted.json", 1);
+  const auto before2 = awaitJson(dir / "before2.json", 1), back = awaitJson(dir / "back.json", 1);
+  EXPECT_EQ(reverted["target_width"], before["target_width"]);
+  EXPECT_GE(reverted["samples"].get<int>(), before["samples"].get<int>())
+      << "Tab during the comparison lost the old pipeline's samples: " << reverted["ab_note"];
+  EXPECT_EQ(back["target_width"], before2["target_width"]);
+  EXPECT_GE(back["samples"].get<int>(), before2["samples"].get<int>())
+      << "Revert while the other size showed lost the old pipeline's samples";
+}
+
 // A pixel picked by a click keeps its point of the scene when the image changes size (Tab): the middle of
 // the image stays the middle.
 TEST(WindowUx, APickedPixelFollowsTheImageThroughTab) {

@@ -1,8 +1,8 @@
 // What the window puts on screen and how: the swapchain of the window's surface, the display pass, the ImGui
-// layer, screenshots, and one command buffer in flight at a time with GPU timestamps around its trace, the work
-// after the trace (the denoiser) and its display. A frame records the session's trace (a callback), the work
-// after it (another callback), then the display pass and the panel into the swapchain's render pass, submits
-// and presents; a trace-only submission records the trace alone.
+// layer, screenshots, and one command buffer in flight at a time with GPU timestamps around its trace, the
+// work after the trace (the denoiser) and its display. A frame records the session's trace (a callback), the
+// work after it (another callback), then the display pass and the panel into the swapchain's render pass,
+// submits and presents; a trace-only submission records the trace alone.
 #pragma once
 #include <chrono>
 #include <functional>
@@ -54,9 +54,10 @@ class Presenter {
   // Records what a shown frame does after its trace (the denoiser), timed apart from it: the trace's time
   // paces the trace alone.
   using AfterTraceRecorder = std::function<void(VkCommandBuffer)>;
-  // A frame: the trace, the work after it, the display pass with `push` (when the image rectangle is not empty) and the ImGui
-  // panel, submitted and presented. `screenshot`: the presented image is written there once the frame
-  // finished. False when nothing was presented (minimised, or the swapchain had to be made anew).
+  // A frame: the trace, the work after it, the display pass with `push` (when the image rectangle is not
+  // empty) and the ImGui panel, submitted and presented. `screenshot`: the presented image is written there
+  // once the frame finished. False when nothing was presented (minimised, or the swapchain had to be made
+  // anew).
   bool present(const TraceRecorder& trace, const AfterTraceRecorder& afterTrace, const gpu::DisplayPush& push,
                const std::string& screenshot);
   // A submission of the trace alone, waited for. False when it traced nothing.
@@ -69,8 +70,8 @@ class Presenter {
   bool finish();
   bool frameInFlight() const { return inFlight_; }
 
-  // The last finished submission: pixels traced, trace GPU time (ms); the last shown frame: the GPU time of the
-  // work after its trace and of its display (ms).
+  // The last finished submission: pixels traced, trace GPU time (ms); the last shown frame: the GPU time of
+  // the work after its trace and of its display (ms).
   uint64_t tracedPixels() const { return tracedPixels_; }
   double traceMs() const { return traceMs_; }
   double afterTraceMs() const { return afterTraceMs_; }

@@ -14,10 +14,10 @@ namespace wb::app {
 namespace {
 
 const std::set<std::string> kCommands = {
-    "frames",    "set",         "screenshot",   "save",         "stats", "copy",
-    "orbit",     "wait_reload", "wait_samples", "reset_camera", "reset", "reload",
-    "quit",      "resize",      "wait_file",    "inspect",      "sleep", "switch_mode",
-    "wait_mode", "ab_revert",   "ab_accept",    "wait_clicks"};
+    "frames",    "set",         "screenshot",   "save",         "stats",        "copy",
+    "orbit",     "wait_reload", "wait_samples", "reset_camera", "reset",        "reload",
+    "quit",      "resize",      "wait_file",    "inspect",      "sleep",        "switch_mode",
+    "wait_mode", "ab_revert",   "ab_accept",    "wait_clicks",  "wait_denoised"};
 
 // Arguments are checked when the script is read (Script::addLine): every number here is a finite decimal.
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
@@ -89,8 +89,17 @@ void Script::addLine(const std::string& line, const std::string& where) {
   // Every count and duration is finite and in range: a script that never ends is refused when read.
   const auto& w = c.words;
   if (cmd == "frames") checkNumber(w, 1, "N", 1, 1e9, true, where);
-  if (cmd == "wait_samples") checkNumber(w, 1, "N", 0, UINT32_MAX, true, where);
-  if (cmd == "wait_reload" || cmd == "wait_mode")
+  if (cmd == "wait_samples") {
+    // +N: relative to the samples when the wait begins (the number is checked without its sign).
+    if (w[1].size() > 1 && w[1][0] == '+') {
+      auto plain = w;
+      plain[1] = w[1].substr(1);
+      checkNumber(plain, 1, "+N", 0, UINT32_MAX, true, where);
+    } else {
+      checkNumber(w, 1, "N", 0, UINT32_MAX, true, where);
+    }
+  }
+  if (cmd == "wait_reload" || cmd == "wait_mode" || cmd == "wait_denoised")
     checkNumber(w, 1, "SECONDS", 1e-3, kMaxWaitSeconds, false, where);
   if (cmd == "wait_clicks") checkNumber(w, 1, "N", 0, 1e9, true, where);
   if (cmd == "wait_samples" || cmd == "wait_file" || cmd == "wait_clicks")
@@ -125,7 +134,7 @@ bool Script::waitingForEvent() const {
   if (!waiting_ || next_ >= commands_.size()) return false;
   const std::string& cmd = commands_[next_].words[0];
   return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file" || cmd == "sleep" ||
-         cmd == "wait_mode" || cmd == "wait_clicks";
+         cmd == "wait_mode" || cmd == "wait_clicks" || cmd == "wait_denoised";
 }
 
 bool Script::step(ScriptHost& host) {
@@ -155,16 +164,29 @@ bool Script::step(ScriptHost& host) {
                                  std::to_string(numberArg(w, 1, 20, c.where)) + " s");
       }
     } else if (cmd == "wait_samples") {
+      const bool relative = w[1][0] == '+';
       if (!waiting_) {
         waiting_ = true;
+        samplesAtStart_ = host.samples();
         deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 2, 60, c.where)));
       }
-      const uint32_t want = uint32_t(numberArg(w, 1, 1, c.where));
+      const uint32_t want = uint32_t(numberArg({relative ? w[1].substr(1) : w[1]}, 0, 1, c.where)) +
+                            (relative ? samplesAtStart_ : 0u);
       if (host.samples() < want) {
         if (clock::now() < deadline_) return true;
         throw std::runtime_error(c.where + ": wait_samples: " + std::to_string(host.samples()) + " of " +
                                  std::to_string(want) + " samples after " +
                                  std::to_string(numberArg(w, 2, 60, c.where)) + " s");
+      }
+    } else if (cmd == "wait_denoised") {
+      if (!waiting_) {
+        waiting_ = true;
+        deadline_ = clock::now() + std::chrono::milliseconds(int64_t(1000 * numberArg(w, 1, 60, c.where)));
+      }
+      if (!host.denoisedAsAsked()) {
+        if (clock::now() < deadline_) return true;
+        throw std::runtime_error(c.where + ": wait_denoised: the denoised image is not shown after " +
+                                 std::to_string(numberArg(w, 1, 60, c.where)) + " s");
       }
     } else if (cmd == "wait_file") {
       if (!waiting_) {

@@ -8,7 +8,10 @@
 //   copy SRC DST             copy a file (e.g. a broken shader over a watched one)
 //   wait_reload [SECONDS]    render until the next shader reload is applied (default 20 s; past it the
 //                            script fails: exit status 1 with the reason)
-//   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails)
+//   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails);
+//                            +N: N more than when the wait begins
+//   wait_denoised [SECONDS]  render until the image shown is the denoiser's output of the current image (at
+//                            once when denoise is off or a hybrid mode shows; default 60 s, then fails)
 //   wait_file PATH [SECONDS] render until PATH exists (another program's signal; default 60 s, then fails)
 //   wait_clicks N [SECONDS]  render until N left clicks in all (since the window opened) are on screen: the
 //                            frame that drew each click's effect finished (default 60 s, then fails)
@@ -59,6 +62,8 @@ class ScriptHost {
   virtual uint64_t clicksPresented() const { return 0; }
   virtual size_t reloadCount() const = 0;
   virtual uint32_t samples() const = 0;
+  // The image shown is denoised as the settings ask (wait_denoised).
+  virtual bool denoisedAsAsked() const { return true; }
 };
 
 // A file a script writes (save, screenshot, stats, inspect), and the line that writes it.
@@ -98,6 +103,7 @@ class Script {
   bool waiting_ = false;
   uint64_t framesLeft_ = 0;
   size_t reloadsAtStart_ = 0;
+  uint32_t samplesAtStart_ = 0;
   std::chrono::steady_clock::time_point deadline_;
 };
 

@@ -297,7 +297,7 @@ void WorkbenchWindow::drawFrame(float dt) {
   // later), unless the image has nothing to show yet. The denoiser runs only in frames that trace.
   const bool trace = redrawOnlyFrames_ == 0 || !session_->imageStarted();
   if (redrawOnlyFrames_ > 0) --redrawOnlyFrames_;
-  session_->planDenoise(trace);
+  session_->planDenoise(trace, secondsBetween(lastInput_, Clock::now()));
   const live::DisplayFrame d = session_->displayFrame();
   presenter_->display().setSources(
       {d.radiance, d.albedo, d.normal, d.info, d.preview, d.stats, d.cost, d.denoised});

@@ -58,6 +58,9 @@ class WorkbenchWindow : public ScriptHost {
   size_t reloadCount() const override { return session_->loop().hot().history().size(); }
   uint32_t samples() const override { return session_->inPreview() ? 0 : session_->samples(); }
   uint64_t clicksPresented() const override { return clickScreenNs_.size(); }
+  bool denoisedAsAsked() const override {
+    return !presenter_->frameInFlight() && session_->denoisedAsAsked();
+  }
 
  private:
   int frameLoop();
