@@ -267,6 +267,34 @@ TEST(WindowUx, ClickSelectsDragOrbitsWheelDolliesCtrlQQuits) {
   EXPECT_NEAR(glm::dot(vec3Of(e["parameters"]["camera"]["forward"]), f1), 1.0f, 1e-4f);
 }
 
+// A drag made while the window's loop is busy (frames of ~0.4 s: the whole drag falls between two polls of
+// its events) turns the camera as far as a drag the loop follows: the drag starts where its button went
+// down, not where the pointer is when the loop gets to it.
+TEST(WindowUx, ADragBetweenTwoPollsKeepsItsStart) {
+  REQUIRE_TOOLS();
+  const auto dir = tempDir("slow_drag");
+  auto p = [&](const std::string& name) { return (dir / name).string(); };
+  writeFile(dir / "s.txt", "wait_samples 1 600\nset budget_ms 400\nframes 2\nstats " + p("a.json") +
+                               "\nwait_file " + p("go") + " 600\nframes 3\nstats " + p("b.json") +
+                               "\nquit\n");
+  LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
+  const auto a = w.awaitJson(dir / "a.json");
+  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  std::string drag = "mousemove " + imagePoint(a, 0.05, 0.5) + " sleep 0.1 mousedown 1";
+  for (int i = 1; i <= 9; ++i) drag += " mousemove " + imagePoint(a, 0.05 + 0.1 * i, 0.5) + " sleep 0.01";
+  EXPECT_EQ(w.xdotool(drag + " mouseup 1"), 0);
+  w.signal("go");
+  const auto b = w.awaitJson(dir / "b.json");
+  const auto r = w.finish();
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(b.is_object());
+  const glm::vec3 f0 = vec3Of(a["parameters"]["camera"]["forward"]),
+                  f1 = vec3Of(b["parameters"]["camera"]["forward"]);
+  const float turned = glm::degrees(std::acos(glm::clamp(
+      glm::dot(glm::normalize(glm::vec2(f0.x, f0.z)), glm::normalize(glm::vec2(f1.x, f1.z))), -1.0f, 1.0f)));
+  EXPECT_NEAR(turned, 162.0f, 25.0f) << "a drag across 90% of the image while the loop was busy";
+}
+
 // The inspector holds the sample the user picks on its slider: with two records kept and more samples
 // traced, the chosen one is still shown (its record held) after it left the kept ones.
 TEST(WindowUx, TheInspectorHoldsTheChosenSample) {

@@ -26,8 +26,8 @@ InputEvents::InputEvents(GLFWwindow* window) : window_(window) {
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double) {
     if (auto* e = eventsOf(w)) e->onActivity(true);
   });
-  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double, double) {
-    if (auto* e = eventsOf(w)) e->onActivity();
+  glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
+    if (auto* e = eventsOf(w)) e->onCursor(x, y);
   });
 }
 
@@ -41,9 +41,30 @@ void InputEvents::onKey(int key, int action, int mods) {
   if (action == GLFW_PRESS) keys_.push_back({key, mods});
 }
 
+void InputEvents::onCursor(double x, double y) {
+  {
+    std::lock_guard lock(mutex_);
+    cursor_ = glm::dvec2(x, y);
+  }
+  onActivity();
+}
+
 void InputEvents::onButton(int button, int action) {
+  // Where the button changed: the last motion event's position, in the order the events came. (X11's
+  // glfwGetCursorPos asks the server where the pointer is now, which can be several motions further on
+  // when the loop polls late: a drag would lose its start.)
   double x = 0, y = 0;
-  glfwGetCursorPos(window_, &x, &y);
+  std::optional<glm::dvec2> cursor;
+  {
+    std::lock_guard lock(mutex_);
+    cursor = cursor_;
+  }
+  if (cursor) {
+    x = cursor->x;
+    y = cursor->y;
+  } else {
+    glfwGetCursorPos(window_, &x, &y);
+  }
   int ww = 0, wh = 0, fw = 0, fh = 0;
   glfwGetWindowSize(window_, &ww, &wh);
   glfwGetFramebufferSize(window_, &fw, &fh);

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -48,6 +49,7 @@ class InputEvents {
   // The callbacks' entry points (public for the C callbacks).
   void onKey(int key, int action, int mods);
   void onButton(int button, int action);
+  void onCursor(double x, double y);  // window coordinates, as GLFW reports a motion
   void onActivity(bool discrete = false);
 
  private:
@@ -56,6 +58,7 @@ class InputEvents {
   std::vector<KeyPress> keys_;
   std::vector<ButtonChange> buttons_;
   std::vector<int64_t> releaseNs_;
+  std::optional<glm::dvec2> cursor_;  // the last motion event's position (window coordinates)
   bool activity_ = false;
   bool discrete_ = false;
 };
