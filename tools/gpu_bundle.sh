@@ -23,7 +23,9 @@ cp -r ../shared "$stage/shared"
 cat > "$stage/env.sh" <<'EOF'
 # Sourced from the repository root on the GPU machine after unpacking the bundle into .gpu/.
 export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-export LD_LIBRARY_PATH=$PWD/.gpu/lib VK_LAYER_PATH=$PWD/.gpu/layer WB_SHARED_DIR=$PWD/.gpu/shared
+# The validation layer library sits beside its manifest, which names it without a path: the loader dlopens it
+# through LD_LIBRARY_PATH.
+export LD_LIBRARY_PATH=$PWD/.gpu/lib:$PWD/.gpu/layer VK_LAYER_PATH=$PWD/.gpu/layer WB_SHARED_DIR=$PWD/.gpu/shared
 # The binaries find shaders/ and assets/ from their own location: they sit in the repository root's .gpu/bin,
 # so WB_ROOT names the root.
 export WB_ROOT=$PWD
