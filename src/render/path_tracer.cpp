@@ -182,7 +182,8 @@ AssertReport PathTracer::readAsserts() const {
   AssertReport r;
   r.failures = h.failures;
   r.records.resize(std::min(h.failures, h.capacity));
-  std::memcpy(r.records.data(), assertRecords_.mapped(), r.records.size() * sizeof(gpu::AssertRecord));
+  if (!r.records.empty())  // memcpy's pointers must not be null, even for zero bytes
+    std::memcpy(r.records.data(), assertRecords_.mapped(), r.records.size() * sizeof(gpu::AssertRecord));
   return r;
 }
 

@@ -164,3 +164,27 @@ TEST(Script, RelativeSampleWaitsAndTheDenoisedView) {
   EXPECT_FALSE(s.step(host));
   EXPECT_EQ(host.log, (std::vector<std::string>{"stats s.json"}));
 }
+
+// Between drawn frames (the window traces without presenting while a script waits for an event) only the
+// event waits are checked: a wait that ends there leaves the next commands to the drawn frames, so `frames 2`
+// still counts two drawn frames and `stats` reports what a drawn frame showed (a CI run under ASan wrote its
+// stats one drawn frame early when the samples arrived between presents).
+TEST(Script, BetweenDrawnFramesOnlyTheEventWaitsRun) {
+  wb::app::Script s;
+  s.addLine("wait_samples 2 600", "t:1");
+  s.addLine("frames 2", "t:2");
+  s.addLine("stats a.json", "t:3");
+  FakeHost host;
+  EXPECT_TRUE(s.step(host, true));
+  EXPECT_TRUE(s.waitingForEvent());
+  host.sampleCount = 2;
+  EXPECT_TRUE(s.step(host, true));  // the wait ends; `frames 2` waits for the next drawn frame
+  EXPECT_FALSE(s.waitingForEvent());
+  EXPECT_TRUE(s.step(host, true));  // still nothing run between drawn frames
+  EXPECT_TRUE(host.log.empty());
+  EXPECT_TRUE(s.step(host));  // drawn frame 1
+  EXPECT_TRUE(s.step(host));  // drawn frame 2
+  EXPECT_TRUE(host.log.empty());
+  EXPECT_FALSE(s.step(host));
+  EXPECT_EQ(host.log, (std::vector<std::string>{"stats a.json"}));
+}

@@ -19,6 +19,12 @@ const std::set<std::string> kCommands = {
     "quit",      "resize",      "wait_file",    "inspect",      "sleep",        "switch_mode",
     "wait_mode", "ab_revert",   "ab_accept",    "wait_clicks",  "wait_denoised"};
 
+// The commands that wait for an event (a reload, samples, a file, time) rather than for drawn frames.
+bool isEventWait(const std::string& cmd) {
+  return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file" || cmd == "sleep" ||
+         cmd == "wait_mode" || cmd == "wait_clicks" || cmd == "wait_denoised";
+}
+
 // Arguments are checked when the script is read (Script::addLine): every number here is a finite decimal.
 double numberArg(const std::vector<std::string>& w, size_t i, double fallback, const std::string& where) {
   if (i >= w.size()) return fallback;
@@ -131,18 +137,16 @@ std::vector<ScriptOutput> Script::outputs() const {
 }
 
 bool Script::waitingForEvent() const {
-  if (!waiting_ || next_ >= commands_.size()) return false;
-  const std::string& cmd = commands_[next_].words[0];
-  return cmd == "wait_reload" || cmd == "wait_samples" || cmd == "wait_file" || cmd == "sleep" ||
-         cmd == "wait_mode" || cmd == "wait_clicks" || cmd == "wait_denoised";
+  return waiting_ && next_ < commands_.size() && isEventWait(commands_[next_].words[0]);
 }
 
-bool Script::step(ScriptHost& host) {
+bool Script::step(ScriptHost& host, bool eventsOnly) {
   using clock = std::chrono::steady_clock;
   while (next_ < commands_.size()) {
     const Command& c = commands_[next_];
     const auto& w = c.words;
     const std::string& cmd = w[0];
+    if (eventsOnly && !isEventWait(cmd)) return true;  // the next drawn frame runs it
     if (cmd == "frames") {
       if (!waiting_) {
         waiting_ = true;

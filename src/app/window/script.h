@@ -85,8 +85,10 @@ class Script {
   std::vector<ScriptOutput> outputs() const;
 
   // Runs commands until one has to wait for frames. Call once per frame boundary. Returns false once every
-  // command has run. Command failures throw std::runtime_error naming the script line.
-  bool step(ScriptHost& host);
+  // command has run. Command failures throw std::runtime_error naming the script line. `eventsOnly` (between
+  // drawn frames, where the window traces without presenting) checks the event waits and stops before any
+  // other command: `frames N` counts drawn frames, and what a command acts on is what the last frame drew.
+  bool step(ScriptHost& host, bool eventsOnly = false);
   bool finished() const { return next_ >= commands_.size(); }
   // Whether the current command waits for an event (a reload, samples, a file) rather than for frames: the
   // window may trace without presenting meanwhile.

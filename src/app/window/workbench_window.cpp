@@ -201,7 +201,7 @@ bool WorkbenchWindow::traceWhileConverging(int& exitCode) {
     if (takeInput()) break;
     if (hasScript_) {
       try {
-        if (!script_.step(*this) || !script_.waitingForEvent()) break;
+        if (!script_.step(*this, true) || !script_.waitingForEvent()) break;
       } catch (const std::exception& e) {
         fatalScriptError_ = e.what();
         exitCode = 1;
