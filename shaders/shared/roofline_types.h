@@ -8,6 +8,7 @@
 #define WB_ROOFLINE_PRIMARY 0u  // a camera ray per pixel (through its centre); writes the hit G-buffer
 #define WB_ROOFLINE_DIFFUSE 1u  // a camera ray per pixel, then one cosine-distributed bounce from its hit
 #define WB_ROOFLINE_SHADOW 2u   // from each G-buffer hit facing the light, one shadow ray (terminate on first hit)
+#define WB_ROOFLINE_PATH 3u     // a camera ray, then per hit a shadow ray (facing the light) and a cosine bounce
 
 WB_NAMESPACE_BEGIN
 
@@ -20,6 +21,7 @@ struct RooflineConstants {
   uvec2 imageSize;  // pixels
   uint kind;        // WB_ROOFLINE_*
   uint frame;       // varies the bounce directions from launch to launch
+  uint bounces;     // WB_ROOFLINE_PATH: the bounces of a walk at most (the path tracer's maxBounces)
 };
 
 WB_NAMESPACE_END

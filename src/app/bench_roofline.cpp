@@ -16,7 +16,7 @@ namespace {
 constexpr double kRoundSeconds = 0.05;  // device time of one kind's launches in a round
 
 const render::BareRays kKinds[] = {render::BareRays::Primary, render::BareRays::Diffuse,
-                                   render::BareRays::Shadow};
+                                   render::BareRays::Shadow, render::BareRays::Path};
 
 }  // namespace
 
@@ -43,7 +43,7 @@ GpuSampleTiming timePathTracerOnGpu(render::RenderSession& s, uint32_t samples) 
 nlohmann::json benchRoofline(render::RenderSession& s, int rounds) {
   const auto& settings = s.renderer().settings();
   render::Roofline roofline({s.context(), s.library(), s.scene(), s.gpuScene(), s.environment()},
-                            settings.width, settings.height, s.camera());
+                            settings.width, settings.height, s.camera(), settings.maxBounces);
   vk::Context& ctx = s.context();
   const auto timeBare = [&](render::BareRays kind, uint32_t launches) {
     return vk::gpuSeconds(ctx, [&](VkCommandBuffer cmd) { roofline.record(cmd, kind, launches); }) / launches;
@@ -83,6 +83,11 @@ nlohmann::json benchRoofline(render::RenderSession& s, int rounds) {
   j["pathtracer_samples_per_round"] = ptSamples;
   j["pathtracer_vs_bare_diffuse_ratio"] =
       rate[render::BareRays::Diffuse] > 0 ? ptRate / rate[render::BareRays::Diffuse] : 0.0;
+  // Against bare paths of the same bounces: the share of the path tracer's time per ray that traversal of
+  // its own mix of rays (incoherent after the first bounce) would take with trivial shading.
+  j["pathtracer_vs_bare_path_ratio"] =
+      rate[render::BareRays::Path] > 0 ? ptRate / rate[render::BareRays::Path] : 0.0;
+  j["bare_path_bounces"] = settings.maxBounces;
   j["roofline_rounds"] = rounds;
   return j;
 }

@@ -436,16 +436,19 @@ void printSummary(const json& result, const std::string& cmdline) {
     }
   }
   if (result.contains("pathtracer")) {
-    std::printf("%-14s %-10s %12s %12s %12s %12s %9s   (roofline: rays/s, GPU time)\n", "scene", "size",
-                "bare prim.", "bare diff.", "bare shadow", "pathtracer", "pt/diff");
+    std::printf("%-14s %-10s %12s %12s %12s %12s %12s %9s %9s   (roofline: rays/s, GPU time)\n", "scene",
+                "size", "bare prim.", "bare diff.", "bare shadow", "bare path", "pathtracer", "pt/diff",
+                "pt/path");
     for (const auto& r : result["pathtracer"]) {
       if (!r.contains("pathtracer_vs_bare_diffuse_ratio")) continue;
-      std::printf("%-14s %-10s %12.3g %12.3g %12.3g %12.3g %9.3f\n", r["scene"].get<std::string>().c_str(),
-                  r["size"].get<std::string>().c_str(), r["bare_primary_rays_per_second"].get<double>(),
-                  r["bare_diffuse_rays_per_second"].get<double>(),
-                  r["bare_shadow_rays_per_second"].get<double>(),
-                  r["pathtracer_gpu_rays_per_second"].get<double>(),
-                  r["pathtracer_vs_bare_diffuse_ratio"].get<double>());
+      std::printf(
+          "%-14s %-10s %12.3g %12.3g %12.3g %12.3g %12.3g %9.3f %9.3f\n",
+          r["scene"].get<std::string>().c_str(), r["size"].get<std::string>().c_str(),
+          r["bare_primary_rays_per_second"].get<double>(), r["bare_diffuse_rays_per_second"].get<double>(),
+          r["bare_shadow_rays_per_second"].get<double>(), r["bare_path_rays_per_second"].get<double>(),
+          r["pathtracer_gpu_rays_per_second"].get<double>(),
+          r["pathtracer_vs_bare_diffuse_ratio"].get<double>(),
+          r["pathtracer_vs_bare_path_ratio"].get<double>());
     }
   }
   if (result.contains("modes")) {

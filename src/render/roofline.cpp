@@ -12,12 +12,15 @@ const char* bareRaysName(BareRays kind) {
       return "primary";
     case BareRays::Diffuse:
       return "diffuse";
-    default:
+    case BareRays::Shadow:
       return "shadow";
+    default:
+      return "path";
   }
 }
 
-Roofline::Roofline(const RendererResources& r, uint32_t width, uint32_t height, const CameraState& camera)
+Roofline::Roofline(const RendererResources& r, uint32_t width, uint32_t height, const CameraState& camera,
+                   uint32_t bounces)
     : ctx_(r.ctx), width_(width), height_(height) {
   RayTracingRecipe recipe;
   recipe.table.raygen("roofline.rgen").miss("roofline.rmiss").hitGroup({.closestHit = "roofline.rchit"});
@@ -61,6 +64,7 @@ Roofline::Roofline(const RendererResources& r, uint32_t width, uint32_t height, 
       r.scene.lights.empty() ? glm::vec3(0, 1, 0) : -glm::normalize(r.scene.lights.front().direction);
   constants_.toLight = glm::vec4(toLight, 0.0f);
   constants_.imageSize = glm::uvec2(width, height);
+  constants_.bounces = bounces;
 
   // The G-buffer, and what the other kinds trace from it.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, BareRays::Primary, 1); });
@@ -71,6 +75,9 @@ Roofline::Roofline(const RendererResources& r, uint32_t width, uint32_t height, 
     // The shader's test (roofline.rgen), in the same float arithmetic.
     if (normals[i] * toLight.x + normals[i + 1] * toLight.y + normals[i + 2] * toLight.z > 0.0f) ++litHits_;
   }
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) { record(cmd, BareRays::Path, 1); });
+  const auto walks = readResult();
+  for (size_t i = 0; i < walks.size(); i += 4) pathRays_ += uint64_t(walks[i]);
 }
 
 Roofline::~Roofline() {
@@ -83,8 +90,10 @@ uint64_t Roofline::raysPerLaunch(BareRays kind) const {
       return uint64_t(width_) * height_;
     case BareRays::Diffuse:
       return uint64_t(width_) * height_ + hits_;
-    default:
+    case BareRays::Shadow:
       return litHits_;
+    default:
+      return pathRays_;
   }
 }
 
@@ -93,7 +102,8 @@ void Roofline::record(VkCommandBuffer cmd, BareRays kind, uint32_t launches) {
   for (uint32_t i = 0; i < launches; ++i) {
     constants_.kind = kind == BareRays::Primary   ? WB_ROOFLINE_PRIMARY
                       : kind == BareRays::Diffuse ? WB_ROOFLINE_DIFFUSE
-                                                  : WB_ROOFLINE_SHADOW;
+                      : kind == BareRays::Shadow  ? WB_ROOFLINE_SHADOW
+                                                  : WB_ROOFLINE_PATH;
     constants_.frame = frame_++;
     pass_->push(cmd, constants_);
     pass_->traceRays(cmd, width_, height_);

@@ -17,13 +17,18 @@ enum class BareRays {
   Diffuse,  // a camera ray per pixel and one cosine-distributed bounce from each hit
   Shadow,   // a shadow ray towards the scene's first directional light from each camera-ray hit facing it
             // (terminate on first hit, no closest-hit shader; straight up when the scene has no such light)
+  Path,  // bare paths: a camera ray, then at each hit a shadow ray as above and a cosine-distributed bounce,
+         // until a ray escapes or after `bounces` bounces: the path tracer's mix of rays, trivially shaded
 };
-const char* bareRaysName(BareRays kind);  // "primary" | "diffuse" | "shadow"
+const char* bareRaysName(BareRays kind);  // "primary" | "diffuse" | "shadow" | "path"
 
 class Roofline {
  public:
-  // Traces the camera rays once (the G-buffer the shadow rays leave from) and counts what each kind traces.
-  Roofline(const RendererResources& resources, uint32_t width, uint32_t height, const CameraState& camera);
+  // Traces the camera rays once (the G-buffer the shadow rays leave from) and counts what each kind traces
+  // (the bare paths, of at most `bounces` bounces, on one launch: their length varies from launch to launch
+  // by the noise of a mean over every pixel).
+  Roofline(const RendererResources& resources, uint32_t width, uint32_t height, const CameraState& camera,
+           uint32_t bounces = 8);
   ~Roofline();
   Roofline(const Roofline&) = delete;
   Roofline& operator=(const Roofline&) = delete;
@@ -38,7 +43,8 @@ class Roofline {
   Pass& pass() { return *pass_; }
   // Read back (they wait for the device), RGBA per pixel: the G-buffer (xyz the camera ray's hit, w 1 for a
   // hit, 0 for a miss) and what the last launch found (x; shadow: 1 light visible, 0 occluded or not traced;
-  // diffuse: the bounce's hit distance, -1 escaped, or -1 when the camera ray missed).
+  // diffuse: the bounce's hit distance, -1 escaped, or -1 when the camera ray missed; path: the rays traced,
+  // and y the shadow rays that reached the light).
   std::vector<float> readHits() const { return readFloatImage(hitImage_); }
   std::vector<float> readResult() const { return readFloatImage(result_); }
 
@@ -48,7 +54,7 @@ class Roofline {
   std::unique_ptr<Pass> pass_;
   vk::Image hitImage_, normals_, result_;
   gpu::RooflineConstants constants_{};
-  uint64_t hits_ = 0, litHits_ = 0;
+  uint64_t hits_ = 0, litHits_ = 0, pathRays_ = 0;
   uint32_t frame_ = 0;
 };
 

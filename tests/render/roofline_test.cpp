@@ -82,3 +82,34 @@ TEST(Roofline, TracesThePathTracersSceneAndCountsItsRays) {
   EXPECT_GT(escaped, hitBox);
   wb::testing::expectNoValidationErrors(*s);
 }
+
+// Bare paths of one bounce trace exactly, per pixel, the camera ray, a shadow ray where its hit faces the sun
+// and the bounce: pixels + lit hits + hits. With no bounce, the camera rays alone. Longer walks trace more,
+// and a walk's shadow rays reach the light only from where the sun is visible.
+TEST(Roofline, BarePathsTraceThePathTracersMixOfRays) {
+  const auto ss = wb::testing::makeShadowScene();
+  render::SessionOptions o;
+  o.sceneData = ss.scene;
+  o.settings.width = o.settings.height = 48;
+  o.settings.envColor = glm::vec3(0.0f);
+  auto s = wb::testing::makeSession(o);
+  const render::RendererResources r{s->context(), s->library(), s->scene(), s->gpuScene(), s->environment()};
+  const uint64_t pixels = 48 * 48;
+  render::Roofline none(r, 48, 48, s->camera(), 0), one(r, 48, 48, s->camera(), 1),
+      eight(r, 48, 48, s->camera(), 8);
+  EXPECT_EQ(none.raysPerLaunch(render::BareRays::Path), pixels);
+  EXPECT_EQ(one.raysPerLaunch(render::BareRays::Path), pixels + one.litHits() + one.hits());
+  EXPECT_GE(eight.raysPerLaunch(render::BareRays::Path), one.raysPerLaunch(render::BareRays::Path));
+  EXPECT_LE(eight.raysPerLaunch(render::BareRays::Path), pixels * (1 + 2 * 8));
+
+  // One bounce: the shadow rays that reach the sun are those the Shadow kind finds visible.
+  s->context().submitAndWait([&](VkCommandBuffer cmd) { one.record(cmd, render::BareRays::Shadow, 1); });
+  const auto visible = one.readResult();
+  s->context().submitAndWait([&](VkCommandBuffer cmd) { one.record(cmd, render::BareRays::Path, 1); });
+  const auto walks = one.readResult();
+  uint32_t disagree = 0;
+  for (size_t i = 0; i < walks.size(); i += 4)
+    disagree += (walks[i + 1] > 0.5f) != (visible[i] > 0.5f) ? 1 : 0;
+  EXPECT_EQ(disagree, 0u);
+  EXPECT_EQ(s->context().validationErrors(), 0u);
+}
