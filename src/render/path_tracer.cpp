@@ -374,10 +374,11 @@ void PathTracer::setSettings(const RenderSettings& settings) {
       inspection_ && inspection_->vertices == 0 && settings.maxBounces != settings_.maxBounces;
   const bool sunChanged = settings.sunAngleDeg != settings_.sunAngleDeg;
   // Denoising filters the accumulation without changing it: turning it on or off restarts nothing, unless
-  // the AOVs it reads were not being written.
+  // the AOVs it reads were not being written. Any other call restarts accumulation, unchanged settings too
+  // (the A/B comparison restarts each run that way).
   RenderSettings sameDenoise = settings;
   sameDenoise.denoise = settings_.denoise;
-  const bool onlyDenoise = sameDenoise == settings_;
+  const bool onlyDenoise = settings.denoise != settings_.denoise && sameDenoise == settings_;
   const bool aovsWritten = settings_.aov || settings_.denoise;
   settings_ = settings;
   makeDenoiser();

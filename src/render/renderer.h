@@ -48,7 +48,8 @@ class Renderer {
   virtual RenderMode mode() const = 0;
   virtual vk::Context& context() const = 0;
 
-  // Parameters; each change restarts accumulation. setSettings resizes the images when the size changed.
+  // Parameters; every call restarts accumulation (unchanged settings too), except the path tracer's when only
+  // `denoise` changed. setSettings resizes the images when the size changed.
   virtual void setSettings(const RenderSettings& settings) = 0;
   virtual const RenderSettings& settings() const = 0;
   virtual void setCamera(const CameraState& camera) = 0;
