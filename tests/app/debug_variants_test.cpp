@@ -202,17 +202,24 @@ TEST(DebugVariants, PrintEqualsTheInspectorsRecordOfTheVertex) {
 // A define that adds work to one material's closest-hit: the cost map ranks that material's pixels at least
 // 3x their neighbours', and the path tracer's GPU time per sample (`pass_ms`) grows with the frame's clocks.
 TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
+  // The loop's value decides the status the shader returns (a value the loop can reach: it stays within
+  // [-0.5, 1.5]), so that no compiler can prove it dead and drop it: a store the shader overwrites later,
+  // or a comparison with a value out of sin()'s range, let NVIDIA's compiler remove it.
   const fs::path root = editedRoot(
       "cost_root", {{"pathtracer/closesthit.rchit", "  const Material m = materials[g.materialIndex];\n",
                      "  const Material m = materials[g.materialIndex];\n"
                      "#ifdef WB_EXPENSIVE_MATERIAL\n"
+                     "  float expensiveX = 0.0;\n"
                      "  if (g.materialIndex == WB_EXPENSIVE_MATERIAL) {\n"
-                     "    float x = gl_HitTEXT;\n"
-                     "    for (int i = 0; i < 8000; ++i) x = sin(x) * 1.0001 + 0.5;\n"
-                     // A value the loop can reach (it stays within [-0.5, 1.5]): a compiler that bounds
-                     // sin() cannot prove the test false and drop the loop (NVIDIA's did with 1234.5).
-                     "    if (x == 0.7071234) payload.status = PAYLOAD_ABSORBED;  // keeps the loop\n"
+                     "    expensiveX = gl_HitTEXT;\n"
+                     "    for (int i = 0; i < 8000; ++i) expensiveX = sin(expensiveX) * 1.0001 + 0.5;\n"
                      "  }\n"
+                     "#endif\n"},
+                    {"pathtracer/closesthit.rchit", "  payload.status = PAYLOAD_CONTINUE;\n",
+                     "#ifdef WB_EXPENSIVE_MATERIAL\n"
+                     "  payload.status = expensiveX == 0.7071234 ? PAYLOAD_ABSORBED : PAYLOAD_CONTINUE;\n"
+                     "#else\n"
+                     "  payload.status = PAYLOAD_CONTINUE;\n"
                      "#endif\n"}});
   const fs::path d = tempDir("cost");
   struct Run {
