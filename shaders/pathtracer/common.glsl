@@ -36,6 +36,12 @@
 #ifndef WB_CPU_DEVICE
 #define WB_CPU_DEVICE 0
 #endif
+// Raygen traces the same number of shadow iterations at every vertex (raygen.rgen), so that a SIMD group's
+// threads trace path rays and shadow rays in the same iterations (docs/bench/roofline.md; 0: as many as the
+// vertex asked for).
+#ifndef WB_SHADOW_LOCKSTEP
+#define WB_SHADOW_LOCKSTEP 1
+#endif
 // Geometries, materials, textures, the environment map; vertex fetch, material inputs (shared with the hybrid
 // modes).
 #include "../shared/scene.glsl"
