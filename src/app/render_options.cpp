@@ -19,8 +19,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--device", o.device, "Vulkan device name (substring)");
   app.add_option("--tile", o.tile, "trace each sample in tiles of WxH (dispatch-shape experiments)");
   app.add_option("--samples-per-launch", o.samplesPerLaunch,
-                 "samples one ray tracing launch traces, 0 to 64 (default 1; 0 = the device's choice: enough "
-                 "to fill a GPU, 1 on a CPU device)");
+                 "samples one ray tracing launch traces, 0 to 64 (default 0: the device's choice, enough to "
+                 "fill a GPU at small sizes, 1 on a CPU device)");
   app.add_option("--define", o.defines,
                  "preprocessor define K=V (or K) for the path tracer's shaders; repeatable");
   o.flags.addTo(app, o.params);

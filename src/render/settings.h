@@ -45,8 +45,9 @@ struct RenderSettings {
   // Dispatch shape of a headless sample: tiles of this size (0 = the whole image in one vkCmdTraceRaysKHR).
   uint32_t tileWidth = 0, tileHeight = 0;
   // Samples traced by one launch of a whole-image sample (launch depth; a resolve pass accumulates them in
-  // order, the image is the same): 0 = the device policy's choice (PathTracer::samplesPerLaunch).
-  uint32_t samplesPerLaunch = 1;
+  // order, the image is the same): 0 = the device policy's choice (PathTracer::samplesPerLaunch: 1 on a CPU
+  // device, enough to fill a GPU at small sizes).
+  uint32_t samplesPerLaunch = 0;
   bool generic = false;  // the all-features shader build instead of the scene-specialised one
   // Extra preprocessor defines for the path tracer's stages (`--define K=V`): shader experiments from the
   // command line; part of the variant key like the scene's features.
