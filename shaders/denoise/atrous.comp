@@ -2,24 +2,26 @@
 #extension GL_GOOGLE_include_directive : require
 // One a-trous iteration (SVGF's spatial filter): a 5x5 B3-spline kernel with taps `step` pixels apart, each
 // tap weighted by how alike its surface is (normal, depth) and its demodulated luminance (a Gaussian of the
-// difference in standard deviations of the pixel's mean: where the mean is precise, only taps as bright as it count, so the
-// filter's reach shrinks as samples accumulate). The variance is carried along as the filtered mean's
-// (sum of squared weights), which the next iteration reads. Reads ping and writes pong, or the other way.
+// difference in standard deviations of the pixel's mean: where the mean is precise, only taps as bright as it
+// count, so the filter's reach shrinks as samples accumulate). The variance is carried along as the filtered
+// mean's (sum of squared weights), which the next iteration reads. Reads one filter plane, writes the other.
 #include "common.glsl"
 
-layout(set = 0, binding = WB_DENOISE_BIND_GUIDE, rgba32f) uniform readonly image2D guideImage;
-layout(set = 0, binding = WB_DENOISE_BIND_PING, rgba32f) uniform image2D pingImage;
-layout(set = 0, binding = WB_DENOISE_BIND_PONG, rgba32f) uniform image2D pongImage;
+layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {
+  vec4 geometry[];
+};
+layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock { vec4 filtered[]; };
+layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) readonly buffer DenoiseGradientBlock {
+  float gradient[];
+};
 
-vec4 source(ivec2 q) { return pc.source == 0u ? imageLoad(pingImage, q) : imageLoad(pongImage, q); }
-
-void main() {
-  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (!insideImage(p)) return;
-  const vec4 center = source(p);
-  const vec4 guideP = imageLoad(guideImage, p);
-  const vec3 nP = octDecode(guideP.xy);
-  const bool missP = guideP.z < 0.0;
+// The filtered value of pixel p from the plane starting at `source`. `squaring`: see normalWeight.
+vec4 filterPixel(ivec2 p, uint source, const bool squaring) {
+  const uint i = pixelIndex(p);
+  const vec4 center = filtered[source + i];
+  const vec4 geometryP = geometry[i];
+  const float gradientP = gradient[i];
+  const bool missP = geometryP.w < 0.0;
   const float lumP = luminance(center.rgb);
   // 2 sigma^2 V: a tap sigmaLuminance standard deviations away weighs exp(-1/2).
   const float reach = 2.0 * pc.sigmaLuminance * pc.sigmaLuminance * max(center.a, 0.0);
@@ -31,17 +33,18 @@ void main() {
       if (x == 0 && y == 0) continue;
       const ivec2 q = p + ivec2(x, y) * int(pc.step);
       if (!insideImage(q)) continue;
-      const vec4 c = source(q);
-      const vec4 guideQ = imageLoad(guideImage, q);
+      const uint j = pixelIndex(q);
+      const vec4 c = filtered[source + j];
+      const vec4 geometryQ = geometry[j];
       // The geometry's and the luminance's weights in one exponential.
       float w = kernelWeight(x) * kernelWeight(y);
       float exponent = 0.0;
-      const bool missQ = guideQ.z < 0.0;
+      const bool missQ = geometryQ.w < 0.0;
       if (missP || missQ) {
         if (missP != missQ) continue;
       } else {
-        w *= normalWeight(nP, octDecode(guideQ.xy));
-        exponent = depthExponent(guideP, guideQ, float(pc.step) * length(vec2(x, y)));
+        w *= normalWeight(geometryP.xyz, geometryQ.xyz, squaring);
+        exponent = depthExponent(geometryP.w, gradientP, geometryQ.w, float(pc.step) * length(vec2(x, y)));
       }
       if (pc.sigmaLuminance > 0.0) {
         const float difference = luminance(c.rgb) - lumP;
@@ -53,10 +56,18 @@ void main() {
       variance += w * w * max(c.a, 0.0);
     }
   }
-  const vec4 filtered = vec4(sum / weights, variance / (weights * weights));
-  if (pc.source == 0u) {
-    imageStore(pongImage, p, filtered);
+  return vec4(sum / weights, variance / (weights * weights));
+}
+
+void main() {
+  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (!insideImage(p)) return;
+  const uint source = pc.source * planeSize(), destination = (pc.source ^ 1u) * planeSize();
+  vec4 result;
+  if (pc.sigmaNormal == 128.0) {
+    result = filterPixel(p, source, true);
   } else {
-    imageStore(pingImage, p, filtered);
+    result = filterPixel(p, source, false);
   }
+  filtered[destination + pixelIndex(p)] = result;
 }
