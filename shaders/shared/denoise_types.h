@@ -17,11 +17,6 @@
 #define WB_DENOISE_BIND_HANDOVER 7  // buffer of vec2 per pixel: the raw mean's demodulated luminance, its variance
 #define WB_DENOISE_BIND_OUTPUT 8    // rgba32f: the denoised radiance (a = samples in the pixel, as the input)
 
-// The a-trous pass filters a block of BLOCK x BLOCK pixels per invocation, `step` pixels apart (a lattice on
-// which the taps of all of them lie): a tap the block's pixels share is loaded once. Invocation (x, y) of an
-// iteration with step s filters pixels ((x / s) * BLOCK * s + x % s + i * s, the same in y), i < BLOCK.
-#define WB_DENOISE_ATROUS_BLOCK 2
-
 WB_NAMESPACE_BEGIN
 
 struct DenoisePush {

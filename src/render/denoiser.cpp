@@ -103,11 +103,11 @@ std::vector<Pass*> Denoiser::passes() const {
   return out;
 }
 
-void Denoiser::dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push, uint32_t x,
-                        uint32_t y) const {
+void Denoiser::dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push,
+                        uint32_t rows) const {
   pass.bind(cmd);
   pass.push(cmd, push);
-  pass.dispatch(cmd, (x + kGroupSize - 1) / kGroupSize, (y + kGroupSize - 1) / kGroupSize);
+  pass.dispatch(cmd, (width_ + kGroupSize - 1) / kGroupSize, (rows + kGroupSize - 1) / kGroupSize);
   vk::memoryBarrier(cmd);
 }
 
@@ -120,20 +120,15 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
   push.sigmaDepth = options_.sigmaDepth;
   push.handoverTau = options_.handoverTau;
   vk::memoryBarrier(cmd);  // the path tracer's writes before the first read
-  dispatch(cmd, *passes_[kPrepare], push, width_, push.rows);
-  dispatch(cmd, *passes_[kVariance], push, width_, push.rows);  // filter plane 0 -> 1
+  dispatch(cmd, *passes_[kPrepare], push, push.rows);
+  dispatch(cmd, *passes_[kVariance], push, push.rows);  // filter plane 0 -> 1
   push.source = 1;
   for (uint32_t i = 0; i < options_.iterations; ++i) {
     push.step = 1u << i;
-    // An invocation per block of WB_DENOISE_ATROUS_BLOCK^2 pixels on the step's lattice.
-    const auto invocations = [&](uint32_t pixels) {
-      const uint32_t span = WB_DENOISE_ATROUS_BLOCK * push.step;
-      return (pixels + span - 1) / span * push.step;
-    };
-    dispatch(cmd, *passes_[kAtrous], push, invocations(width_), invocations(push.rows));
+    dispatch(cmd, *passes_[kAtrous], push, push.rows);
     push.source ^= 1u;
   }
-  dispatch(cmd, *passes_[kFinal], push, width_, height_);  // every row: those not filtered are copied
+  dispatch(cmd, *passes_[kFinal], push, height_);  // every row: those not filtered are copied
 }
 
 void Denoiser::recordCompileOnly(VkCommandBuffer cmd) const {

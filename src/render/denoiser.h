@@ -66,9 +66,7 @@ class Denoiser {
  private:
   enum { kPrepare, kVariance, kAtrous, kFinal, kPassCount };
   void bind();
-  // x * y invocations.
-  void dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push, uint32_t x,
-                uint32_t y) const;
+  void dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push, uint32_t rows) const;
 
   vk::Context& ctx_;
   std::array<std::unique_ptr<Pass>, kPassCount> passes_;
