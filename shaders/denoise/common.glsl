@@ -1,5 +1,6 @@
-// What the denoiser's passes share: push constants, luminance, the albedo used to demodulate, normals packed
-// in two floats, and the edge-stopping weights of the a-trous filter (SVGF: Schied et al. 2017).
+// What the denoiser's passes share: push constants, luminance, the albedo used to demodulate, the octahedral
+// round trip of normals (the first pass stores normals as it gives them), where a pixel is in the buffers, and
+// the edge-stopping weights of the a-trous filter (SVGF: Schied et al. 2017).
 #ifndef WB_DENOISE_COMMON_GLSL
 #define WB_DENOISE_COMMON_GLSL
 #include "../shared/denoise_types.h"
@@ -34,28 +35,36 @@ bool insideImage(ivec2 q) {
   return q.x >= 0 && q.y >= 0 && q.x < int(pc.imageSize.x) && q.y < int(min(pc.rows, pc.imageSize.y));
 }
 
-// The normals' part of the edge-stopping weight: their cosine to the power sigmaNormal (by squaring for the
-// default 128: no transcendental function per tap).
-float normalWeight(vec3 nP, vec3 nQ) {
+// Where pixel q is in the denoiser's buffers, and how many elements one plane of them holds.
+uint pixelIndex(ivec2 q) { return uint(q.y) * pc.imageSize.x + uint(q.x); }
+uint planeSize() { return pc.imageSize.x * pc.imageSize.y; }
+
+// The normals' part of the edge-stopping weight: their cosine to the power sigmaNormal; `squaring` (a constant
+// at each call: the caller has checked sigmaNormal == 128) by squaring, with no transcendental function per tap.
+// A caller branches once per pixel on sigmaNormal around its whole loop of taps, with a loop for each case, so
+// that the compiler cannot flatten a per-tap branch into computing both sides (a CPU driver runs every lane
+// of a vector through both sides of a flattened branch).
+float normalWeight(vec3 nP, vec3 nQ, const bool squaring) {
   float c = max(dot(nP, nQ), 0.0);
-  if (pc.sigmaNormal != 128.0) return pow(c, pc.sigmaNormal);
+  if (!squaring) return pow(c, pc.sigmaNormal);
   for (int i = 0; i < 7; ++i) c *= c;
   return c;
 }
 
 // The depths' part, as the exponent of exp(-e) (a caller adds other exponents and calls exp once): the
 // difference of the depths against the change the depth gradient predicts over the taps' distance.
-float depthExponent(vec4 guideP, vec4 guideQ, float distance) {
-  const float expected = pc.sigmaDepth * guideP.w * distance + 1.0e-3 * guideP.z;
-  return abs(guideP.z - guideQ.z) / expected;
+float depthExponent(float zP, float gradientP, float zQ, float distance) {
+  const float expected = pc.sigmaDepth * gradientP * distance + 1.0e-3 * zP;
+  return abs(zP - zQ) / expected;
 }
 
 // The geometric part of the edge-stopping weight between a pixel p and a tap q `distance` pixels away: normals
-// and depths. A miss only meets misses. nP: guideP's normal, decoded once by the caller for all its taps.
-float geometryWeight(vec4 guideP, vec3 nP, vec4 guideQ, float distance) {
-  const bool missP = guideP.z < 0.0, missQ = guideQ.z < 0.0;
+// and depths (geometry: the buffer's normal xyz and depth). A miss only meets misses.
+float geometryWeight(vec4 geometryP, float gradientP, vec4 geometryQ, float distance, const bool squaring) {
+  const bool missP = geometryP.w < 0.0, missQ = geometryQ.w < 0.0;
   if (missP || missQ) return missP && missQ ? 1.0 : 0.0;
-  return normalWeight(nP, octDecode(guideQ.xy)) * exp(-depthExponent(guideP, guideQ, distance));
+  return normalWeight(geometryP.xyz, geometryQ.xyz, squaring) *
+         exp(-depthExponent(geometryP.w, gradientP, geometryQ.w, distance));
 }
 
 // The B3-spline a-trous kernel (1/16, 1/4, 3/8, 1/4, 1/16), index -2..2.

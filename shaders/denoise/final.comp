@@ -12,27 +12,28 @@
 
 layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly image2D radianceImage;
 layout(set = 0, binding = WB_DENOISE_BIND_ALBEDO, rgba16f) uniform readonly image2D albedoImage;
-layout(set = 0, binding = WB_DENOISE_BIND_PING, rgba32f) uniform readonly image2D pingImage;
-layout(set = 0, binding = WB_DENOISE_BIND_PONG, rgba32f) uniform readonly image2D pongImage;
-layout(set = 0, binding = WB_DENOISE_BIND_VARIANCE, r32f) uniform readonly image2D varianceImage;
+layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) readonly buffer DenoiseFilterBlock {
+  vec4 filtered[];
+};
+layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer DenoiseHandoverBlock {
+  vec2 handover[];  // the raw mean's demodulated luminance, its variance
+};
 layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
-
-vec4 filteredAt(ivec2 q) { return pc.source == 0u ? imageLoad(pingImage, q) : imageLoad(pongImage, q); }
 
 // The squared bias of the filter seen around p: over the 5x5 neighbourhood, the mean of (filtered - raw)^2
 // less the mean variance of the raw means (what noise alone puts there), floored at 0.
-float observedBias2(ivec2 p) {
+float observedBias2(ivec2 p, uint source) {
   float difference2 = 0.0, variance = 0.0;
   int n = 0;
   for (int y = -2; y <= 2; ++y) {
     for (int x = -2; x <= 2; ++x) {
       const ivec2 q = p + ivec2(x, y);
       if (!insideImage(q)) continue;
-      const vec3 albedo = demodulationAlbedo(imageLoad(albedoImage, q).rgb);
-      const float raw = luminance(imageLoad(radianceImage, q).rgb / albedo);
-      const float d = luminance(filteredAt(q).rgb) - raw;
+      const uint j = pixelIndex(q);
+      const vec2 raw = handover[j];
+      const float d = luminance(filtered[source + j].rgb) - raw.x;
       difference2 += d * d;
-      variance += imageLoad(varianceImage, q).r;
+      variance += raw.y;
       ++n;
     }
   }
@@ -47,14 +48,15 @@ void main() {
     imageStore(outputImage, p, raw);
     return;
   }
-  const vec4 filtered = filteredAt(p);
+  const uint source = pc.source * planeSize(), i = pixelIndex(p);
+  const vec4 filteredP = filtered[source + i];
   const vec3 albedo = demodulationAlbedo(imageLoad(albedoImage, p).rgb);
-  const vec3 denoised = filtered.rgb * albedo;
+  const vec3 denoised = filteredP.rgb * albedo;
   float a = 1.0;
   if (pc.handoverTau >= 0.0) {
-    const float v = imageLoad(varianceImage, p).r;
-    const float assumed = pc.handoverTau * luminance(filtered.rgb);
-    const float total = v + max(filtered.a, 0.0) + max(assumed * assumed, observedBias2(p));
+    const float v = handover[i].y;
+    const float assumed = pc.handoverTau * luminance(filteredP.rgb);
+    const float total = v + max(filteredP.a, 0.0) + max(assumed * assumed, observedBias2(p, source));
     a = total > 0.0 ? v / total : 0.0;
   }
   imageStore(outputImage, p, vec4(raw.rgb + a * (denoised - raw.rgb), raw.a));

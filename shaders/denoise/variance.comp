@@ -6,53 +6,89 @@
 // steadier, and unlike a mean it does not take a calm pixel's variance from a few noisy neighbours across a
 // luminance edge the geometry does not show (an emitter's rim). The larger of the two, divided by the
 // pixel's samples: a firefly keeps its own large variance, so the filter reaches out to dilute it.
+// Reads filter plane 0, writes plane 1 and the hand-over's variance.
 #include "common.glsl"
 
 layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly image2D radianceImage;
-layout(set = 0, binding = WB_DENOISE_BIND_GUIDE, rgba32f) uniform readonly image2D guideImage;
-layout(set = 0, binding = WB_DENOISE_BIND_PING, rgba32f) uniform readonly image2D pingImage;
-layout(set = 0, binding = WB_DENOISE_BIND_PONG, rgba32f) uniform writeonly image2D pongImage;
-layout(set = 0, binding = WB_DENOISE_BIND_VARIANCE, r32f) uniform writeonly image2D varianceImage;
+layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {
+  vec4 geometry[];
+};
+layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock { vec4 filtered[]; };
+layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) readonly buffer DenoiseGradientBlock {
+  float gradient[];
+};
+layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) buffer DenoiseHandoverBlock { vec2 handover[]; };
 
+// The median of nine values by a fixed network of compare-exchanges (Paeth; no data-dependent loop, which a
+// CPU driver runs for as long as its slowest lane). Each exchange keeps both values: v stays a permutation.
+void exchange(inout float a, inout float b) {
+  const float lo = min(a, b), hi = max(a, b);
+  a = lo;
+  b = hi;
+}
 float median9(inout float v[9]) {
-  for (int i = 1; i < 9; ++i) {
-    const float x = v[i];
-    int j = i - 1;
-    while (j >= 0 && v[j] > x) {
-      v[j + 1] = v[j];
-      --j;
-    }
-    v[j + 1] = x;
-  }
+  exchange(v[1], v[2]);
+  exchange(v[4], v[5]);
+  exchange(v[7], v[8]);
+  exchange(v[0], v[1]);
+  exchange(v[3], v[4]);
+  exchange(v[6], v[7]);
+  exchange(v[1], v[2]);
+  exchange(v[4], v[5]);
+  exchange(v[7], v[8]);
+  exchange(v[0], v[3]);
+  exchange(v[5], v[8]);
+  exchange(v[4], v[7]);
+  exchange(v[3], v[6]);
+  exchange(v[1], v[4]);
+  exchange(v[2], v[5]);
+  exchange(v[4], v[7]);
+  exchange(v[4], v[2]);
+  exchange(v[6], v[4]);
+  exchange(v[4], v[2]);
   return v[4];
+}
+
+// Per tap of the 3x3 neighbourhood: its per-sample variance (own) or its luminance (below 2 samples); taps off
+// the surface, off the image or without an estimate count as the pixel itself (self). `squaring`: see
+// normalWeight.
+void gatherTaps(ivec2 p, vec4 geometryP, float gradientP, bool own, float self, const bool squaring,
+                inout float v[9]) {
+  for (int y = -1; y <= 1; ++y) {
+    for (int x = -1; x <= 1; ++x) {
+      const ivec2 q = p + ivec2(x, y);
+      float value = self;
+      if (insideImage(q)) {
+        const uint j = pixelIndex(q);
+        if (geometryWeight(geometryP, gradientP, geometry[j], length(vec2(x, y)), squaring) > 0.5) {
+          const vec4 c = filtered[j];
+          if (!own) {
+            value = luminance(c.rgb);
+          } else if (c.a >= 0.0) {
+            value = c.a;
+          }
+        }
+      }
+      v[(y + 1) * 3 + x + 1] = value;
+    }
+  }
 }
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (!insideImage(p)) return;
-  const vec4 center = imageLoad(pingImage, p);
-  const vec4 guideP = imageLoad(guideImage, p);
-  const vec3 nP = octDecode(guideP.xy);
+  const uint i = pixelIndex(p);
+  const vec4 center = filtered[i];
+  const vec4 geometryP = geometry[i];
+  const float gradientP = gradient[i];
   const float n = imageLoad(radianceImage, p).a;
   const bool own = n >= 2.0;
-  // Per tap: its per-sample variance (own) or its luminance (below 2 samples); taps off the surface, off the
-  // image or without an estimate count as the pixel itself.
   const float self = own ? max(center.a, 0.0) : luminance(center.rgb);
   float v[9];
-  for (int y = -1; y <= 1; ++y) {
-    for (int x = -1; x <= 1; ++x) {
-      const ivec2 q = p + ivec2(x, y);
-      float value = self;
-      if (insideImage(q) && geometryWeight(guideP, nP, imageLoad(guideImage, q), length(vec2(x, y))) > 0.5) {
-        const vec4 c = imageLoad(pingImage, q);
-        if (!own) {
-          value = luminance(c.rgb);
-        } else if (c.a >= 0.0) {
-          value = c.a;
-        }
-      }
-      v[(y + 1) * 3 + x + 1] = value;
-    }
+  if (pc.sigmaNormal == 128.0) {
+    gatherTaps(p, geometryP, gradientP, own, self, true, v);
+  } else {
+    gatherTaps(p, geometryP, gradientP, own, self, false, v);
   }
   float variance = 0.0;
   if (own) {
@@ -60,11 +96,11 @@ void main() {
   } else if (n > 0.0) {
     // One sample: the median absolute deviation (times 1.4826: a normal distribution's standard deviation).
     const float m = median9(v);
-    for (int i = 0; i < 9; ++i) v[i] = abs(v[i] - m);
+    for (int k = 0; k < 9; ++k) v[k] = abs(v[k] - m);
     const float spread = 1.4826 * median9(v);
     variance = max((self - m) * (self - m), spread * spread);
   }
   const float varianceOfMean = n > 0.0 ? variance / n : 0.0;
-  imageStore(pongImage, p, vec4(center.rgb, varianceOfMean));
-  imageStore(varianceImage, p, vec4(varianceOfMean));
+  filtered[planeSize() + i] = vec4(center.rgb, varianceOfMean);
+  handover[i].y = varianceOfMean;
 }

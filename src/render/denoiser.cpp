@@ -50,18 +50,21 @@ void Denoiser::resize(uint32_t width, uint32_t height) {
   inputs_ = {};  // the caller's images may have been remade with the size: setInputs() binds them again
   const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                   VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-  guide_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
-  ping_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
-  pong_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
-  variance_ = vk::Image(ctx_, width, height, VK_FORMAT_R32_SFLOAT, usage);
   output_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
+  const VkDeviceSize pixels = VkDeviceSize(width) * height;
+  const VkBufferUsageFlags bufferUsage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  geometry_ = vk::Buffer(ctx_, pixels * 4 * sizeof(float), bufferUsage, false);
+  filter_ = vk::Buffer(ctx_, 2 * pixels * 4 * sizeof(float), bufferUsage, false);  // two planes
+  gradient_ = vk::Buffer(ctx_, pixels * sizeof(float), bufferUsage, false);
+  handover_ = vk::Buffer(ctx_, pixels * 2 * sizeof(float), bufferUsage, false);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    for (const vk::Image* img : {&guide_, &ping_, &pong_, &variance_, &output_}) {
-      vk::transition(cmd, img->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-      VkClearColorValue zero{};
-      VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vkCmdClearColorImage(cmd, img->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-    }
+    vk::transition(cmd, output_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    VkClearColorValue zero{};
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(cmd, output_.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+    for (const vk::Buffer* b : {&geometry_, &filter_, &gradient_, &handover_})
+      vkCmdFillBuffer(cmd, b->handle(), 0, VK_WHOLE_SIZE, 0);
   });
   bind();
 }
@@ -77,10 +80,10 @@ void Denoiser::bind() {
     p->setStorageImage("albedoImage", inputs_.albedo);
     p->setStorageImage("normalImage", inputs_.normal);
     p->setStorageImage("statsImage", inputs_.stats);
-    p->setStorageImage("guideImage", guide_.view());
-    p->setStorageImage("pingImage", ping_.view());
-    p->setStorageImage("pongImage", pong_.view());
-    p->setStorageImage("varianceImage", variance_.view());
+    p->setBuffer("DenoiseGeometryBlock", geometry_);
+    p->setBuffer("DenoiseFilterBlock", filter_);
+    p->setBuffer("DenoiseGradientBlock", gradient_);
+    p->setBuffer("DenoiseHandoverBlock", handover_);
     p->setStorageImage("outputImage", output_.view());
   }
 }
@@ -118,7 +121,7 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
   push.handoverTau = options_.handoverTau;
   vk::memoryBarrier(cmd);  // the path tracer's writes before the first read
   dispatch(cmd, *passes_[kPrepare], push, push.rows);
-  dispatch(cmd, *passes_[kVariance], push, push.rows);  // ping -> pong
+  dispatch(cmd, *passes_[kVariance], push, push.rows);  // filter plane 0 -> 1
   push.source = 1;
   for (uint32_t i = 0; i < options_.iterations; ++i) {
     push.step = 1u << i;

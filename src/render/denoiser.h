@@ -41,8 +41,8 @@ class Denoiser {
   // The shader stage of each pass, in passes() order.
   static std::vector<shader::ShaderKey> stageKeys();
 
-  // Size of the images it filters (its own images grow to the largest size asked; no work may be in flight
-  // when they grow); then the inputs (call both when no work is in flight).
+  // Size of the images it filters (its own buffers and image grow to the largest size asked; no work may be
+  // in flight when they grow); then the inputs (call both when no work is in flight).
   void resize(uint32_t width, uint32_t height);
   void setInputs(const DenoiseInputs& inputs);
   void setOptions(const DenoiseOptions& options) { options_ = options; }
@@ -73,7 +73,10 @@ class Denoiser {
   DenoiseOptions options_;
   uint32_t width_ = 0, height_ = 0, capacityWidth_ = 0, capacityHeight_ = 0;
   DenoiseInputs inputs_;
-  vk::Image guide_, ping_, pong_, variance_, output_;
+  // The intermediates, storage buffers of a pixel per element (shaders/shared/denoise_types.h): a CPU driver
+  // gathers from a buffer for much less than it loads from an image.
+  vk::Buffer geometry_, filter_, gradient_, handover_;
+  vk::Image output_;
 };
 
 }  // namespace wb::render

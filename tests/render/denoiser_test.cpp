@@ -4,7 +4,10 @@
 // by construction), and on a real render at many samples the denoised image is the raw one within its noise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -32,6 +35,15 @@ uint16_t floatToHalf(float f) {
   uint32_t h = (uint32_t(exponent) << 10) | (mantissa >> 13);
   if (mantissa & 0x1000u) ++h;  // round half up
   return uint16_t(sign | h);
+}
+
+float halfToFloat(uint16_t h) {
+  // The inverse of floatToHalf on what it makes: zero and the normal range.
+  const uint32_t sign = uint32_t(h & 0x8000u) << 16, exponent = (h >> 10) & 0x1fu, mantissa = h & 0x3ffu;
+  const uint32_t x = exponent == 0 ? sign : sign | ((exponent - 15 + 127) << 23) | (mantissa << 13);
+  float f;
+  std::memcpy(&f, &x, 4);
+  return f;
 }
 
 float luminance(glm::vec3 c) {
@@ -87,8 +99,9 @@ struct DenoiserFixture : ::testing::Test {
     ctx.reset();
   }
 
-  // Uploads the frame as the path tracer's images, runs the denoiser and reads its output (rgb per pixel).
-  std::vector<glm::vec3> denoise(const Frame& f, const render::DenoiseOptions& options) {
+  // Uploads the frame as the path tracer's images, runs the denoiser (filtering rows [0, rows)) and reads its
+  // output (rgb per pixel).
+  std::vector<glm::vec3> denoise(const Frame& f, const render::DenoiseOptions& options, uint32_t rows = ~0u) {
     const size_t count = size_t(f.width) * f.height;
     std::vector<float> rad(4 * count), st(4 * count, 0.0f);
     std::vector<uint16_t> alb(4 * count), nrm(4 * count);
@@ -119,7 +132,7 @@ struct DenoiserFixture : ::testing::Test {
     denoiser->resize(f.width, f.height);
     denoiser->setInputs({radiance.view(), albedo.view(), normal.view(), stats.view()});
     denoiser->setOptions(options);
-    ctx->submitAndWait([&](VkCommandBuffer cmd) { denoiser->record(cmd); });
+    ctx->submitAndWait([&](VkCommandBuffer cmd) { denoiser->record(cmd, rows); });
     const auto out = denoiser->readOutput();
     std::vector<glm::vec3> rgb(count);
     for (size_t i = 0; i < count; ++i) {
@@ -168,6 +181,229 @@ double expectedVarianceFactor(uint32_t iterations) {
   return sum2 * sum2;
 }
 
+// The denoiser's math on the CPU, written from the shaders' definitions one pass at a time (prepare,
+// variance, the a-trous iterations, final) with the straightforward loops: what the GPU passes compute,
+// however they are arranged for speed. rgb per pixel; rows [0, rows) filtered, the others the raw mean.
+class ReferenceDenoiser {
+ public:
+  ReferenceDenoiser(const Frame& f, const render::DenoiseOptions& o, uint32_t rows)
+      : f_(f), o_(o), w_(int(f.width)), h_(int(f.height)), rows_(int(std::min(rows, f.height))) {}
+
+  std::vector<glm::vec3> run() {
+    const size_t count = size_t(w_) * h_;
+    ping_.assign(count, glm::vec4(0));
+    guide_.assign(count, glm::vec4(0));
+    gradient_.assign(count, 0.0f);
+    variance_.assign(count, 0.0f);
+    prepare();
+    std::vector<glm::vec4> filtered = varianceOfMean();
+    for (uint32_t i = 0; i < o_.iterations; ++i) filtered = atrous(filtered, 1 << i);
+    return final(filtered);
+  }
+
+ private:
+  // The inputs as the GPU reads them: albedo, normal and depth through half floats, the stats' mean of
+  // luminance^2 as the fixture uploads it.
+  glm::vec3 albedo(int i) const {
+    return {halfToFloat(floatToHalf(f_.albedo[i].x)), halfToFloat(floatToHalf(f_.albedo[i].y)),
+            halfToFloat(floatToHalf(f_.albedo[i].z))};
+  }
+  glm::vec3 normal(int i) const {
+    return {halfToFloat(floatToHalf(f_.normal[i].x)), halfToFloat(floatToHalf(f_.normal[i].y)),
+            halfToFloat(floatToHalf(f_.normal[i].z))};
+  }
+  float depth(int i) const { return halfToFloat(floatToHalf(f_.depth[i])); }
+  float lum2(int i) const {
+    const float n = f_.samples[i], lum = luminance(f_.mean[i]), perSample = f_.meanVariance[i] * n;
+    return lum * lum + (n > 1.0f ? perSample * (n - 1.0f) / n : 0.0f);
+  }
+  static glm::vec3 demodulationAlbedo(glm::vec3 a) {
+    return std::max(a.r, std::max(a.g, a.b)) < 0.02f ? glm::vec3(1.0f) : glm::max(a, glm::vec3(0.02f));
+  }
+  static glm::vec2 octEncode(glm::vec3 n) {
+    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+    if (l1 <= 0.0f) return glm::vec2(4.0f);
+    glm::vec2 e = glm::vec2(n.x, n.y) / l1;
+    if (n.z < 0.0f)
+      e = (1.0f - glm::abs(glm::vec2(e.y, e.x))) *
+          glm::vec2(e.x >= 0.0f ? 1.0f : -1.0f, e.y >= 0.0f ? 1.0f : -1.0f);
+    return e;
+  }
+  static glm::vec3 octDecode(glm::vec2 e) {
+    if (e.x > 2.0f) return glm::vec3(0.0f);
+    glm::vec3 n(e, 1.0f - std::abs(e.x) - std::abs(e.y));
+    if (n.z < 0.0f) {
+      const glm::vec2 folded = (1.0f - glm::abs(glm::vec2(n.y, n.x))) *
+                               glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+      n.x = folded.x;
+      n.y = folded.y;
+    }
+    return glm::normalize(n);
+  }
+  bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < w_ && y < rows_; }
+  int at(int x, int y) const { return y * w_ + x; }
+
+  float normalWeight(glm::vec3 nP, glm::vec3 nQ) const {
+    const float c = std::max(glm::dot(nP, nQ), 0.0f);
+    return std::pow(c, o_.sigmaNormal);
+  }
+  float depthExponent(int p, int q, float distance) const {
+    const float expected = o_.sigmaDepth * gradient_[p] * distance + 1.0e-3f * guide_[p].w;
+    return std::abs(guide_[p].w - guide_[q].w) / expected;
+  }
+  float geometryWeight(int p, int q, float distance) const {
+    const bool missP = guide_[p].w < 0.0f, missQ = guide_[q].w < 0.0f;
+    if (missP || missQ) return missP && missQ ? 1.0f : 0.0f;
+    return normalWeight(glm::vec3(guide_[p]), glm::vec3(guide_[q])) *
+           std::exp(-depthExponent(p, q, distance));
+  }
+  static float kernelWeight(int i) { return std::abs(i) == 0 ? 0.375f : std::abs(i) == 1 ? 0.25f : 0.0625f; }
+  static float median9(std::array<float, 9> v) {
+    std::sort(v.begin(), v.end());
+    return v[4];
+  }
+
+  void prepare() {
+    for (int y = 0; y < rows_; ++y)
+      for (int x = 0; x < w_; ++x) {
+        const int i = at(x, y);
+        const glm::vec3 a = demodulationAlbedo(albedo(i)), demodulated = f_.mean[i] / a;
+        const float n = f_.samples[i];
+        float variance = -1.0f;
+        if (n >= 2.0f) {
+          const float lum = luminance(f_.mean[i]), lumD = luminance(demodulated);
+          const float scale = lum > 0.0f && lumD > 0.0f ? lumD / lum : 1.0f / luminance(a);
+          variance = std::max(lum2(i) - lum * lum, 0.0f) * n / (n - 1.0f) * scale * scale;
+        }
+        ping_[i] = glm::vec4(demodulated, variance);
+        const float z = depth(i);
+        auto depthAt = [&](int qx, int qy) { return inside(qx, qy) ? depth(at(qx, qy)) : 1.0e30f; };
+        const float dx = std::min(std::abs(depthAt(x + 1, y) - z), std::abs(z - depthAt(x - 1, y)));
+        const float dy = std::min(std::abs(depthAt(x, y + 1) - z), std::abs(z - depthAt(x, y - 1)));
+        gradient_[i] = std::min(std::sqrt(dx * dx + dy * dy), std::abs(z));
+        guide_[i] = glm::vec4(octDecode(octEncode(normal(i))), z);
+      }
+  }
+
+  std::vector<glm::vec4> varianceOfMean() {
+    std::vector<glm::vec4> out(ping_.size(), glm::vec4(0));
+    for (int y = 0; y < rows_; ++y)
+      for (int x = 0; x < w_; ++x) {
+        const int p = at(x, y);
+        const glm::vec4 center = ping_[p];
+        const float n = f_.samples[p];
+        const bool own = n >= 2.0f;
+        const float self = own ? std::max(center.a, 0.0f) : luminance(glm::vec3(center));
+        std::array<float, 9> v;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            float value = self;
+            if (inside(x + dx, y + dy)) {
+              const int q = at(x + dx, y + dy);
+              if (geometryWeight(p, q, std::sqrt(float(dx * dx + dy * dy))) > 0.5f) {
+                if (!own) {
+                  value = luminance(glm::vec3(ping_[q]));
+                } else if (ping_[q].a >= 0.0f) {
+                  value = ping_[q].a;
+                }
+              }
+            }
+            v[(dy + 1) * 3 + dx + 1] = value;
+          }
+        float variance = 0.0f;
+        if (own) {
+          variance = std::max(self, median9(v));
+        } else if (n > 0.0f) {
+          const float m = median9(v);
+          for (float& e : v) e = std::abs(e - m);
+          const float spread = 1.4826f * median9(v);
+          variance = std::max((self - m) * (self - m), spread * spread);
+        }
+        variance_[p] = n > 0.0f ? variance / n : 0.0f;
+        out[p] = glm::vec4(glm::vec3(center), variance_[p]);
+      }
+    return out;
+  }
+
+  std::vector<glm::vec4> atrous(const std::vector<glm::vec4>& in, int step) const {
+    std::vector<glm::vec4> out(in.size(), glm::vec4(0));
+    for (int y = 0; y < rows_; ++y)
+      for (int x = 0; x < w_; ++x) {
+        const int p = at(x, y);
+        const glm::vec4 center = in[p];
+        const bool missP = guide_[p].w < 0.0f;
+        const float lumP = luminance(glm::vec3(center));
+        const float reach = 2.0f * o_.sigmaLuminance * o_.sigmaLuminance * std::max(center.a, 0.0f);
+        glm::vec3 sum = glm::vec3(center) * (0.375f * 0.375f);
+        float weights = 0.375f * 0.375f, variance = center.a * (0.375f * 0.375f) * (0.375f * 0.375f);
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            if ((dx == 0 && dy == 0) || !inside(x + dx * step, y + dy * step)) continue;
+            const int q = at(x + dx * step, y + dy * step);
+            const glm::vec4 c = in[q];
+            float w = kernelWeight(dx) * kernelWeight(dy), exponent = 0.0f;
+            const bool missQ = guide_[q].w < 0.0f;
+            if (missP || missQ) {
+              if (missP != missQ) continue;
+            } else {
+              w *= normalWeight(glm::vec3(guide_[p]), glm::vec3(guide_[q]));
+              exponent = depthExponent(p, q, float(step) * std::sqrt(float(dx * dx + dy * dy)));
+            }
+            if (o_.sigmaLuminance > 0.0f) {
+              const float d = luminance(glm::vec3(c)) - lumP;
+              exponent += reach > 0.0f ? d * d / reach : (d == 0.0f ? 0.0f : 1.0e30f);
+            }
+            w *= std::exp(-exponent);
+            sum += w * glm::vec3(c);
+            weights += w;
+            variance += w * w * std::max(c.a, 0.0f);
+          }
+        out[p] = glm::vec4(sum / weights, variance / (weights * weights));
+      }
+    return out;
+  }
+
+  std::vector<glm::vec3> final(const std::vector<glm::vec4>& filtered) const {
+    std::vector<glm::vec3> out(filtered.size());
+    for (int y = 0; y < h_; ++y)
+      for (int x = 0; x < w_; ++x) {
+        const int p = at(x, y);
+        if (!inside(x, y)) {
+          out[p] = f_.mean[p];
+          continue;
+        }
+        const glm::vec3 denoised = glm::vec3(filtered[p]) * demodulationAlbedo(albedo(p));
+        float a = 1.0f;
+        if (o_.handoverTau >= 0.0f) {
+          float difference2 = 0.0f, variance = 0.0f;
+          int n = 0;
+          for (int dy = -2; dy <= 2; ++dy)
+            for (int dx = -2; dx <= 2; ++dx) {
+              if (!inside(x + dx, y + dy)) continue;
+              const int q = at(x + dx, y + dy);
+              const float raw = luminance(f_.mean[q] / demodulationAlbedo(albedo(q)));
+              const float d = luminance(glm::vec3(filtered[q])) - raw;
+              difference2 += d * d;
+              variance += variance_[q];
+              ++n;
+            }
+          const float bias2 = std::max(difference2 - variance, 0.0f) / float(std::max(n, 1));
+          const float v = variance_[p], assumed = o_.handoverTau * luminance(glm::vec3(filtered[p]));
+          const float total = v + std::max(filtered[p].a, 0.0f) + std::max(assumed * assumed, bias2);
+          a = total > 0.0f ? v / total : 0.0f;
+        }
+        out[p] = f_.mean[p] + a * (denoised - f_.mean[p]);
+      }
+    return out;
+  }
+
+  const Frame& f_;
+  render::DenoiseOptions o_;
+  int w_, h_, rows_;
+  std::vector<glm::vec4> ping_, guide_;  // guide: the normal through the octahedral round trip, depth
+  std::vector<float> gradient_, variance_;
+};
+
 }  // namespace
 
 TEST_F(DenoiserFixture, AFlatImageStaysFlat) {
@@ -187,6 +423,62 @@ TEST_F(DenoiserFixture, AFlatImageStaysFlat) {
   ASSERT_EQ(out2.size(), size_t(32) * 56);
   for (size_t i = 0; i < out2.size(); ++i)
     for (int c = 0; c < 3; ++c) ASSERT_NEAR(out2[i][c], g.mean[i][c], 1e-5f * g.mean[i][c]) << "pixel " << i;
+}
+
+TEST_F(DenoiserFixture, ComputesWhatAReferenceOfItsMathOnTheCpuDoes) {
+  // A scene-like frame: surfaces of several albedos, normals (some facing away from +z) and depth slopes, a
+  // region of misses, an emitter, pixels of 1, 2 and 16 samples, noise; odd sizes, so that blocks and
+  // workgroups overhang the image.
+  Frame f(45, 37, 16.0f);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (uint32_t y = 0; y < f.height; ++y)
+    for (uint32_t x = 0; x < f.width; ++x) {
+      const size_t i = f.at(x, y);
+      const int region = int(x / 12 + 4 * (y / 10));
+      f.albedo[i] = glm::vec3(0.2f + 0.15f * float(region % 5), 0.7f - 0.1f * float(region % 4), 0.5f);
+      f.normal[i] =
+          glm::normalize(glm::vec3(0.3f * float(region % 3) - 0.3f, 0.2f, region % 4 == 3 ? -1.0f : 1.0f));
+      f.depth[i] = 2.0f + 0.05f * float(x) + 0.5f * float(region % 2) + 0.01f * float(y);
+      const float irradiance = 0.5f + u(rng);
+      f.mean[i] = f.albedo[i] * irradiance;
+      f.meanVariance[i] = 0.01f + 0.05f * u(rng);
+      f.samples[i] = x < 6 ? 1.0f : x < 10 ? 2.0f : 16.0f;
+      if (x > 36 && y < 8) {  // a miss: no albedo, no normal, negative depth
+        f.albedo[i] = glm::vec3(0.0f);
+        f.normal[i] = glm::vec3(0.0f);
+        f.depth[i] = -1.0f;
+        f.mean[i] = glm::vec3(0.3f, 0.4f, 0.5f);
+      }
+      if (x >= 20 && x < 23 && y >= 20 && y < 23) {  // an emitter: black albedo, bright
+        f.albedo[i] = glm::vec3(0.0f);
+        f.mean[i] = glm::vec3(20.0f);
+      }
+    }
+  render::DenoiseOptions pow64;
+  pow64.sigmaNormal = 64.0f;  // pow() rather than squaring
+  render::DenoiseOptions noHandover = geometryOnly();
+  noHandover.sigmaLuminance = 4.0f;
+  struct Case {
+    const char* name;
+    render::DenoiseOptions options;
+    uint32_t rows;
+  };
+  for (const Case& c : {Case{"default", {}, ~0u}, Case{"sigmaNormal 64", pow64, ~0u},
+                        Case{"geometry only", geometryOnly(), ~0u}, Case{"no hand-over", noHandover, ~0u},
+                        Case{"rows [0, 21)", {}, 21u}}) {
+    SCOPED_TRACE(c.name);
+    const auto gpu = denoise(f, c.options, c.rows);
+    const auto cpu = ReferenceDenoiser(f, c.options, c.rows).run();
+    double worst = 0;
+    for (size_t i = 0; i < gpu.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double scale = std::max(std::abs(double(cpu[i][k])), 1e-2);
+        worst = std::max(worst, std::abs(double(gpu[i][k]) - cpu[i][k]) / scale);
+        ASSERT_NEAR(gpu[i][k], cpu[i][k], 1e-4 * scale) << "pixel " << i % f.width << "," << i / f.width;
+      }
+    std::printf("[ %s ] largest relative difference to the CPU reference: %.3g\n", c.name, worst);
+  }
 }
 
 TEST_F(DenoiserFixture, AnEdgeInAlbedoIsKept) {
