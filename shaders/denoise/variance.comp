@@ -5,7 +5,11 @@
 // neighbourhood) is noisy; the median of the estimates over the 3x3 neighbourhood on the same surface is
 // steadier, and unlike a mean it does not take a calm pixel's variance from a few noisy neighbours across a
 // luminance edge the geometry does not show (an emitter's rim). The larger of the two, divided by the
-// pixel's samples: a firefly keeps its own large variance, so the filter reaches out to dilute it.
+// pixel's samples: a firefly keeps its own large variance, so the filter reaches out to dilute it. Below
+// WB_DENOISE_SHORT_HISTORY samples the own estimates are too few to trust (from 2 samples most pixels
+// estimate well below the true variance, and the filter would hardly touch them): the spread of the
+// neighbourhood's means, times the samples, is taken too where it is larger (SVGF's spatial estimate for a
+// short history).
 // Reads filter plane 0, writes plane 1 and the hand-over's variance.
 #include "common.glsl"
 
@@ -74,6 +78,14 @@ void gatherTaps(ivec2 p, vec4 geometryP, float gradientP, bool own, float self, 
   }
 }
 
+// The spread of the 3x3 neighbourhood's values around their median, as a standard deviation (the median
+// absolute deviation times 1.4826: a normal distribution's), and that median. v is reordered.
+vec2 robustSpread(inout float v[9]) {
+  const float m = median9(v);
+  for (int k = 0; k < 9; ++k) v[k] = abs(v[k] - m);
+  return vec2(1.4826 * median9(v), m);
+}
+
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (!insideImage(p)) return;
@@ -93,12 +105,21 @@ void main() {
   float variance = 0.0;
   if (own) {
     variance = max(self, median9(v));
+    if (n < WB_DENOISE_SHORT_HISTORY) {
+      // The means' spread: the variance of a mean, times n for one sample's.
+      const float lumP = luminance(center.rgb);
+      if (pc.sigmaNormal == 128.0) {
+        gatherTaps(p, geometryP, gradientP, false, lumP, true, v);
+      } else {
+        gatherTaps(p, geometryP, gradientP, false, lumP, false, v);
+      }
+      const float spread = robustSpread(v).x;
+      variance = max(variance, n * spread * spread);
+    }
   } else if (n > 0.0) {
-    // One sample: the median absolute deviation (times 1.4826: a normal distribution's standard deviation).
-    const float m = median9(v);
-    for (int k = 0; k < 9; ++k) v[k] = abs(v[k] - m);
-    const float spread = 1.4826 * median9(v);
-    variance = max((self - m) * (self - m), spread * spread);
+    // One sample: the neighbourhood's spread, or the pixel's own distance from its median where larger.
+    const vec2 s = robustSpread(v);
+    variance = max((self - s.y) * (self - s.y), s.x * s.x);
   }
   const float varianceOfMean = n > 0.0 ? variance / n : 0.0;
   filtered[planeSize() + i] = vec4(center.rgb, varianceOfMean);

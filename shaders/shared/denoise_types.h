@@ -17,6 +17,9 @@
 #define WB_DENOISE_BIND_HANDOVER 7  // buffer of vec2 per pixel: the raw mean's demodulated luminance, its variance
 #define WB_DENOISE_BIND_OUTPUT 8    // rgba32f: the denoised radiance (a = samples in the pixel, as the input)
 
+// Below this many samples a pixel's variance also takes its neighbourhood's spread (variance.comp).
+#define WB_DENOISE_SHORT_HISTORY 4.0
+
 WB_NAMESPACE_BEGIN
 
 struct DenoisePush {

@@ -392,7 +392,8 @@ bool LiveSession::denoiseShown() const {
 }
 
 bool LiveSession::denoisedAsAsked() const {
-  return session_->hybrid() || !session_->pathTracer().settings().denoise || denoiseValid();
+  return session_->hybrid() || !session_->pathTracer().settings().denoise ||
+         (denoiseValid() && (!state_.paused || denoised_.samples == progressive_->samples()));
 }
 
 void LiveSession::recordDenoise(VkCommandBuffer cmd) {

@@ -101,7 +101,7 @@ class LiveSession {
   bool denoiseShown() const;
   uint64_t denoiseRuns() const { return denoiseRuns_; }
   // The view is denoised as the settings ask: denoise off, a hybrid mode, or the denoiser's output of the
-  // current image recorded in a frame.
+  // current image recorded in a frame (paused: of every sample the image holds).
   bool denoisedAsAsked() const;
   void traceTimed(uint64_t pixels, double ms);
   void frameFinished(Clock::time_point frameBegin);

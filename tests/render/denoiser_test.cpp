@@ -313,6 +313,24 @@ class ReferenceDenoiser {
         float variance = 0.0f;
         if (own) {
           variance = std::max(self, median9(v));
+          if (n < float(WB_DENOISE_SHORT_HISTORY)) {
+            std::array<float, 9> lum;
+            const float lumP = luminance(glm::vec3(center));
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dx = -1; dx <= 1; ++dx) {
+                float value = lumP;
+                if (inside(x + dx, y + dy)) {
+                  const int q = at(x + dx, y + dy);
+                  if (geometryWeight(p, q, std::sqrt(float(dx * dx + dy * dy))) > 0.5f)
+                    value = luminance(glm::vec3(ping_[q]));
+                }
+                lum[(dy + 1) * 3 + dx + 1] = value;
+              }
+            const float m = median9(lum);
+            for (float& e : lum) e = std::abs(e - m);
+            const float spread = 1.4826f * median9(lum);
+            variance = std::max(variance, n * spread * spread);
+          }
         } else if (n > 0.0f) {
           const float m = median9(v);
           for (float& e : v) e = std::abs(e - m);

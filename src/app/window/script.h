@@ -10,8 +10,9 @@
 //                            script fails: exit status 1 with the reason)
 //   wait_samples N [SECONDS] render until N samples are accumulated (default 60 s; past it the script fails);
 //                            +N: N more than when the wait begins
-//   wait_denoised [SECONDS]  render until the image shown is the denoiser's output of the current image (at
-//                            once when denoise is off or a hybrid mode shows; default 60 s, then fails)
+//   wait_denoised [SECONDS]  render until the image shown is the denoiser's output of the current image (paused:
+//                            of all its samples; at once when denoise is off or a hybrid mode shows; default
+//                            60 s, then fails)
 //   wait_file PATH [SECONDS] render until PATH exists (another program's signal; default 60 s, then fails)
 //   wait_clicks N [SECONDS]  render until N left clicks in all (since the window opened) are on screen: the
 //                            frame that drew each click's effect finished (default 60 s, then fails)
