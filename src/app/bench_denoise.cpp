@@ -10,8 +10,8 @@
 #include "common/paths.h"
 #include "render/path_tracer.h"
 #include "render/render_session.h"
-#include "vk/check.h"
 #include "vk/context.h"
+#include "vk/gpu_timer.h"
 
 namespace wb::app {
 namespace {
@@ -25,41 +25,22 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-// Three timestamps around one sample and the denoiser after it, on the device.
-class SampleTimer {
- public:
-  explicit SampleTimer(vk::Context& ctx) : ctx_(ctx) {
-    VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-    qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    qi.queryCount = 3;
-    WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &pool_));
-  }
-  ~SampleTimer() { vkDestroyQueryPool(ctx_.device(), pool_, nullptr); }
-  SampleTimer(const SampleTimer&) = delete;
-  SampleTimer& operator=(const SampleTimer&) = delete;
-
-  // One sample traced then denoised; the milliseconds of each.
-  std::pair<double, double> run(render::PathTracer& tracer) {
-    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-      vkCmdResetQueryPool(cmd, pool_, 0, 3);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool_, 0);
+// One sample traced then denoised in one submission; the GPU milliseconds of each (vk::GpuTimer scopes).
+std::pair<double, double> timeSampleAndDenoise(vk::Context& ctx, vk::GpuTimer& timer,
+                                               render::PathTracer& tracer) {
+  ctx.submitAndWait([&](VkCommandBuffer cmd) {
+    {
+      vk::GpuTimer::Scope scope(&timer, cmd, "sample");
       tracer.record(cmd);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, 1);
-      tracer.recordDenoise(cmd);
-      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, 2);
-    });
-    tracer.advance();
-    uint64_t ts[3] = {};
-    WB_VK(vkGetQueryPoolResults(ctx_.device(), pool_, 0, 3, sizeof ts, ts, sizeof(uint64_t),
-                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const double ns = ctx_.timestampPeriodNs();
-    return {double(ts[1] - ts[0]) * ns * 1e-6, double(ts[2] - ts[1]) * ns * 1e-6};
-  }
-
- private:
-  vk::Context& ctx_;
-  VkQueryPool pool_ = VK_NULL_HANDLE;
-};
+    }
+    vk::GpuTimer::Scope scope(&timer, cmd, "denoise");
+    tracer.recordDenoise(cmd);
+  });
+  tracer.advance();
+  double sample = 0, denoise = 0;
+  for (const auto& t : timer.collect()) (t.pass == "sample" ? sample : denoise) = t.ms;
+  return {sample, denoise};
+}
 
 json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device) {
   render::SessionOptions o;
@@ -70,11 +51,12 @@ json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device)
   o.quiet = true;
   render::RenderSession s(o);
   render::PathTracer& tracer = s.pathTracer();
-  SampleTimer timer(s.context());
-  timer.run(tracer);  // warm-up: the driver compiles the pipelines at their first dispatch
+  vk::GpuTimer timer(s.context(), 2);
+  timeSampleAndDenoise(s.context(), timer,
+                       tracer);  // warm-up: the driver compiles the pipelines at their first dispatch
   std::vector<double> sampleMs, denoiseMs;
   for (int r = 0; r < std::max(repeats, 1); ++r) {
-    const auto [sample, denoise] = timer.run(tracer);
+    const auto [sample, denoise] = timeSampleAndDenoise(s.context(), timer, tracer);
     sampleMs.push_back(sample);
     denoiseMs.push_back(denoise);
   }
