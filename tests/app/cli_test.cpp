@@ -87,6 +87,24 @@ TEST(Cli, BenchShowsItsStepsWithAnEta) {
   EXPECT_TRUE(j.contains("startup"));
 }
 
+// `bench --only denoise`'s keys, a contract with outside scripts: the denoiser's GPU time against one
+// sample's, per size, and its share of the sample.
+TEST(Cli, BenchDenoiseReportsItsCostAgainstASample) {
+  const fs::path out = tempDir() / "bench_denoise.json";
+  const auto r = run("bench --quick --only denoise --size 48x48 --repeats 1 --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto j = nlohmann::json::parse(std::ifstream(out))["denoise"];
+  ASSERT_TRUE(j["cost"].is_array() && !j["cost"].empty()) << j.dump();
+  for (const auto& c : j["cost"]) {
+    const double d = c["denoise_ms"].get<double>(), t = c["sample_ms"].get<double>();
+    EXPECT_GT(d, 0.0) << c.dump();
+    EXPECT_GT(t, 0.0) << c.dump();
+    EXPECT_NEAR(c["denoise_share_of_sample"].get<double>(), d / t, 1e-9) << c.dump();
+  }
+  EXPECT_EQ(j["denoise_ms"], j["cost"][0]["denoise_ms"]);
+  EXPECT_EQ(j["denoise_share_of_sample"], j["cost"][0]["denoise_share_of_sample"]);
+}
+
 TEST(Cli, UnknownFlagIsAOneLineError) {
   CommandResult r = run("render --size 8x8 --out /tmp/x.png --no-such-flag");
   EXPECT_NE(r.code, 0);
