@@ -1,5 +1,5 @@
-// What the denoiser's passes share: push constants, luminance, the albedo used to demodulate, the octahedral
-// round trip of normals (the first pass stores normals as it gives them), where a pixel is in the buffers, and
+// What the denoiser's passes share: push constants, luminance, the albedo used to demodulate, the unit normal
+// the first pass stores, where a pixel is in the buffers, and
 // the edge-stopping weights of the a-trous filter (SVGF: Schied et al. 2017).
 #ifndef WB_DENOISE_COMMON_GLSL
 #define WB_DENOISE_COMMON_GLSL
@@ -16,20 +16,9 @@ vec3 demodulationAlbedo(vec3 albedo) {
   return max(albedo.r, max(albedo.g, albedo.b)) < 0.02 ? vec3(1.0) : max(albedo, vec3(0.02));
 }
 
-// Octahedral encoding of a unit vector; (0, 0, 0) (a miss) encodes to a value no unit vector has.
-vec2 octEncode(vec3 n) {
-  const float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-  if (l1 <= 0.0) return vec2(4.0);
-  vec2 e = n.xy / l1;
-  if (n.z < 0.0) e = (1.0 - abs(e.yx)) * vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
-  return e;
-}
-vec3 octDecode(vec2 e) {
-  if (e.x > 2.0) return vec3(0.0);
-  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
+// The first-hit normal the edge-stopping weights compare: unit length; (0, 0, 0) for a miss, whose depth (< 0)
+// is what the weights test.
+vec3 unitNormal(vec3 n) { return dot(n, n) > 0.0 ? normalize(n) : vec3(0.0); }
 
 bool insideImage(ivec2 q) {
   return q.x >= 0 && q.y >= 0 && q.x < int(pc.imageSize.x) && q.y < int(min(pc.rows, pc.imageSize.y));

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The denoiser's first pass, per pixel: the radiance demodulated by the first-hit albedo, the variance of one
 // sample's demodulated luminance (from the path tracer's running mean of luminance^2; -1 below 2 samples), and
-// the guide the edge-stopping weights read: the first-hit normal (through the octahedral round trip), depth and
+// the guide the edge-stopping weights read: the first-hit normal (unit length), depth and
 // how much the depth changes per pixel there (the smaller one-sided difference on each axis, so that an edge
 // does not count). Also the raw mean's demodulated luminance, which the last pass compares the filtered one
 // with around each pixel: the later passes read only the denoiser's buffers.
@@ -54,5 +54,5 @@ void main() {
   const float dx = min(abs(depthAt(p + ivec2(1, 0), 1.0e30) - z), abs(z - depthAt(p - ivec2(1, 0), 1.0e30)));
   const float dy = min(abs(depthAt(p + ivec2(0, 1), 1.0e30) - z), abs(z - depthAt(p - ivec2(0, 1), 1.0e30)));
   gradient[i] = min(length(vec2(dx, dy)), abs(z));
-  geometry[i] = vec4(octDecode(octEncode(normalDepth.xyz)), z);
+  geometry[i] = vec4(unitNormal(normalDepth.xyz), z);
 }

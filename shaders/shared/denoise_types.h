@@ -10,7 +10,7 @@
 #define WB_DENOISE_BIND_ALBEDO 1    // rgba16f: first-hit albedo AOV (WB_BIND_AOV_ALBEDO)
 #define WB_DENOISE_BIND_NORMAL 2    // rgba16f: first-hit normal AOV, a = first-hit distance (WB_BIND_AOV_NORMAL)
 #define WB_DENOISE_BIND_STATS 3     // rgba32f: r = mean luminance^2 of the samples (WB_BIND_AOV_STATS)
-#define WB_DENOISE_BIND_GEOMETRY 4  // buffer of vec4 per pixel: first-hit normal (decoded), depth (< 0: a miss)
+#define WB_DENOISE_BIND_GEOMETRY 4  // buffer of vec4 per pixel: first-hit unit normal, depth (< 0: a miss)
 #define WB_DENOISE_BIND_FILTER 5    // buffer of vec4 per pixel, two planes (the passes' ping-pong, DenoisePush::source):
                                     // demodulated radiance rgb, a = variance of its luminance
 #define WB_DENOISE_BIND_GRADIENT 6  // buffer of float per pixel: how much the depth changes per pixel there

@@ -220,25 +220,8 @@ class ReferenceDenoiser {
   static glm::vec3 demodulationAlbedo(glm::vec3 a) {
     return std::max(a.r, std::max(a.g, a.b)) < 0.02f ? glm::vec3(1.0f) : glm::max(a, glm::vec3(0.02f));
   }
-  static glm::vec2 octEncode(glm::vec3 n) {
-    const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
-    if (l1 <= 0.0f) return glm::vec2(4.0f);
-    glm::vec2 e = glm::vec2(n.x, n.y) / l1;
-    if (n.z < 0.0f)
-      e = (1.0f - glm::abs(glm::vec2(e.y, e.x))) *
-          glm::vec2(e.x >= 0.0f ? 1.0f : -1.0f, e.y >= 0.0f ? 1.0f : -1.0f);
-    return e;
-  }
-  static glm::vec3 octDecode(glm::vec2 e) {
-    if (e.x > 2.0f) return glm::vec3(0.0f);
-    glm::vec3 n(e, 1.0f - std::abs(e.x) - std::abs(e.y));
-    if (n.z < 0.0f) {
-      const glm::vec2 folded = (1.0f - glm::abs(glm::vec2(n.y, n.x))) *
-                               glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
-      n.x = folded.x;
-      n.y = folded.y;
-    }
-    return glm::normalize(n);
+  static glm::vec3 unitNormal(glm::vec3 n) {
+    return glm::dot(n, n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f);
   }
   bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < w_ && y < rows_; }
   int at(int x, int y) const { return y * w_ + x; }
@@ -281,7 +264,7 @@ class ReferenceDenoiser {
         const float dx = std::min(std::abs(depthAt(x + 1, y) - z), std::abs(z - depthAt(x - 1, y)));
         const float dy = std::min(std::abs(depthAt(x, y + 1) - z), std::abs(z - depthAt(x, y - 1)));
         gradient_[i] = std::min(std::sqrt(dx * dx + dy * dy), std::abs(z));
-        guide_[i] = glm::vec4(octDecode(octEncode(normal(i))), z);
+        guide_[i] = glm::vec4(unitNormal(normal(i)), z);
       }
   }
 
@@ -418,7 +401,7 @@ class ReferenceDenoiser {
   const Frame& f_;
   render::DenoiseOptions o_;
   int w_, h_, rows_;
-  std::vector<glm::vec4> ping_, guide_;  // guide: the normal through the octahedral round trip, depth
+  std::vector<glm::vec4> ping_, guide_;  // guide: the unit normal, depth
   std::vector<float> gradient_, variance_;
 };
 
