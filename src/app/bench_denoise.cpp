@@ -52,8 +52,8 @@ json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device)
   render::RenderSession s(o);
   render::PathTracer& tracer = s.pathTracer();
   vk::GpuTimer timer(s.context(), 2);
-  timeSampleAndDenoise(s.context(), timer,
-                       tracer);  // warm-up: the driver compiles the pipelines at their first dispatch
+  // Warm-up: the driver compiles the pipelines at their first dispatch.
+  timeSampleAndDenoise(s.context(), timer, tracer);
   std::vector<double> sampleMs, denoiseMs;
   for (int r = 0; r < std::max(repeats, 1); ++r) {
     const auto [sample, denoise] = timeSampleAndDenoise(s.context(), timer, tracer);

@@ -28,7 +28,7 @@ class Roofline {
   // (the bare paths, of at most `bounces` bounces, on one launch: their length varies from launch to launch
   // by the noise of a mean over every pixel).
   Roofline(const RendererResources& resources, uint32_t width, uint32_t height, const CameraState& camera,
-           uint32_t bounces = 8);
+           uint32_t bounces);
   ~Roofline();
   Roofline(const Roofline&) = delete;
   Roofline& operator=(const Roofline&) = delete;

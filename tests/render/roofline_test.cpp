@@ -37,7 +37,7 @@ TEST(Roofline, TracesThePathTracersSceneAndCountsItsRays) {
   o.settings.envColor = glm::vec3(0.0f);
   auto s = wb::testing::makeSession(o);
   render::Roofline roofline({s->context(), s->library(), s->scene(), s->gpuScene(), s->environment()}, 48, 48,
-                            s->camera());
+                            s->camera(), o.settings.maxBounces);
   const uint64_t pixels = 48 * 48;
   // The camera looks down at the plane: every camera ray hits the plane or the box.
   EXPECT_EQ(roofline.hits(), pixels);
