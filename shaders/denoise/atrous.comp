@@ -1,10 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// One a-trous iteration (SVGF's spatial filter): a 5x5 B3-spline kernel with taps `step` pixels apart, each
+// One a-trous iteration (SVGF's spatial filter): a 3x3 kernel with taps `step` pixels apart, each
 // tap weighted by how alike its surface is (normal, depth) and its demodulated luminance (a Gaussian of the
 // difference in standard deviations of the pixel's mean: where the mean is precise, only taps as bright as it
 // count, so the filter's reach shrinks as samples accumulate). The variance is carried along as the filtered
-// mean's (sum of squared weights), which the next iteration reads. Reads one filter plane, writes the other.
+// mean's (sum of squared weights), which the next iteration reads. Reads one filter plane, writes the other;
+// the last iteration also leaves each pixel's squared difference from the raw mean for final.comp's bias.
 #include "common.glsl"
 
 layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {
@@ -14,6 +15,10 @@ layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBl
 layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) readonly buffer DenoiseGradientBlock {
   float gradient[];
 };
+layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer DenoiseHandoverBlock {
+  vec4 handover[];  // the raw mean's demodulated luminance, its variance, the samples
+};
+layout(std430, set = 0, binding = WB_DENOISE_BIND_BIAS) writeonly buffer DenoiseBiasBlock { float bias[]; };
 
 // The filtered value of pixel p (index i) from the plane starting at `source`. `squaring`: see normalWeight.
 // The weights are computed without branches (selects): a CPU driver runs every lane through both sides of a
@@ -26,11 +31,12 @@ vec4 filterPixel(ivec2 p, uint i, uint source, const bool squaring) {
   const float lumP = luminance(center.rgb);
   // 2 sigma^2 V: a tap sigmaLuminance standard deviations away weighs exp(-1/2).
   const float reach = 2.0 * pc.sigmaLuminance * pc.sigmaLuminance * max(center.a, 0.0);
-  vec3 sum = center.rgb * (0.375 * 0.375);
-  float weights = 0.375 * 0.375;
-  float variance = center.a * (0.375 * 0.375) * (0.375 * 0.375);
-  for (int y = -2; y <= 2; ++y) {
-    for (int x = -2; x <= 2; ++x) {
+  const float center2 = WB_DENOISE_KERNEL_CENTER * WB_DENOISE_KERNEL_CENTER;
+  vec3 sum = center.rgb * center2;
+  float weights = center2;
+  float variance = center.a * center2 * center2;
+  for (int y = -1; y <= 1; ++y) {
+    for (int x = -1; x <= 1; ++x) {
       const ivec2 q = p + ivec2(x, y) * int(pc.step);
       // A tap off the image does not count, nor a miss for a hit or a hit for a miss.
       if ((x == 0 && y == 0) || !insideImage(q)) continue;
@@ -62,9 +68,16 @@ void main() {
   if (!insideImage(p)) return;
   const uint i = pixelIndex(p), source = pc.source * planeSize(), destination = (pc.source ^ 1u) * planeSize();
   // One branch per pixel around the whole loop, with a loop for each case (see normalWeight).
+  vec4 result;
   if (pc.sigmaNormal == 128.0) {
-    filtered[destination + i] = filterPixel(p, i, source, true);
+    result = filterPixel(p, i, source, true);
   } else {
-    filtered[destination + i] = filterPixel(p, i, source, false);
+    result = filterPixel(p, i, source, false);
+  }
+  filtered[destination + i] = result;
+  if (pc.last != 0u) {
+    const vec2 raw = handover[i].xy;
+    const float d = luminance(result.rgb) - raw.x;
+    bias[i] = d * d - raw.y;
   }
 }

@@ -56,10 +56,7 @@ float geometryWeight(vec4 geometryP, float gradientP, vec4 geometryQ, float dist
          exp(-depthExponent(geometryP.w, gradientP, geometryQ.w, distance));
 }
 
-// The B3-spline a-trous kernel (1/16, 1/4, 3/8, 1/4, 1/16), index -2..2.
-float kernelWeight(int i) {
-  const int a = abs(i);
-  return a == 0 ? 0.375 : a == 1 ? 0.25 : 0.0625;
-}
+// The a-trous kernel's weight of tap i (-1..1).
+float kernelWeight(int i) { return i == 0 ? WB_DENOISE_KERNEL_CENTER : WB_DENOISE_KERNEL_SIDE; }
 
 #endif

@@ -16,28 +16,26 @@ layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) readonly buffer Denois
   vec4 filtered[];
 };
 layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer DenoiseHandoverBlock {
-  vec2 handover[];  // the raw mean's demodulated luminance, its variance
+  vec4 handover[];  // the raw mean's demodulated luminance, its variance, the samples
 };
+layout(std430, set = 0, binding = WB_DENOISE_BIND_BIAS) readonly buffer DenoiseBiasBlock { float bias[]; };
 layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
 
 // The squared bias of the filter seen around p: over the 5x5 neighbourhood, the mean of (filtered - raw)^2
-// less the mean variance of the raw means (what noise alone puts there), floored at 0.
-float observedBias2(ivec2 p, uint source) {
-  float difference2 = 0.0, variance = 0.0;
+// less the mean variance of the raw means (what noise alone puts there), floored at 0. Each pixel's term is
+// in the bias buffer (the last a-trous iteration's).
+float observedBias2(ivec2 p) {
+  float excess = 0.0;
   int n = 0;
   for (int y = -2; y <= 2; ++y) {
     for (int x = -2; x <= 2; ++x) {
       const ivec2 q = p + ivec2(x, y);
       if (!insideImage(q)) continue;
-      const uint j = pixelIndex(q);
-      const vec2 raw = handover[j];
-      const float d = luminance(filtered[source + j].rgb) - raw.x;
-      difference2 += d * d;
-      variance += raw.y;
+      excess += bias[pixelIndex(q)];
       ++n;
     }
   }
-  return max(difference2 - variance, 0.0) / float(max(n, 1));
+  return max(excess, 0.0) / float(max(n, 1));
 }
 
 void main() {
@@ -56,7 +54,7 @@ void main() {
   if (pc.handoverTau >= 0.0) {
     const float v = handover[i].y;
     const float assumed = pc.handoverTau * luminance(filteredP.rgb);
-    const float total = v + max(filteredP.a, 0.0) + max(assumed * assumed, observedBias2(p, source));
+    const float total = v + max(filteredP.a, 0.0) + max(assumed * assumed, observedBias2(p));
     a = total > 0.0 ? v / total : 0.0;
   }
   imageStore(outputImage, p, vec4(raw.rgb + a * (denoised - raw.rgb), raw.a));

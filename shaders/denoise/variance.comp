@@ -10,18 +10,21 @@
 // estimate well below the true variance, and the filter would hardly touch them): the spread of the
 // neighbourhood's means, times the samples, is taken too where it is larger (SVGF's spatial estimate for a
 // short history).
-// Reads filter plane 0, writes plane 1 and the hand-over's variance.
+// First, how much the depth changes per pixel at p (the smaller one-sided difference on each axis, so that an
+// edge does not count), which the edge-stopping weights here and in the a-trous passes compare depths with.
+// Reads filter plane 0, writes plane 1, the gradient and the hand-over's variance.
 #include "common.glsl"
 
-layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly image2D radianceImage;
 layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {
   vec4 geometry[];
 };
 layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock { vec4 filtered[]; };
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) readonly buffer DenoiseGradientBlock {
+layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) writeonly buffer DenoiseGradientBlock {
   float gradient[];
 };
-layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) buffer DenoiseHandoverBlock { vec2 handover[]; };
+layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) buffer DenoiseHandoverBlock {
+  vec4 handover[];  // the raw mean's demodulated luminance, its variance (written here), the samples
+};
 
 // The median of nine values by a fixed network of compare-exchanges (Paeth; no data-dependent loop, which a
 // CPU driver runs for as long as its slowest lane). Each exchange keeps both values: v stays a permutation.
@@ -53,27 +56,37 @@ float median9(inout float v[9]) {
   return v[4];
 }
 
-// Per tap of the 3x3 neighbourhood: its per-sample variance (own) or its luminance (below 2 samples); taps off
-// the surface, off the image or without an estimate count as the pixel itself (self). `squaring`: see
-// normalWeight.
-void gatherTaps(ivec2 p, vec4 geometryP, float gradientP, bool own, float self, const bool squaring,
-                inout float v[9]) {
+// Which taps of the 3x3 neighbourhood are on p's surface (bit (y + 1) * 3 + x + 1; off the image: not).
+// `squaring`: see normalWeight.
+uint sameSurface(ivec2 p, vec4 geometryP, float gradientP, const bool squaring) {
+  uint mask = 0u;
   for (int y = -1; y <= 1; ++y) {
     for (int x = -1; x <= 1; ++x) {
       const ivec2 q = p + ivec2(x, y);
+      if (insideImage(q) &&
+          geometryWeight(geometryP, gradientP, geometry[pixelIndex(q)], length(vec2(x, y)), squaring) > 0.5)
+        mask |= 1u << uint((y + 1) * 3 + x + 1);
+    }
+  }
+  return mask;
+}
+
+// Per tap of the 3x3 neighbourhood: its per-sample variance (own) or its luminance (below 2 samples); taps off
+// the surface, off the image or without an estimate count as the pixel itself (self).
+void gatherTaps(ivec2 p, uint surface, bool own, float self, inout float v[9]) {
+  for (int y = -1; y <= 1; ++y) {
+    for (int x = -1; x <= 1; ++x) {
+      const int k = (y + 1) * 3 + x + 1;
       float value = self;
-      if (insideImage(q)) {
-        const uint j = pixelIndex(q);
-        if (geometryWeight(geometryP, gradientP, geometry[j], length(vec2(x, y)), squaring) > 0.5) {
-          const vec4 c = filtered[j];
-          if (!own) {
-            value = luminance(c.rgb);
-          } else if (c.a >= 0.0) {
-            value = c.a;
-          }
+      if ((surface & (1u << uint(k))) != 0u) {
+        const vec4 c = filtered[pixelIndex(p + ivec2(x, y))];
+        if (!own) {
+          value = luminance(c.rgb);
+        } else if (c.a >= 0.0) {
+          value = c.a;
         }
       }
-      v[(y + 1) * 3 + x + 1] = value;
+      v[k] = value;
     }
   }
 }
@@ -86,33 +99,36 @@ vec2 robustSpread(inout float v[9]) {
   return vec2(1.4826 * median9(v), m);
 }
 
+float depthAt(ivec2 q) { return insideImage(q) ? geometry[pixelIndex(q)].w : 1.0e30; }
+
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (!insideImage(p)) return;
   const uint i = pixelIndex(p);
   const vec4 center = filtered[i];
   const vec4 geometryP = geometry[i];
-  const float gradientP = gradient[i];
-  const float n = imageLoad(radianceImage, p).a;
+  const float z = geometryP.w;
+  const float dx = min(abs(depthAt(p + ivec2(1, 0)) - z), abs(z - depthAt(p - ivec2(1, 0))));
+  const float dy = min(abs(depthAt(p + ivec2(0, 1)) - z), abs(z - depthAt(p - ivec2(0, 1))));
+  const float gradientP = min(length(vec2(dx, dy)), abs(z));
+  gradient[i] = gradientP;
+  const float n = handover[i].z;
   const bool own = n >= 2.0;
   const float self = own ? max(center.a, 0.0) : luminance(center.rgb);
-  float v[9];
+  uint surface;
   if (pc.sigmaNormal == 128.0) {
-    gatherTaps(p, geometryP, gradientP, own, self, true, v);
+    surface = sameSurface(p, geometryP, gradientP, true);
   } else {
-    gatherTaps(p, geometryP, gradientP, own, self, false, v);
+    surface = sameSurface(p, geometryP, gradientP, false);
   }
+  float v[9];
+  gatherTaps(p, surface, own, self, v);
   float variance = 0.0;
   if (own) {
     variance = max(self, median9(v));
     if (n < WB_DENOISE_SHORT_HISTORY) {
       // The means' spread: the variance of a mean, times n for one sample's.
-      const float lumP = luminance(center.rgb);
-      if (pc.sigmaNormal == 128.0) {
-        gatherTaps(p, geometryP, gradientP, false, lumP, true, v);
-      } else {
-        gatherTaps(p, geometryP, gradientP, false, lumP, false, v);
-      }
+      gatherTaps(p, surface, false, luminance(center.rgb), v);
       const float spread = robustSpread(v).x;
       variance = max(variance, n * spread * spread);
     }

@@ -14,8 +14,17 @@
 #define WB_DENOISE_BIND_FILTER 5    // buffer of vec4 per pixel, two planes (the passes' ping-pong, DenoisePush::source):
                                     // demodulated radiance rgb, a = variance of its luminance
 #define WB_DENOISE_BIND_GRADIENT 6  // buffer of float per pixel: how much the depth changes per pixel there
-#define WB_DENOISE_BIND_HANDOVER 7  // buffer of vec2 per pixel: the raw mean's demodulated luminance, its variance
+#define WB_DENOISE_BIND_HANDOVER 7  // buffer of vec4 per pixel: the raw mean's demodulated luminance, its variance,
+                                    // the samples in the pixel
 #define WB_DENOISE_BIND_OUTPUT 8    // rgba32f: the denoised radiance (a = samples in the pixel, as the input)
+#define WB_DENOISE_BIND_BIAS 9      // buffer of float per pixel: (filtered - raw)^2 less the raw mean's variance, in
+                                    // the demodulated luminance (the last a-trous iteration's, for final.comp)
+
+// The a-trous kernel over taps -1, 0, 1 (`step` pixels apart): 1/4, 1/2, 1/4. SVGF's B3 spline (5 taps) costs
+// three times the weights per iteration for no gain the converge reports show
+// (docs/bench/lavapipe_denoise_speed.md).
+#define WB_DENOISE_KERNEL_CENTER 0.5
+#define WB_DENOISE_KERNEL_SIDE 0.25
 
 // Below this many samples a pixel's variance also takes its neighbourhood's spread (variance.comp).
 #define WB_DENOISE_SHORT_HISTORY 4.0
@@ -31,7 +40,8 @@ struct DenoisePush {
   float sigmaNormal;      // exponent of the normals' cosine
   float sigmaDepth;       // depth edge-stopping, in multiples of the expected depth change
   float handoverTau;      // relative error assumed for the filtered image (hand-over to the raw one); < 0: none
-  float pad0, pad1, pad2;
+  uint last;              // a-trous: 1 in the last iteration (it also writes the bias buffer)
+  float pad1, pad2;
 };
 
 WB_NAMESPACE_END

@@ -57,13 +57,14 @@ void Denoiser::resize(uint32_t width, uint32_t height) {
   geometry_ = vk::Buffer(ctx_, pixels * 4 * sizeof(float), bufferUsage, false);
   filter_ = vk::Buffer(ctx_, 2 * pixels * 4 * sizeof(float), bufferUsage, false);  // two planes
   gradient_ = vk::Buffer(ctx_, pixels * sizeof(float), bufferUsage, false);
-  handover_ = vk::Buffer(ctx_, pixels * 2 * sizeof(float), bufferUsage, false);
+  handover_ = vk::Buffer(ctx_, pixels * 4 * sizeof(float), bufferUsage, false);
+  bias_ = vk::Buffer(ctx_, pixels * sizeof(float), bufferUsage, false);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     vk::transition(cmd, output_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     VkClearColorValue zero{};
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd, output_.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-    for (const vk::Buffer* b : {&geometry_, &filter_, &gradient_, &handover_})
+    for (const vk::Buffer* b : {&geometry_, &filter_, &gradient_, &handover_, &bias_})
       vkCmdFillBuffer(cmd, b->handle(), 0, VK_WHOLE_SIZE, 0);
   });
   bind();
@@ -84,6 +85,7 @@ void Denoiser::bind() {
     p->setBuffer("DenoiseFilterBlock", filter_);
     p->setBuffer("DenoiseGradientBlock", gradient_);
     p->setBuffer("DenoiseHandoverBlock", handover_);
+    p->setBuffer("DenoiseBiasBlock", bias_);
     p->setStorageImage("outputImage", output_.view());
   }
 }
@@ -123,8 +125,11 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
   dispatch(cmd, *passes_[kPrepare], push, push.rows);
   dispatch(cmd, *passes_[kVariance], push, push.rows);  // filter plane 0 -> 1
   push.source = 1;
-  for (uint32_t i = 0; i < options_.iterations; ++i) {
+  // At least one iteration: the last one leaves the bias the final pass reads.
+  const uint32_t iterations = std::max(options_.iterations, 1u);
+  for (uint32_t i = 0; i < iterations; ++i) {
     push.step = 1u << i;
+    push.last = i + 1 == iterations ? 1u : 0u;
     dispatch(cmd, *passes_[kAtrous], push, push.rows);
     push.source ^= 1u;
   }

@@ -17,7 +17,7 @@
 namespace wb::render {
 
 struct DenoiseOptions {
-  uint32_t iterations = 5;      // a-trous iterations; the step doubles each time (1, 2, 4, ...)
+  uint32_t iterations = 4;      // a-trous iterations (at least 1); the step doubles each time (1, 2, 4, 8)
   float sigmaLuminance = 4.0f;  // luminance edge-stopping in standard deviations of the mean; 0: off
   float sigmaNormal = 128.0f;   // exponent of the normals' cosine
   float sigmaDepth = 1.0f;      // depth edge-stopping, in multiples of the depth change per pixel
@@ -75,7 +75,7 @@ class Denoiser {
   DenoiseInputs inputs_;
   // The intermediates, storage buffers of a pixel per element (shaders/shared/denoise_types.h): a CPU driver
   // gathers from a buffer for much less than it loads from an image.
-  vk::Buffer geometry_, filter_, gradient_, handover_;
+  vk::Buffer geometry_, filter_, gradient_, handover_, bias_;
   vk::Image output_;
 };
 

@@ -164,16 +164,16 @@ void addIrradianceNoise(Frame& f, float sigma, uint32_t seed) {
   }
 }
 
-// The variance reduction of the linear a-trous filter (B3 spline, steps 1, 2, 4, ...) away from the borders:
-// the sum of the squared weights of the composed 2D kernel (separable: the square of the 1D sum).
+// The variance reduction of the linear a-trous filter (its 3-tap kernel, steps 1, 2, 4, ...) away from the
+// borders: the sum of the squared weights of the composed 2D kernel (separable: the square of the 1D sum).
 double expectedVarianceFactor(uint32_t iterations) {
-  const double b3[5] = {1.0 / 16, 1.0 / 4, 3.0 / 8, 1.0 / 4, 1.0 / 16};
+  const double kernel[3] = {WB_DENOISE_KERNEL_SIDE, WB_DENOISE_KERNEL_CENTER, WB_DENOISE_KERNEL_SIDE};
   std::vector<double> k{1.0};
   for (uint32_t i = 0; i < iterations; ++i) {
     const size_t step = size_t(1) << i;
-    std::vector<double> next(k.size() + 4 * step, 0.0);
+    std::vector<double> next(k.size() + 2 * step, 0.0);
     for (size_t a = 0; a < k.size(); ++a)
-      for (size_t t = 0; t < 5; ++t) next[a + t * step] += k[a] * b3[t];
+      for (size_t t = 0; t < 3; ++t) next[a + t * step] += k[a] * kernel[t];
     k = std::move(next);
   }
   double sum2 = 0;
@@ -240,7 +240,9 @@ class ReferenceDenoiser {
     return normalWeight(glm::vec3(guide_[p]), glm::vec3(guide_[q])) *
            std::exp(-depthExponent(p, q, distance));
   }
-  static float kernelWeight(int i) { return std::abs(i) == 0 ? 0.375f : std::abs(i) == 1 ? 0.25f : 0.0625f; }
+  static float kernelWeight(int i) {
+    return float(i == 0 ? WB_DENOISE_KERNEL_CENTER : WB_DENOISE_KERNEL_SIDE);
+  }
   static float median9(std::array<float, 9> v) {
     std::sort(v.begin(), v.end());
     return v[4];
@@ -335,10 +337,11 @@ class ReferenceDenoiser {
         const bool missP = guide_[p].w < 0.0f;
         const float lumP = luminance(glm::vec3(center));
         const float reach = 2.0f * o_.sigmaLuminance * o_.sigmaLuminance * std::max(center.a, 0.0f);
-        glm::vec3 sum = glm::vec3(center) * (0.375f * 0.375f);
-        float weights = 0.375f * 0.375f, variance = center.a * (0.375f * 0.375f) * (0.375f * 0.375f);
-        for (int dy = -2; dy <= 2; ++dy)
-          for (int dx = -2; dx <= 2; ++dx) {
+        const float center2 = kernelWeight(0) * kernelWeight(0);
+        glm::vec3 sum = glm::vec3(center) * center2;
+        float weights = center2, variance = center.a * center2 * center2;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
             if ((dx == 0 && dy == 0) || !inside(x + dx * step, y + dy * step)) continue;
             const int q = at(x + dx * step, y + dy * step);
             const glm::vec4 c = in[q];
@@ -541,7 +544,7 @@ INSTANTIATE_TEST_SUITE_P(NormalOrDepth, DenoiserGeometryEdge, ::testing::Values(
                          [](const auto& info) { return info.param ? "Normal" : "Depth"; });
 
 TEST_F(DenoiserFixture, NoiseOfKnownVarianceIsReducedByTheKernelsFactor) {
-  // Three iterations (steps 1, 2, 4: 29 taps wide): many independent outputs in the interior, so the measured
+  // Three iterations (steps 1, 2, 4: 15 taps wide): many independent outputs in the interior, so the measured
   // variance is close to its expectation.
   const uint32_t iterations = 3, size = 128, border = 14;
   const float sigma = 0.2f;
