@@ -64,7 +64,8 @@ uint sameSurface(ivec2 p, vec4 geometryP, float gradientP, const bool squaring) 
     for (int x = -1; x <= 1; ++x) {
       const ivec2 q = p + ivec2(x, y);
       if (insideImage(q) &&
-          geometryWeight(geometryP, gradientP, geometry[pixelIndex(q)], length(vec2(x, y)), squaring) > 0.5)
+          geometryWeight(geometryP, gradientP, geometry[pixelIndex(q)], length(vec2(x, y)), squaring) >
+              WB_DENOISE_SAME_SURFACE)
         mask |= 1u << uint((y + 1) * 3 + x + 1);
     }
   }

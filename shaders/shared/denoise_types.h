@@ -26,6 +26,13 @@
 #define WB_DENOISE_KERNEL_CENTER 0.5
 #define WB_DENOISE_KERNEL_SIDE 0.25
 
+// A tap of the variance pass's 3x3 neighbourhood counts as on the pixel's surface where its geometry weight
+// (normals and depths, common.glsl) is above this. A neighbour on the same plane weighs down to about exp(-1) by
+// its depth (the change the depth gradient predicts is the weight's unit), and a 0.5 cut it off on slanted
+// surfaces: their pixels estimated their variance from a few neighbours, far too small where most samples are
+// black, and kept their raw value (the dark specks of a denoised image at 1-4 spp).
+#define WB_DENOISE_SAME_SURFACE 0.1
+
 // Below this many samples a pixel's variance also takes its neighbourhood's spread (variance.comp).
 #define WB_DENOISE_SHORT_HISTORY 4.0
 
