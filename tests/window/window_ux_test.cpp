@@ -325,23 +325,28 @@ TEST(WindowUx, TheInspectorHoldsTheChosenSample) {
   EXPECT_EQ(c["inspect_shown_kept"], false) << "with 2 kept of 8 the chosen one has aged out";
 }
 
-// Every heat-map view shows its colour bar (the ramp from blue to red, with its scale) over the image; the
-// beauty view shows none.
+// Every heat-map view shows its colour bar (the ramp from blue to red, with its scale) over the image, the
+// cost views too once their cost data is there; the beauty view shows none.
 TEST(WindowUx, HeatMapViewsShowALegend) {
   REQUIRE_TOOLS();
   const auto dir = tempDir("legend");
   auto p = [&](const std::string& name) { return (dir / name).string(); };
   std::string script = "wait_samples 1 600\n";
-  for (const char* view : {"bounces", "rr_end", "variance", "nan_source", "beauty"}) {
-    script += std::string("set view ") + view + "\nframes 2\nstats " + p(std::string(view) + ".json") +
-              "\nscreenshot " + p(std::string(view) + ".png") + "\nframes 1\n";
+  for (const std::string view :
+       {"bounces", "rr_end", "variance", "nan_source", "cost", "inefficiency", "beauty"}) {
+    // The cost variant restarts the samples: its summary (the views' scale) comes with them.
+    script += "set view " + view + "\n" + (view == "cost" ? "wait_samples 3 600\n" : "") +
+              "frames 2\nstats " + p(view + ".json") + "\nscreenshot " + p(view + ".png") + "\nframes 1\n";
   }
   writeFile(dir / "s.txt", script + "quit\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
   const auto r = w.finish();
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* view : {"bounces", "rr_end", "variance", "nan_source"}) {
+  for (const char* view : {"bounces", "rr_end", "variance", "nan_source", "cost", "inefficiency"}) {
     const auto j = awaitJson(dir / (std::string(view) + ".json"), 1);
+    if (std::string(view) == "cost") {
+      ASSERT_TRUE(j["cost"].is_object()) << "no cost data: " << j["cost"];
+    }
     ASSERT_TRUE(j["widgets"].contains("legend")) << view << " has no legend";
     const auto& l = j["widgets"]["legend"];
     int width = 0, height = 0, n = 0;

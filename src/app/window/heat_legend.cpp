@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "display/display_types.h"
+#include "render/path_inspector.h"
 #include "shared/heat_ramp.h"
 
 namespace wb::app {
@@ -30,7 +31,7 @@ glm::vec3 heatRampColour(float t) {
   return gpu::heatRamp(t);
 }
 
-std::optional<HeatLegend> heatLegend(uint32_t view, float maxVertices) {
+std::optional<HeatLegend> heatLegend(uint32_t view, float maxVertices, const eval::CostSummary* cost) {
   const float vertices = std::max(maxVertices, 1.0f), lastBounce = std::max(maxVertices - 1.0f, 1.0f);
   auto linear = [](float top) {
     return std::vector<std::pair<float, std::string>>{
@@ -50,6 +51,22 @@ std::optional<HeatLegend> heatLegend(uint32_t view, float maxVertices) {
     case WB_VIEW_NAN_SOURCE:
       return HeatLegend{"nan_source: lowest bounce where a sample became NaN/Inf", linear(lastBounce),
                         "elsewhere: the image, dimmed"};
+    case WB_VIEW_COST:
+    case WB_VIEW_INEFFICIENCY: {
+      // Full scale is the 95th percentile over the pixels (the display's costFull / inefficiencyFull).
+      if (!cost || !cost->valid()) return std::nullopt;
+      const std::string units = eval::clockUnits(cost->clock);
+      const bool isCost = view == WB_VIEW_COST;
+      const float top = float(isCost ? cost->p95 : cost->inefficiencyP95);
+      auto ticks = linear(top);
+      ticks.back().second += " (p95)";
+      if (isCost)
+        return HeatLegend{"cost: " + units + " per sample (" + render::clockName(cost->clock) +
+                              " clock, each pixel's " + eval::costEstimateName(cost->estimate) + ")",
+                          ticks, "red: the 5% most expensive pixels"};
+      return HeatLegend{"inefficiency: relative variance x " + units + " per sample (noisy and expensive)",
+                        ticks, "red: the 5% least efficient pixels"};
+    }
     default:
       return std::nullopt;
   }

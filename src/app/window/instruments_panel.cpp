@@ -8,36 +8,12 @@
 #include <imgui.h>
 
 #include "display/display_types.h"
-#include "shared/heat_ramp.h"
 
 namespace wb::app {
 namespace {
 
 // Failures listed in the panel (all of them are marked on the image).
 constexpr size_t kAssertsListed = 8;
-
-ImU32 rampColor(float t) {
-  const glm::vec3 c = gpu::heatRamp(t);
-  return IM_COL32(int(c.r * 255.0f), int(c.g * 255.0f), int(c.b * 255.0f), 255);
-}
-
-// The heat ramp as a bar the width of the panel, with its two ends labelled.
-void rampBar(const char* low, const char* high) {
-  const float w = ImGui::GetContentRegionAvail().x, h = ImGui::GetTextLineHeight();
-  const ImVec2 p = ImGui::GetCursorScreenPos();
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  constexpr int kSteps = 16;
-  for (int i = 0; i < kSteps; ++i) {
-    const float a = float(i) / kSteps, b = float(i + 1) / kSteps;
-    dl->AddRectFilledMultiColor(ImVec2(p.x + a * w, p.y), ImVec2(p.x + b * w, p.y + h), rampColor(a),
-                                rampColor(b), rampColor(b), rampColor(a));
-  }
-  ImGui::Dummy(ImVec2(w, h));
-  ImGui::TextUnformatted(low);
-  const float hw = ImGui::CalcTextSize(high).x;
-  ImGui::SameLine(std::max(w - hw, 0.0f));
-  ImGui::TextUnformatted(high);
-}
 
 std::string bounceText(uint32_t bounce) {
   return bounce == WB_DEBUG_NO_BOUNCE ? "-" : std::to_string(bounce);
@@ -87,7 +63,7 @@ void drawPassTimes(const live::LiveSession& session, double displayMs) {
                    std::max(top * 1.1f, 0.1f), ImVec2(ImGui::GetContentRegionAvail().x, 50));
 }
 
-void drawCostLegend(const live::LiveSession& session) {
+void drawCostSummary(const live::LiveSession& session) {
   const uint32_t view = session.state().params.display.view;
   if (view != WB_VIEW_COST && view != WB_VIEW_INEFFICIENCY) return;
   const auto& tracer = session.render().pathTracer();
@@ -102,15 +78,12 @@ void drawCostLegend(const live::LiveSession& session) {
     ImGui::TextDisabled("cost variant: waiting for the first samples");
     return;
   }
+  // The colour bar is over the image (heat_legend.h); here the numbers behind it.
   const auto& c = *cost;
   const std::string units = eval::clockUnits(c.clock);
-  char low[64], high[96];
   if (view == WB_VIEW_COST) {
     ImGui::TextWrapped("%s per sample (%s clock, each pixel's %s)", units.c_str(), render::clockName(c.clock),
                        eval::costEstimateName(c.estimate));
-    std::snprintf(low, sizeof low, "0");
-    std::snprintf(high, sizeof high, "%.4g %s (p95)", c.p95, units.c_str());
-    rampBar(low, high);
     // A pixel at full scale: its share of the frame's clocks, and against the mean pixel.
     ImGui::TextWrapped("full scale: %.2fx the mean pixel, %.3g%% of the frame's clocks",
                        c.mean > 0 ? c.p95 / c.mean : 0.0, 100.0 * c.p95 / c.frame);
@@ -120,10 +93,8 @@ void drawCostLegend(const live::LiveSession& session) {
   } else {
     ImGui::TextWrapped("relative variance x %s per sample (1 / efficiency: noisy and expensive)",
                        units.c_str());
-    std::snprintf(low, sizeof low, "0");
-    std::snprintf(high, sizeof high, "%.4g (p95)", c.inefficiencyP95);
-    rampBar(low, high);
-    ImGui::Text("mean %.4g  p99 %.4g", c.inefficiencyMean, c.inefficiencyP99);
+    ImGui::Text("full scale (p95) %.4g  mean %.4g  p99 %.4g", c.inefficiencyP95, c.inefficiencyMean,
+                c.inefficiencyP99);
   }
 }
 

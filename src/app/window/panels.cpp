@@ -79,7 +79,7 @@ void inspectPanel(PanelContext& c) {
   } else {
     ImGui::TextDisabled("debug views are the path tracer's");
   }
-  drawCostLegend(c.session);
+  drawCostSummary(c.session);
   drawAssertsSection(c.session);
   drawInspectorSection(st, c.session.inspection(), debugViews);
   drawPrintsSection(c.session);
@@ -392,7 +392,9 @@ void drawOverlays(PanelContext& c, const Rect& view) {
   }
   // A heat-map view's colour bar: what the colours mean, in which unit and scale.
   if (const live::DisplayFrame d = c.session.displayFrame(); d.debugViews) {
-    if (const auto legend = heatLegend(c.session.state().params.display.view, d.maxVertices))
+    const auto& cost = c.session.instruments().cost();
+    if (const auto legend =
+            heatLegend(c.session.state().params.display.view, d.maxVertices, cost ? &*cost : nullptr))
       widgetRects().note("legend", drawHeatLegend(*legend, view));
   }
   char status[192];
