@@ -82,11 +82,15 @@ const std::vector<PassTime>& GpuTimer::collect() {
     roundMs_[size_t(it - totals_.begin())].push_back(t.ms);
   }
   if (!last_.empty()) ++rounds_;
+  discardRound();
+  return last_;
+}
+
+void GpuTimer::discardRound() {
   pending_.clear();
   used_ = 0;
   resetRecorded_ = false;
   open_ = false;
-  return last_;
 }
 
 void GpuTimer::resetTotals() {

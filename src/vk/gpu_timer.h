@@ -2,8 +2,9 @@
 // each pass it records with a GpuTimer::Scope; once the submission has finished, collect() reads the round
 // back: the GPU milliseconds of each pass per sample, the scopes of one pass summed (the path tracer's strips
 // of one frame) and a scope of several samples (a launch of several) divided by them. The renderers time the
-// path tracer and each hybrid pass this way (the window's display pass and denoiser are timed by its
-// Presenter). The medians over rounds (a round: one batch of samples or one frame of Renderer::render) give
+// path tracer and each hybrid pass this way, the window's Presenter its trace, the work after it (the
+// denoiser) and its display. The medians over rounds (a round: one batch of samples or one frame of
+// Renderer::render) give
 // `--stats`' and `bench`'s `pass_ms`. The benchmarks time the device this way too (gpuSeconds), where a
 // submission's wall time would count the host's submit and wait.
 #pragma once
@@ -67,6 +68,8 @@ class GpuTimer {
   // Each pass's median round since resetTotals() (ms: the median of its rounds' times per sample).
   std::vector<PassTime> medians() const;
   void resetTotals();
+  // Forgets the round's scopes without reading them: their command buffer was never submitted.
+  void discardRound();
 
  private:
   struct Pending {

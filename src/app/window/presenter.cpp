@@ -11,9 +11,6 @@
 
 namespace wb::app {
 
-// Timestamps of a shown frame: before the trace, after it, after the work after it, after the display.
-constexpr uint32_t kQueries = 4;
-
 Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindow* window, bool vsync,
                      const std::string& imguiIni)
     : ctx_(ctx), window_(window), vsync_(vsync) {
@@ -54,10 +51,7 @@ Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindo
   WB_VK(vkCreateFence(ctx.device(), &fi, nullptr, &fence_));
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   WB_VK(vkCreateSemaphore(ctx.device(), &si, nullptr, &imageAvailable_));
-  VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-  qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  qi.queryCount = kQueries;
-  WB_VK(vkCreateQueryPool(ctx.device(), &qi, nullptr, &queries_));
+  timer_ = std::make_unique<vk::GpuTimer>(ctx, 3);
 }
 
 Presenter::~Presenter() {
@@ -65,7 +59,7 @@ Presenter::~Presenter() {
   inFlight_ = false;
   ctx_.waitIdle();
   VkDevice d = ctx_.device();
-  if (queries_) vkDestroyQueryPool(d, queries_, nullptr);
+  timer_.reset();
   if (imageAvailable_) vkDestroySemaphore(d, imageAvailable_, nullptr);
   if (fence_) vkDestroyFence(d, fence_, nullptr);
   if (pool_) vkDestroyCommandPool(d, pool_, nullptr);
@@ -104,18 +98,13 @@ bool Presenter::beginFrame() {
   return true;
 }
 
-void Presenter::readTimestamps(bool withDisplay) {
-  uint64_t ts[kQueries] = {};
-  const uint32_t count = withDisplay ? kQueries : 2;
-  if (vkGetQueryPoolResults(ctx_.device(), queries_, 0, count, sizeof(uint64_t) * count, ts, sizeof(uint64_t),
-                            VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) {
-    return;
+void Presenter::readTimestamps() {
+  for (const auto& t : timer_->collect()) {
+    if (t.pass == "trace") traceMs_ = t.ms;
+    if (t.pass == "after_trace") afterTraceMs_ = t.ms;
+    if (t.pass == "display") displayMs_ = t.ms;
   }
-  const double period = ctx_.timestampPeriodNs() * 1e-6;
-  traceMs_ = double(ts[1] - ts[0]) * period;
-  if (!withDisplay) return;
-  afterTraceMs_ = double(ts[2] - ts[1]) * period;
-  displayMs_ = double(ts[3] - ts[2]) * period;
+  timer_->resetTotals();  // only the last frame's times are read: no history to keep
 }
 
 void Presenter::waitForFence() {
@@ -134,7 +123,7 @@ bool Presenter::finish() {
   if (!inFlight_) return false;
   waitForFence();
   inFlight_ = false;
-  readTimestamps(inFlightDisplayed_);
+  readTimestamps();
   if (!captureTarget_.empty()) {
     capture_->write(captureTarget_);
     std::printf("workbench: window screenshot %s\n", captureTarget_.c_str());
@@ -150,12 +139,15 @@ bool Presenter::traceOnly(const TraceRecorder& trace) {
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   WB_VK(vkBeginCommandBuffer(cmd_, &bi));
-  vkCmdResetQueryPool(cmd_, queries_, 0, kQueries);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-  tracedPixels_ = trace(cmd_);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
+  {
+    vk::GpuTimer::Scope scope(timer_.get(), cmd_, "trace");
+    tracedPixels_ = trace(cmd_);
+  }
   WB_VK(vkEndCommandBuffer(cmd_));
-  if (tracedPixels_ == 0) return false;
+  if (tracedPixels_ == 0) {
+    timer_->discardRound();
+    return false;
+  }
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd_;
@@ -165,7 +157,6 @@ bool Presenter::traceOnly(const TraceRecorder& trace) {
     WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
   }
   inFlight_ = true;
-  inFlightDisplayed_ = false;
   finish();
   return true;
 }
@@ -182,12 +173,16 @@ bool Presenter::present(const TraceRecorder& trace, const AfterTraceRecorder& af
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   WB_VK(vkBeginCommandBuffer(cmd_, &bi));
-  vkCmdResetQueryPool(cmd_, queries_, 0, kQueries);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-  tracedPixels_ = trace(cmd_);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
-  afterTrace(cmd_);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+  {
+    vk::GpuTimer::Scope scope(timer_.get(), cmd_, "trace");
+    tracedPixels_ = trace(cmd_);
+  }
+  {
+    vk::GpuTimer::Scope scope(timer_.get(), cmd_, "after_trace");
+    afterTrace(cmd_);
+  }
+  // The display scope around the render pass instance (a scope begins outside one).
+  timer_->begin(cmd_, "display");
 
   VkClearValue clear{};
   clear.color = {{0.06f, 0.06f, 0.07f, 1.0f}};
@@ -201,7 +196,7 @@ bool Presenter::present(const TraceRecorder& trace, const AfterTraceRecorder& af
   if (push.viewRect.z >= 1 && push.viewRect.w >= 1) display_->record(cmd_, push);
   gui_->render(cmd_);
   vkCmdEndRenderPass(cmd_);
-  vkCmdWriteTimestamp(cmd_, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 3);
+  timer_->end(cmd_);
   if (!screenshot.empty()) {
     capture_->record(cmd_, *swapchain_, *index);
     captureTarget_ = screenshot;
@@ -224,7 +219,6 @@ bool Presenter::present(const TraceRecorder& trace, const AfterTraceRecorder& af
     WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
   }
   inFlight_ = true;
-  inFlightDisplayed_ = true;
   if (!swapchain_->present(*index, done)) recreate();
   return true;
 }

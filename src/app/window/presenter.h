@@ -13,6 +13,7 @@
 #include "app/window/capture.h"
 #include "app/window/display_pass.h"
 #include "app/window/gui_layer.h"
+#include "vk/gpu_timer.h"
 #include "vk/swapchain.h"
 
 struct GLFWwindow;
@@ -79,7 +80,8 @@ class Presenter {
 
  private:
   void recreate();
-  void readTimestamps(bool withDisplay);
+  // The finished submission's scope times: trace, after_trace and display (a trace-only one: trace).
+  void readTimestamps();
   // Waits for the submission in flight within the frame limit; throws FrameHang past it.
   void waitForFence();
 
@@ -94,9 +96,8 @@ class Presenter {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkSemaphore imageAvailable_ = VK_NULL_HANDLE;
-  VkQueryPool queries_ = VK_NULL_HANDLE;
+  std::unique_ptr<vk::GpuTimer> timer_;  // the submission's scopes: trace, after_trace, display
   bool inFlight_ = false;
-  bool inFlightDisplayed_ = false;  // the submission in flight has the after-trace and display timestamps
   std::string captureTarget_;
   uint64_t tracedPixels_ = 0;
   double traceMs_ = 0, afterTraceMs_ = 0, displayMs_ = 0;
