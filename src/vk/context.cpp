@@ -309,6 +309,7 @@ void Context::pickDevice(const ContextOptions& options) {
   traits.shaderClockSupported = clocks.any();
   policy_ = resolveDevicePolicy(traits, PolicyOverrides::fromEnvironment());
   if (policy_.shaderClock) shaderClock_ = clocks;
+  if (policy_.deviceClock && shaderClock_.device) shaderClock_.subgroup = false;  // the cost variants read it
 
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rtProps{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR};

@@ -28,6 +28,7 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   if (env::choice("WB_DEFERRED_HOST_OPS") == false) o.deferredHostOps = false;
   o.cpuShapedShaderCode = env::choice("WB_CPU_DEVICE_CODE");
   if (env::choice("WB_SHADER_CLOCK") == false) o.shaderClock = false;
+  o.deviceClock = env::choice("WB_DEVICE_CLOCK");
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   o.trialRuns = env::choice("WB_TRIAL_RUN");
@@ -62,6 +63,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   p.trialRuns = overrides.trialRuns.value_or(true);
   if (overrides.hangSeconds) p.hangSeconds = *overrides.hangSeconds;
   p.shaderClock = device.shaderClockSupported && overrides.shaderClock.value_or(true);
+  p.deviceClock = overrides.deviceClock.value_or(false);
   p.costByMedian = cpu;
   return p;
 }

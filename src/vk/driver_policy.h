@@ -32,6 +32,7 @@ struct PolicyOverrides {
   std::optional<bool> trialRuns;            // WB_TRIAL_RUN=0|1
   std::optional<double> hangSeconds;        // WB_HANG_SECONDS=S (0.5 .. 3600)
   std::optional<bool> shaderClock;          // WB_SHADER_CLOCK=0 (on by default where supported)
+  std::optional<bool> deviceClock;          // WB_DEVICE_CLOCK=1 (the subgroup clock by default)
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -71,6 +72,10 @@ struct DevicePolicy {
   // per-vertex cost): wherever the device has it, unless WB_SHADER_CLOCK=0 (a device without one, for
   // testing, or a driver whose clock misbehaves).
   bool shaderClock = false;
+  // The cost variants read the device clock (shaderDeviceClock) where the device has both it and the subgroup
+  // clock, which they read by default: WB_DEVICE_CLOCK=1, to compare the two where the subgroup clock counts
+  // more than the invocation's own work (an SM's cycles spent on other warps).
+  bool deviceClock = false;
   // The cost views and maps read each pixel's running median of a sample's clocks rather than its mean: on a
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would
   // set the means (lavapipe on a busy machine: a preempted group of pixels at 100x the others).

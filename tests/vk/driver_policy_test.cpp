@@ -173,3 +173,17 @@ TEST(DriverPolicy, TheShaderClockIsOnWhereSupportedUnlessSwitchedOff) {
   ::unsetenv("WB_SHADER_CLOCK");
   EXPECT_FALSE(PolicyOverrides::fromEnvironment().shaderClock.has_value());
 }
+
+// WB_DEVICE_CLOCK=1 makes the cost variants read the device clock instead of the subgroup clock.
+TEST(DriverPolicy, TheDeviceClockIsChosenOnlyWhenAsked) {
+  DeviceTraits withClock = gpu();
+  withClock.shaderClockSupported = true;
+  EXPECT_FALSE(resolveDevicePolicy(withClock, {}).deviceClock);
+  ::setenv("WB_DEVICE_CLOCK", "1", 1);
+  const PolicyOverrides asked = PolicyOverrides::fromEnvironment();
+  EXPECT_EQ(asked.deviceClock, true);
+  EXPECT_TRUE(resolveDevicePolicy(withClock, asked).deviceClock);
+  ::setenv("WB_DEVICE_CLOCK", "yes", 1);
+  EXPECT_THROW(PolicyOverrides::fromEnvironment(), std::invalid_argument);
+  ::unsetenv("WB_DEVICE_CLOCK");
+}
