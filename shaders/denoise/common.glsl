@@ -1,6 +1,6 @@
 // What the denoiser's passes share: push constants, luminance, the albedo used to demodulate, the unit normal
-// the first pass stores, where a pixel is in the buffers, and
-// the edge-stopping weights of the a-trous filter (SVGF: Schied et al. 2017).
+// the first pass stores, where a pixel is in the buffers, and the edge-stopping weights of the a-trous filter
+// (SVGF: Schied et al. 2017).
 #ifndef WB_DENOISE_COMMON_GLSL
 #define WB_DENOISE_COMMON_GLSL
 #include "../shared/denoise_types.h"

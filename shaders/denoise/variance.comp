@@ -10,9 +10,9 @@
 // estimate well below the true variance, and the filter would hardly touch them): the spread of the
 // neighbourhood's means, times the samples, is taken too where it is larger (SVGF's spatial estimate for a
 // short history).
-// First, how much the depth changes per pixel at p (the smaller one-sided difference on each axis, so that an
-// edge does not count), which the edge-stopping weights here and in the a-trous passes compare depths with.
-// Reads filter plane 0, writes plane 1, the gradient and the hand-over's variance.
+// The pass also works out how much the depth changes per pixel at p (the smaller one-sided difference on each
+// axis, so that an edge does not count), which the edge-stopping weights here and in the a-trous passes
+// compare depths with. Reads filter plane 0, writes plane 1, the gradient and the hand-over's variance.
 #include "common.glsl"
 
 layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {

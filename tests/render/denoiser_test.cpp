@@ -279,19 +279,23 @@ class ReferenceDenoiser {
         const float n = f_.samples[p];
         const bool own = n >= 2.0f;
         const float self = own ? std::max(center.a, 0.0f) : luminance(glm::vec3(center));
+        // The neighbour dx, dy of p when it is on p's surface, else -1.
+        auto onSurface = [&](int dx, int dy) {
+          if (!inside(x + dx, y + dy)) return -1;
+          const int q = at(x + dx, y + dy);
+          return geometryWeight(p, q, std::sqrt(float(dx * dx + dy * dy))) > float(WB_DENOISE_SAME_SURFACE)
+                     ? q
+                     : -1;
+        };
         std::array<float, 9> v;
         for (int dy = -1; dy <= 1; ++dy)
           for (int dx = -1; dx <= 1; ++dx) {
             float value = self;
-            if (inside(x + dx, y + dy)) {
-              const int q = at(x + dx, y + dy);
-              if (geometryWeight(p, q, std::sqrt(float(dx * dx + dy * dy))) >
-                  float(WB_DENOISE_SAME_SURFACE)) {
-                if (!own) {
-                  value = luminance(glm::vec3(ping_[q]));
-                } else if (ping_[q].a >= 0.0f) {
-                  value = ping_[q].a;
-                }
+            if (const int q = onSurface(dx, dy); q >= 0) {
+              if (!own) {
+                value = luminance(glm::vec3(ping_[q]));
+              } else if (ping_[q].a >= 0.0f) {
+                value = ping_[q].a;
               }
             }
             v[(dy + 1) * 3 + dx + 1] = value;
@@ -304,14 +308,8 @@ class ReferenceDenoiser {
             const float lumP = luminance(glm::vec3(center));
             for (int dy = -1; dy <= 1; ++dy)
               for (int dx = -1; dx <= 1; ++dx) {
-                float value = lumP;
-                if (inside(x + dx, y + dy)) {
-                  const int q = at(x + dx, y + dy);
-                  if (geometryWeight(p, q, std::sqrt(float(dx * dx + dy * dy))) >
-                      float(WB_DENOISE_SAME_SURFACE))
-                    value = luminance(glm::vec3(ping_[q]));
-                }
-                lum[(dy + 1) * 3 + dx + 1] = value;
+                const int q = onSurface(dx, dy);
+                lum[(dy + 1) * 3 + dx + 1] = q >= 0 ? luminance(glm::vec3(ping_[q])) : lumP;
               }
             const float m = median9(lum);
             for (float& e : lum) e = std::abs(e - m);

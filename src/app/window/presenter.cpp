@@ -181,22 +181,22 @@ bool Presenter::present(const TraceRecorder& trace, const AfterTraceRecorder& af
     vk::GpuTimer::Scope scope(timer_.get(), cmd_, "after_trace");
     afterTrace(cmd_);
   }
-  // The display scope around the render pass instance (a scope begins outside one).
-  timer_->begin(cmd_, "display");
-
-  VkClearValue clear{};
-  clear.color = {{0.06f, 0.06f, 0.07f, 1.0f}};
-  VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  rp.renderPass = swapchain_->renderPass();
-  rp.framebuffer = swapchain_->framebuffer(*index);
-  rp.renderArea = {{0, 0}, swapchain_->extent()};
-  rp.clearValueCount = 1;
-  rp.pClearValues = &clear;
-  vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
-  if (push.viewRect.z >= 1 && push.viewRect.w >= 1) display_->record(cmd_, push);
-  gui_->render(cmd_);
-  vkCmdEndRenderPass(cmd_);
-  timer_->end(cmd_);
+  {
+    // Around the whole render pass instance: a scope begins and ends outside one.
+    vk::GpuTimer::Scope scope(timer_.get(), cmd_, "display");
+    VkClearValue clear{};
+    clear.color = {{0.06f, 0.06f, 0.07f, 1.0f}};
+    VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rp.renderPass = swapchain_->renderPass();
+    rp.framebuffer = swapchain_->framebuffer(*index);
+    rp.renderArea = {{0, 0}, swapchain_->extent()};
+    rp.clearValueCount = 1;
+    rp.pClearValues = &clear;
+    vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
+    if (push.viewRect.z >= 1 && push.viewRect.w >= 1) display_->record(cmd_, push);
+    gui_->render(cmd_);
+    vkCmdEndRenderPass(cmd_);
+  }
   if (!screenshot.empty()) {
     capture_->record(cmd_, *swapchain_, *index);
     captureTarget_ = screenshot;
