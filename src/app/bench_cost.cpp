@@ -68,9 +68,10 @@ json benchCostVariants(uint32_t width, uint32_t height, uint32_t spp, int repeat
       auto& t = v.session->pathTracer();
       const auto estimate =
           v.session->context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
-      row["cost"] =
-          costJson(eval::summarizeCost(t.readAccumulation(), t.readAov(render::Aov::Stats),
-                                       t.readAov(render::Aov::Cost), width, height, t.clock(), estimate));
+      auto summary = eval::summarizeCost(t.readAccumulation(), t.readAov(render::Aov::Stats),
+                                         t.readAov(render::Aov::Cost), width, height, t.clock(), estimate);
+      summary.lanesIsolated = t.isolatesLanes();
+      row["cost"] = costJson(summary);
     }
     rows.push_back(row);
   }

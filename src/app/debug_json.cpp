@@ -18,6 +18,7 @@ json costJson(const eval::CostSummary& s) {
   return {{"clock", render::clockName(s.clock)},
           {"units", eval::clockUnits(s.clock)},
           {"pixel_estimate", eval::costEstimateName(s.estimate)},
+          {"lanes", s.lanesIsolated ? "isolated" : "shared"},
           {"clocks_per_sample",
            {{"mean", s.mean}, {"p50", s.p50}, {"p95", s.p95}, {"p99", s.p99}, {"max", s.max}}},
           {"frame_clocks", s.frame},

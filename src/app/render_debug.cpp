@@ -67,8 +67,9 @@ uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& sessio
     const auto heat = tracer.readAov(render::Aov::Stats);
     const auto estimate =
         session.context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
-    const eval::CostSummary summary =
+    eval::CostSummary summary =
         eval::summarizeCost(accum, heat, cost, s.width, s.height, tracer.clock(), estimate);
+    summary.lanesIsolated = tracer.isolatesLanes();
     const auto file = beside(out, "cost", out.extension().string());
     if (out.extension() == ".exr") {
       eval::writeExr(file, {s.width, s.height, cost});  // means: r total, g trace, b shade; a the median

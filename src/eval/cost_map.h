@@ -30,6 +30,9 @@ struct CostSummary {
   // Inefficiency (relative variance of one sample x its clocks): the mean, 95th and 99th percentiles over
   // pixels with a non-zero mean, for normalising the view.
   double inefficiencyMean = 0, inefficiencyP95 = 0, inefficiencyP99 = 0;
+  // The cost variant traced each subgroup's lanes alone (vk::DevicePolicy::costIsolatesLanes): a pixel's
+  // clocks are its own path's, not its subgroup's slowest lane's. Set by the caller, which knows the tracer.
+  bool lanesIsolated = false;
   bool valid() const { return clock != 0 && frame > 0; }
 };
 

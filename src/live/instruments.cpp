@@ -67,6 +67,7 @@ void Instruments::frameFinished(render::RenderSession& session, bool pathTracerS
       session.context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
   cost_ = eval::summarizeCost(tracer.readAccumulation(), tracer.readAov(render::Aov::Stats),
                               tracer.readAov(render::Aov::Cost), s.width, s.height, tracer.clock(), estimate);
+  cost_->lanesIsolated = tracer.isolatesLanes();
 }
 
 }  // namespace wb::live

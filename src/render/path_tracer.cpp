@@ -31,7 +31,7 @@ uint32_t PathTracer::clockOf(const vk::Context& ctx) {
 
 std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
                                                      bool inspect, const Instrumentation& instrumentation,
-                                                     uint32_t clock) {
+                                                     uint32_t clock, bool isolateLanes) {
   const auto dir = shaderDir() / "pathtracer";
   auto defines = scene::featureDefines(features);
   const bool userChose = std::any_of(features.extraDefines.begin(), features.extraDefines.end(),
@@ -40,8 +40,10 @@ std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures&
   if (inspect) defines.push_back({"WB_INSPECT", "1"});
   if (instrumentation.cost) defines.push_back({"WB_COST", "1"});
   if (instrumentation.asserts) defines.push_back({"WB_ASSERTS", "1"});
-  if ((inspect || instrumentation.cost) && clock != WB_CLOCK_NONE)
+  if ((inspect || instrumentation.cost) && clock != WB_CLOCK_NONE) {
     defines.push_back({"WB_CLOCK", std::to_string(clock)});
+    if (isolateLanes) defines.push_back({"WB_COST_ISOLATE", "1"});
+  }
   std::vector<shader::ShaderKey> keys = {
       {dir / "raygen.rgen", std::nullopt, defines},
       {dir / "miss.rmiss", std::nullopt, defines},
@@ -131,7 +133,8 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   if (inspect) name += " (inspect)";
   if (instrumentation_.cost) name += " (cost)";
   if (instrumentation_.asserts) name += " (asserts)";
-  pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect, instrumentation_, clock_));
+  pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect, instrumentation_, clock_,
+                                    ctx_.policy().costIsolatesLanes));
   features_ = features;
   featuresSet_ = true;
   inspectVariant_ = inspect;

@@ -67,15 +67,19 @@ class PathTracer final : public Renderer {
   // cpuDeviceCode defines WB_CPU_DEVICE=1: code shaped for a driver that JIT-compiles every inlined copy of a
   // function at the first trace (shaders/pathtracer/common.glsl).
   // inspect defines WB_INSPECT=1: the path inspector's variant; `instrumentation` WB_COST / WB_ASSERTS; both
-  // measuring variants read the shader clock `clock` (WB_CLOCK_*: WB_CLOCK=N; none: left undefined).
+  // measuring variants read the shader clock `clock` (WB_CLOCK_*: WB_CLOCK=N; none: left undefined), and with
+  // isolateLanes (DevicePolicy::costIsolatesLanes) trace their subgroups' lanes one at a time
+  // (WB_COST_ISOLATE=1).
   static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
                                                   bool inspect = false,
                                                   const Instrumentation& instrumentation = {},
-                                                  uint32_t clock = 0);
+                                                  uint32_t clock = 0, bool isolateLanes = false);
   // The shader clock this device's cost variants read (WB_CLOCK_*): the subgroup clock where there is one,
   // else the device clock, else none (their costs read 0).
   static uint32_t clockOf(const vk::Context& ctx);
   uint32_t clock() const { return clock_; }
+  // Whether the measuring variants trace each subgroup's lanes alone (WB_COST_ISOLATE, stageKeys).
+  bool isolatesLanes() const { return clock_ != WB_CLOCK_NONE && ctx_.policy().costIsolatesLanes; }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
   shader::ShaderLibrary::ProgramId program() const { return pass_->program(); }

@@ -302,7 +302,15 @@ void Context::pickDevice(const ContextOptions& options) {
     clocks.subgroup = clock.shaderSubgroupClock;
     clocks.device = clock.shaderDeviceClock;
   }
+  // Subgroup operations in ray generation (the measuring variants' lane isolation, DevicePolicy).
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 subgroupProps{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  subgroupProps.pNext = &subgroup;
+  vkGetPhysicalDeviceProperties2(physical_, &subgroupProps);
+  constexpr VkSubgroupFeatureFlags kVote = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT;
   DeviceTraits traits;
+  traits.raygenSubgroupVote = (subgroup.supportedStages & VK_SHADER_STAGE_RAYGEN_BIT_KHR) != 0 &&
+                              (subgroup.supportedOperations & kVote) == kVote;
   traits.cpuImplementation = candidates[*choice.index].cpu;
   traits.pipelineLibrarySupported = pipelineLibrary_;
   traits.deferredHostOpsSupported = true;  // VK_KHR_deferred_host_operations is a required extension

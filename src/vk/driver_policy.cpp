@@ -29,6 +29,7 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   o.cpuShapedShaderCode = env::choice("WB_CPU_DEVICE_CODE");
   if (env::choice("WB_SHADER_CLOCK") == false) o.shaderClock = false;
   o.deviceClock = env::choice("WB_DEVICE_CLOCK");
+  o.costIsolation = env::choice("WB_COST_ISOLATE");
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   o.trialRuns = env::choice("WB_TRIAL_RUN");
@@ -64,6 +65,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   if (overrides.hangSeconds) p.hangSeconds = *overrides.hangSeconds;
   p.shaderClock = device.shaderClockSupported && overrides.shaderClock.value_or(true);
   p.deviceClock = overrides.deviceClock.value_or(false);
+  p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(false);
   p.costByMedian = cpu;
   return p;
 }

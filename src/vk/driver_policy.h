@@ -19,6 +19,7 @@ struct DeviceTraits {
   bool pipelineLibrarySupported = false;
   bool deferredHostOpsSupported = false;
   bool shaderClockSupported = false;  // VK_KHR_shader_clock with the subgroup or the device clock
+  bool raygenSubgroupVote = false;    // subgroup basic and vote operations in ray generation shaders
 };
 
 // The environment's overrides (unset: the default for the device). Each maps to a variable of
@@ -33,6 +34,7 @@ struct PolicyOverrides {
   std::optional<double> hangSeconds;        // WB_HANG_SECONDS=S (0.5 .. 3600)
   std::optional<bool> shaderClock;          // WB_SHADER_CLOCK=0 (on by default where supported)
   std::optional<bool> deviceClock;          // WB_DEVICE_CLOCK=1 (the subgroup clock by default)
+  std::optional<bool> costIsolation;        // WB_COST_ISOLATE=0|1
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -76,6 +78,11 @@ struct DevicePolicy {
   // clock, which they read by default: WB_DEVICE_CLOCK=1, to compare the two where the subgroup clock counts
   // more than the invocation's own work (an SM's cycles spent on other warps).
   bool deviceClock = false;
+  // WB_COST_ISOLATE=1, an experiment: the measuring variants trace each subgroup's lanes one at a time
+  // (shaders/pathtracer/raygen.rgen), so that a pixel's clocks would be its own path's work and not its
+  // subgroup's slowest lane's, on devices whose ray generation has subgroup votes (not lavapipe). Off by
+  // default: not yet shown to serialise the lanes, or to keep the image, on an NVIDIA GPU (docs/cost.md).
+  bool costIsolatesLanes = false;
   // The cost views and maps read each pixel's running median of a sample's clocks rather than its mean: on a
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would
   // set the means (lavapipe on a busy machine: a preempted group of pixels at 100x the others).

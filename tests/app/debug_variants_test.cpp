@@ -224,6 +224,7 @@ TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
   const fs::path d = tempDir("cost");
   struct Run {
     double redCost = 0, otherCost = 0, passMs = 0, frameClocks = 0;
+    std::string lanes;  // "isolated" | "shared" (DevicePolicy::costIsolatesLanes)
   };
   auto render = [&](const std::string& name, const std::string& define) {
     const fs::path out = d / (name + ".exr");
@@ -243,7 +244,7 @@ TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
     EXPECT_GT(red.size(), 100u) << "the red wall is in view";
     const json s = readJson(d / (name + ".json"));
     return Run{median(red), median(other), s["pass_ms"]["pathtracer"].get<double>(),
-               s["cost"]["frame_clocks"].get<double>()};
+               s["cost"]["frame_clocks"].get<double>(), s["cost"]["lanes"].get<std::string>()};
   };
   const Run plain = render("plain", "");
   const Run expensive = render("expensive", " --define WB_EXPENSIVE_MATERIAL=1");
@@ -252,9 +253,11 @@ TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
   EXPECT_GE(expensive.redCost, 3.0 * expensive.otherCost);
   // The frame's clocks grow with the material's work, and the pass's GPU time with them.
   const double clockGrowth = expensive.frameClocks / plain.frameClocks;
-  std::printf("red wall / rest: %.2fx plain, %.2fx expensive; frame clocks x%.2f, pass_ms %.2f -> %.2f\n",
-              plain.redCost / plain.otherCost, expensive.redCost / expensive.otherCost, clockGrowth,
-              plain.passMs, expensive.passMs);
+  std::printf(
+      "red wall / rest: %.2fx plain, %.2fx expensive; frame clocks x%.2f, pass_ms %.2f -> %.2f; lanes %s\n",
+      plain.redCost / plain.otherCost, expensive.redCost / expensive.otherCost, clockGrowth, plain.passMs,
+      expensive.passMs, expensive.lanes.c_str());
+  EXPECT_TRUE(expensive.lanes == "isolated" || expensive.lanes == "shared") << expensive.lanes;
   EXPECT_GT(clockGrowth, 1.5);
   // The time: at least half the clocks' growth, at most twice the time asked for (another process on a CPU
   // device slows one of the two renders by up to ~2x: the time is a wall clock on a shared machine).
@@ -274,6 +277,7 @@ TEST(DebugVariants, CostWithoutAShaderClockSaysSo) {
   EXPECT_NE(r.output.find("no shader clock"), std::string::npos) << r.output;
   const json s = readJson(d / "s.json");
   EXPECT_EQ(s["cost"]["clock"], "none");
+  EXPECT_EQ(s["cost"]["lanes"], "shared") << "without a clock nothing is isolated";
   EXPECT_TRUE(fs::exists(d / "o.cost.png"));
   EXPECT_TRUE(s["pass_ms"]["pathtracer"].is_number());
 }

@@ -187,3 +187,21 @@ TEST(DriverPolicy, TheDeviceClockIsChosenOnlyWhenAsked) {
   EXPECT_THROW(PolicyOverrides::fromEnvironment(), std::invalid_argument);
   ::unsetenv("WB_DEVICE_CLOCK");
 }
+
+// Lane isolation in the measuring variants is asked for (WB_COST_ISOLATE=1) and needs subgroup votes in ray
+// generation: never by default, never on a device without the votes.
+TEST(DriverPolicy, LaneIsolationIsAskedForAndNeedsSubgroupVotesInRayGeneration) {
+  DeviceTraits voting = gpu();
+  voting.raygenSubgroupVote = true;
+  EXPECT_FALSE(resolveDevicePolicy(voting, {}).costIsolatesLanes) << "an experiment: off by default";
+  ::setenv("WB_COST_ISOLATE", "1", 1);
+  const PolicyOverrides asked = PolicyOverrides::fromEnvironment();
+  EXPECT_TRUE(resolveDevicePolicy(voting, asked).costIsolatesLanes);
+  EXPECT_FALSE(resolveDevicePolicy(gpu(), asked).costIsolatesLanes) << "no votes in ray generation";
+  EXPECT_FALSE(resolveDevicePolicy(cpu(), asked).costIsolatesLanes) << "lavapipe: none either";
+  ::setenv("WB_COST_ISOLATE", "0", 1);
+  EXPECT_FALSE(resolveDevicePolicy(voting, PolicyOverrides::fromEnvironment()).costIsolatesLanes);
+  ::setenv("WB_COST_ISOLATE", "2", 1);
+  EXPECT_THROW(PolicyOverrides::fromEnvironment(), std::invalid_argument);
+  ::unsetenv("WB_COST_ISOLATE");
+}
