@@ -12,7 +12,7 @@
 #  3. `converge` on the sunlit glossy scene, 256x256, against a 4096-spp reference, 3 runs each: the default,
 #     reflector guiding (fractions 0.3 and 0.5) and the device's samples per launch; and on the Cornell box
 #     against ../shared's Cycles reference (WB_SHARED_DIR), default and samples per launch: relMSE per spp and
-#     seconds to relMSE 0.01 (converge's first run traces one sample per launch, the others per checkpoint).
+#     seconds to relMSE 0.01 (timed on the runs after the first, which traces one sample per submission).
 # -q: a smoke run (one round, 64x64 and 128x128, few samples: a few minutes on lavapipe). Prints OUT/summary.md (Markdown) and
 # writes OUT/summary.json. Needs python3.
 set -euo pipefail

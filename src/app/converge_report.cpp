@@ -59,12 +59,17 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+double renderSeconds(const Checkpoint& cp) {
+  if (cp.seconds.size() < 2) return mean(cp.seconds);
+  return mean(std::vector<double>(cp.seconds.begin() + 1, cp.seconds.end()));
+}
+
 std::optional<double> timeToReach(const std::vector<Checkpoint>& checkpoints, double target) {
   for (size_t i = 0; i < checkpoints.size(); ++i) {
-    const double e = mean(checkpoints[i].relMse), t = mean(checkpoints[i].seconds);
+    const double e = mean(checkpoints[i].relMse), t = renderSeconds(checkpoints[i]);
     if (e <= target) {
       if (i == 0) return t;
-      const double e0 = mean(checkpoints[i - 1].relMse), t0 = mean(checkpoints[i - 1].seconds);
+      const double e0 = mean(checkpoints[i - 1].relMse), t0 = renderSeconds(checkpoints[i - 1]);
       if (e0 <= 0 || e <= 0 || t0 <= 0 || e0 == e) return t;
       const double f = std::log(target / e0) / std::log(e / e0);
       return std::exp(std::log(t0) + f * (std::log(t) - std::log(t0)));
@@ -120,7 +125,7 @@ void writeCsv(const fs::path& path, const std::vector<ConfigResult>& results, co
     for (const auto* rows : {&r.checkpoints, &r.denoised}) {
       const bool denoised = rows == &r.denoised;
       for (const auto& cp : *rows) {
-        const double t = mean(cp.seconds), m = mean(cp.mse);
+        const double t = renderSeconds(cp), m = mean(cp.mse);
         const eval::Rgb mm = meanOfRuns(cp);
         char line[512];
         std::snprintf(
@@ -157,7 +162,7 @@ std::string writePlot(const fs::path& dir, const std::vector<ConfigResult>& resu
       g << "$d" << i << " << EOD\n";
       for (const auto& cp : *curves[i].second) {
         const double m = mean(cp.mse);
-        g << mean(cp.seconds) << " " << mean(cp.relMse) << " " << std::sqrt(m) << "\n";
+        g << renderSeconds(cp) << " " << mean(cp.relMse) << " " << std::sqrt(m) << "\n";
       }
       g << "EOD\n";
     }
@@ -230,7 +235,11 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
   }
   md << "- Time to error: seconds to reach relMSE " << fmt("%.3g", target)
      << (setup.targetRelMse > 0 ? "" : " (the median of the final relMSEs)")
-     << ", log-log interpolated between checkpoints.\n";
+     << ", log-log interpolated between checkpoints. Times are those of the runs after the first where there "
+        "are "
+        "several: the first renders one sample per submission to find the checkpoints by time, waiting for "
+        "the "
+        "device after each (converge.csv's seconds_min and seconds_max span all runs).\n";
   if (!setup.plotNote.empty()) {
     md << "- **Plot missing:** " << setup.plotNote << "\n";
   } else {
@@ -243,7 +252,7 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
   auto row = [&](const ConfigResult& r, const std::vector<Checkpoint>& rows, const std::string& name) {
     if (rows.empty()) return;
     const auto& cp = rows.back();
-    const double t = mean(cp.seconds), m = mean(cp.mse);
+    const double t = renderSeconds(cp), m = mean(cp.mse);
     const eval::Rgb mm = meanOfRuns(cp);
     std::string bias;
     for (int k = 0; k < 3; ++k)

@@ -55,6 +55,11 @@ struct ConfigResult {
 };
 
 double mean(const std::vector<double>& v);  // 0 for none
+// The seconds a checkpoint took to render: with several runs, the mean of those after the first. The first
+// run renders one sample per submission and waits for it (it finds the checkpoints by time), so its time also
+// holds a round trip to the device per sample; the others render each checkpoint's samples in one submission,
+// as `render` does. With one run, its time.
+double renderSeconds(const Checkpoint& cp);
 // A file-name-safe version of a configuration name (letters, digits, - and _; others become _).
 std::string safeName(const std::string& name);
 // The image mean of a checkpoint, averaged over its runs.

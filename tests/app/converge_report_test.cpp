@@ -36,11 +36,17 @@ TEST(ConvergeReport, TimeToReachInterpolatesInLogLog) {
   EXPECT_FALSE(timeToReach(ConfigResult{}, 0.1).has_value());
 }
 
-TEST(ConvergeReport, TimeToReachAveragesTheRuns) {
+// Errors average over every run; times over the runs after the first, which waits for the device after each
+// sample (renderSeconds).
+TEST(ConvergeReport, TimeToReachAveragesTheRunsAfterTheFirstForTime) {
   ConfigResult r;
-  // Runs average to (2 s, 0.1) and (20 s, 0.001): error ~ t^-2, so 0.01 is reached at 2 * sqrt(10) s.
-  r.checkpoints = {at({1.0, 3.0}, {0.05, 0.15}), at({18.0, 22.0}, {0.0005, 0.0015})};
+  // (2 s, 0.1) and (20 s, 0.001): error ~ t^-2, so 0.01 is reached at 2 * sqrt(10) s. The first run's times
+  // (5 s and 50 s) would make it 3 * sqrt(10) s.
+  r.checkpoints = {at({5.0, 1.0, 3.0}, {0.1, 0.05, 0.15}), at({50.0, 18.0, 22.0}, {0.001, 0.0005, 0.0015})};
   EXPECT_NEAR(*timeToReach(r, 0.01), 2.0 * std::sqrt(10.0), 1e-9);
+  EXPECT_DOUBLE_EQ(renderSeconds(r.checkpoints[0]), 2.0);
+  EXPECT_DOUBLE_EQ(renderSeconds(at({4.0}, {0.1})), 4.0) << "one run: its time";
+  EXPECT_DOUBLE_EQ(renderSeconds(Checkpoint{}), 0.0);
 }
 
 TEST(ConvergeReport, NamesAndNumbers) {
