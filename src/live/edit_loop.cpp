@@ -128,9 +128,10 @@ std::string EditLoop::hangMessage(double seconds) const {
          "files on disk are as saved; fix them before the next start)";
 }
 
-void EditLoop::revert(const std::vector<HotReload::InstalledPass>& installed) {
-  hot_->revert(installed);
+std::vector<std::filesystem::path> EditLoop::revert(const std::vector<HotReload::InstalledPass>& installed) {
+  auto unknown = hot_->revert(installed);
   if (comparison_) comparison_->reset();
+  return unknown;
 }
 
 }  // namespace wb::live

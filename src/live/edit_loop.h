@@ -94,7 +94,7 @@ class EditLoop {
   void setABRateHint(double pixelsPerMs) { planner_.setRateHint(pixelsPerMs); }
   const ABBudgetPlanner& abPlanner() const { return planner_; }
   // Reinstalls the pipelines the last reload replaced (`installed` from its CompletedReload).
-  void revert(const std::vector<HotReload::InstalledPass>& installed);
+  std::vector<std::filesystem::path> revert(const std::vector<HotReload::InstalledPass>& installed);
 
  private:
   render::RenderSession& session_;

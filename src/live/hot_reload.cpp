@@ -394,11 +394,17 @@ void HotReload::attachAB(std::vector<ReloadAB> ab, double ms) {
   history_.back().abMs = ms;
 }
 
-void HotReload::revert(const std::vector<InstalledPass>& installed) {
-  for (const auto& ip : installed)
-    if (ip.pass && ip.before) ip.pass->install(ip.before);
+std::vector<std::filesystem::path> HotReload::revert(const std::vector<InstalledPass>& installed) {
+  std::vector<std::filesystem::path> unknown;
+  for (const auto& ip : installed) {
+    if (!ip.pass || !ip.before) continue;
+    ip.pass->install(ip.before);
+    for (auto& f : library_.keepSourcesOf(ip.before.build.stages))
+      if (std::find(unknown.begin(), unknown.end(), f) == unknown.end()) unknown.push_back(std::move(f));
+  }
   std::lock_guard lock(mutex_);
   if (!history_.empty()) history_.back().reverted = true;
+  return unknown;
 }
 
 bool HotReload::busy() const {

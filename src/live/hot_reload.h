@@ -119,8 +119,10 @@ class HotReload {
   // Render thread: attaches A/B results to the newest event of the history.
   void attachAB(std::vector<ReloadAB> ab, double ms);
   // Render thread: reinstalls the pipelines `installed` replaced (kept, so nothing is built); the newest
-  // event is marked reverted. The files on disk are not touched: a later save rebuilds from them.
-  void revert(const std::vector<InstalledPass>& installed);
+  // event is marked reverted. The files on disk are not touched; until each is saved again, builds read the
+  // text the old pipelines were compiled from (ShaderLibrary::keepSourcesOf), so a variant built later is
+  // the reverted code too. Returns the files whose old text is no longer known (builds read them from disk).
+  std::vector<std::filesystem::path> revert(const std::vector<InstalledPass>& installed);
   // Render thread, once per frame: a frame finished; the first after a commit used the new pipelines (fills
   // editToFirstFrameMs and the event's frame times). frameBegin: when the frame's work began (default: the
   // previous call, for loops that draw back to back; pass it when the loop also waits between frames).

@@ -270,14 +270,20 @@ bool LiveSession::takeBackReviewed(bool keepOtherSize) {
 
 void LiveSession::applyAB() {
   if (ab_.revertRequested && !ab_.decided && !ab_.installed.empty()) {
-    loop_->revert(ab_.installed);
+    const auto unknown = loop_->revert(ab_.installed);
     // The old pipeline's image is still valid: its accumulation goes on (at once, or when its size comes
     // back); the new pipeline's of another size is not.
     const uint32_t kept = progressive_->parkedSamples(render::ProgressiveTracer::ParkSlot::Review);
     const bool resumed = takeBackReviewed(false);
-    ab_.decide(resumed ? "reverted to the old pipeline and its " + std::to_string(kept) +
-                             " samples (the file on disk is unchanged)"
-                       : "reverted to the old pipeline (the file on disk is unchanged)");
+    std::string files =
+        " (the files on disk are unchanged; builds use the old text until you save them again)";
+    if (!unknown.empty()) {
+      files = " (the files on disk are unchanged; the old text of " + unknown.front().filename().string() +
+              (unknown.size() > 1 ? " and " + std::to_string(unknown.size() - 1) + " more" : "") +
+              " is no longer known: a variant built later compiles the file on disk)";
+    }
+    ab_.decide(resumed ? "reverted to the old pipeline and its " + std::to_string(kept) + " samples" + files
+                       : "reverted to the old pipeline" + files);
     std::printf("workbench: A/B revert: old pipeline reinstalled\n");
     std::fflush(stdout);
   }

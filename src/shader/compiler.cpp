@@ -186,7 +186,7 @@ CompileOutput compileGlsl(const CompileInput& in) {
   shader->setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
   shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_4);
 
-  Includer includer(in.path, hash64(in.source), in.includeRoots);
+  Includer includer(in.path, hash64(in.source), in.includeRoots, &in.sourceOverrides);
   includer.setMainText(in.source);
   const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
   const bool parsed = shader->parse(GetDefaultResources(), 460, false, messages, includer);

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ struct CompileInput {
   std::string entry = "main";
   std::vector<fs::path> includeRoots;
   CompileOptions options;
+  // Texts read instead of these (canonical) include files: sources a revert keeps (ShaderLibrary).
+  std::map<fs::path, std::string> sourceOverrides;
 };
 
 struct CompileOutput {

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <xxhash.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -80,6 +81,11 @@ std::optional<uint64_t> FileHashCache::hash(const fs::path& p) {
   uint64_t h = hash64(*data);
   const int64_t now = nowNs();
   std::lock_guard lock(mutex_);
+  auto& kept = texts_[key];
+  if (std::none_of(kept.begin(), kept.end(), [&](const auto& t) { return t.first == h; })) {
+    kept.emplace_back(h, std::move(*data));
+    if (kept.size() > kKeptTexts) kept.pop_front();
+  }
   entries_[key] = Entry{toNs(st.st_mtim),
                         toNs(st.st_ctim),
                         st.st_size,
@@ -87,6 +93,15 @@ std::optional<uint64_t> FileHashCache::hash(const fs::path& p) {
                         h,
                         now - toNs(st.st_mtim) > kRacyNs && now - toNs(st.st_ctim) > kRacyNs};
   return h;
+}
+
+std::optional<std::string> FileHashCache::text(const fs::path& p, uint64_t hash) const {
+  std::lock_guard lock(mutex_);
+  const auto it = texts_.find(p.string());
+  if (it == texts_.end()) return std::nullopt;
+  for (const auto& [h, t] : it->second)
+    if (h == hash) return t;
+  return std::nullopt;
 }
 
 void FileHashCache::invalidate(const fs::path& p) {

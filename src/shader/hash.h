@@ -1,5 +1,6 @@
 // Content hashes (xxHash) and a thread-safe file-content hash cache whose fast path is a stat() check.
 #pragma once
+#include <deque>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -49,8 +50,11 @@ std::optional<std::string> readFile(const fs::path& p);
 class FileHashCache {
  public:
   std::optional<uint64_t> hash(const fs::path& canonicalPath);
+  // The text of a file that hashed to `hash` when hash() read it: the last kKeptTexts versions of each file.
+  std::optional<std::string> text(const fs::path& canonicalPath, uint64_t hash) const;
   void invalidate(const fs::path& p);
   void clear();
+  static constexpr size_t kKeptTexts = 8;
 
  private:
   struct Entry {
@@ -59,8 +63,9 @@ class FileHashCache {
     uint64_t hash;
     bool trusted;
   };
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::unordered_map<std::string, Entry> entries_;
+  std::unordered_map<std::string, std::deque<std::pair<uint64_t, std::string>>> texts_;  // newest last
 };
 
 }  // namespace wb::shader

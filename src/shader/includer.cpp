@@ -13,8 +13,9 @@ struct Owned {
 };
 }  // namespace
 
-Includer::Includer(fs::path mainFile, uint64_t mainHash, std::vector<fs::path> roots)
-    : roots_(std::move(roots)) {
+Includer::Includer(fs::path mainFile, uint64_t mainHash, std::vector<fs::path> roots,
+                   const std::map<fs::path, std::string>* overrides)
+    : roots_(std::move(roots)), overrides_(overrides) {
   files_.push_back({mainFile, mainHash});
   stack_.push_back(std::move(mainFile));
 }
@@ -63,7 +64,12 @@ glslang::TShader::Includer::IncludeResult* Includer::include(const char* headerN
       for (const auto& s : stack_) chain += s.filename().string() + " -> ";
       return fail("include cycle: " + chain + canon.filename().string() + " (" + canon.string() + ")");
     }
-    auto data = readFile(canon);
+    std::optional<std::string> data;
+    if (overrides_) {
+      const auto kept = overrides_->find(canon);
+      if (kept != overrides_->end()) data = kept->second;
+    }
+    if (!data) data = readFile(canon);
     if (!data) return fail("cannot read include file " + canon.string());
     const uint64_t h = hash64(*data);
     if (std::none_of(files_.begin(), files_.end(), [&](const File& f) { return f.path == canon; }))

@@ -20,7 +20,9 @@ class Includer : public glslang::TShader::Includer {
     fs::path path;  // canonical
     uint64_t contentHash;
   };
-  Includer(fs::path mainFile, uint64_t mainHash, std::vector<fs::path> roots);
+  // overrides (optional, must outlive the includer): texts read instead of these canonical files.
+  Includer(fs::path mainFile, uint64_t mainHash, std::vector<fs::path> roots,
+           const std::map<fs::path, std::string>* overrides = nullptr);
 
   IncludeResult* includeLocal(const char* headerName, const char* includerName, size_t depth) override;
   IncludeResult* includeSystem(const char* headerName, const char* includerName, size_t depth) override;
@@ -41,6 +43,7 @@ class Includer : public glslang::TShader::Includer {
   IncludeResult* include(const char* headerName, const char* includerName, size_t depth, bool local);
   IncludeResult* fail(std::string message);
   std::vector<fs::path> roots_;
+  const std::map<fs::path, std::string>* overrides_ = nullptr;
   std::vector<File> files_;
   std::vector<std::string> texts_;
   // glslang retries a failed "local" include as a <system> one; keep the first (more precise) error.

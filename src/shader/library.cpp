@@ -67,12 +67,21 @@ ShaderLibrary::Resolved ShaderLibrary::resolve(const ShaderKey& key) const {
   return {path, *stage, h.finish()};
 }
 
+std::optional<uint64_t> ShaderLibrary::currentHash(const fs::path& file) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto it = kept_.find(file);
+    if (it != kept_.end()) return hash64(it->second);
+  }
+  return hashes_.hash(file);
+}
+
 std::optional<Hash128> ShaderLibrary::contentKey(const Hash128& variant, const std::vector<fs::path>& files,
                                                  std::vector<uint64_t>* hashes) {
   Hasher h;
   h.add(variant.lo).add(variant.hi);
   for (const auto& f : files) {
-    auto fh = hashes_.hash(f);
+    auto fh = currentHash(f);
     if (!fh) return std::nullopt;  // a dependency vanished: must recompile (and fail properly)
     h.add(f.string()).add(*fh);
     if (hashes) hashes->push_back(*fh);
@@ -140,7 +149,7 @@ std::shared_ptr<const CompiledShader> ShaderLibrary::fromMemory(const Resolved& 
     expected = it->second.hashes;
   }
   for (size_t i = 0; i < cached->files.size(); ++i) {
-    auto h = hashes_.hash(cached->files[i]);
+    auto h = currentHash(cached->files[i]);
     if (!h || *h != expected[i]) return nullptr;
   }
   std::lock_guard lock(mutex_);
@@ -169,6 +178,7 @@ std::optional<ShaderLibrary::MemEntry> ShaderLibrary::fromDisk(const ShaderKey& 
   if (!entry || entry->files != *deps) return std::nullopt;
   auto s =
       makeShader(key, r, std::move(entry->spirv), std::move(entry->files), std::move(entry->warnings), true);
+  s->fileHashes = hashes;
   s->compileMs = msSince(t0);
   try {
     checkBindingAliases(*s);  // entries written before this check existed
@@ -188,7 +198,10 @@ ShaderLibrary::MemEntry ShaderLibrary::compileNew(const ShaderKey& key, const Re
                                                   std::chrono::steady_clock::time_point t0) {
   CompileOutput out = runGlslang(key, r, vid, t0);
   auto s = makeShader(key, r, std::move(out.spirv), out.files, std::move(out.warnings), false);
+  s->fileHashes = out.contentHashes;
   s->compileMs = out.ms;
+  // Each file's text is then known by its hash (FileHashCache keeps the texts it read), for keepSourcesOf.
+  for (const auto& f : out.files) currentHash(f);
   {
     std::lock_guard lock(mutex_);
     ++stats_.misses;
@@ -213,7 +226,13 @@ CompileOutput ShaderLibrary::runGlslang(const ShaderKey& key, const Resolved& r,
                                         std::chrono::steady_clock::time_point t0) {
   CompileInput in;
   in.path = r.path;
-  auto source = readFile(r.path);
+  {
+    std::lock_guard lock(mutex_);
+    in.sourceOverrides = kept_;
+  }
+  const auto kept = in.sourceOverrides.find(r.path);
+  auto source =
+      kept != in.sourceOverrides.end() ? std::optional<std::string>(kept->second) : readFile(r.path);
   if (!source) throw CompileError({{r.path, 0, "error", "cannot read shader file"}});
   in.source = std::move(*source);
   in.stage = r.stage;
@@ -421,6 +440,44 @@ std::map<fs::path, ShaderLibrary::FileStatus> ShaderLibrary::fileStatuses() cons
 
 void ShaderLibrary::invalidateFiles(const std::vector<fs::path>& files) {
   for (const auto& f : files) hashes_.invalidate(f);
+  std::lock_guard lock(mutex_);
+  for (const auto& f : files) kept_.erase(f);
+}
+
+std::vector<fs::path> ShaderLibrary::keepSourcesOf(
+    const std::vector<std::shared_ptr<const CompiledShader>>& stages) {
+  std::vector<fs::path> unknown;
+  for (const auto& s : stages) {
+    if (!s) continue;
+    for (size_t i = 0; i < s->files.size(); ++i) {
+      const fs::path& f = s->files[i];
+      if (i >= s->fileHashes.size()) {
+        if (std::find(unknown.begin(), unknown.end(), f) == unknown.end()) unknown.push_back(f);
+        continue;
+      }
+      const auto onDisk = hashes_.hash(f);
+      if (onDisk && *onDisk == s->fileHashes[i]) {
+        std::lock_guard lock(mutex_);
+        kept_.erase(f);  // the file holds that text (again)
+        continue;
+      }
+      const auto text = hashes_.text(f, s->fileHashes[i]);
+      if (!text) {
+        if (std::find(unknown.begin(), unknown.end(), f) == unknown.end()) unknown.push_back(f);
+        continue;
+      }
+      std::lock_guard lock(mutex_);
+      kept_[f] = *text;
+    }
+  }
+  return unknown;
+}
+
+std::vector<fs::path> ShaderLibrary::keptSources() const {
+  std::lock_guard lock(mutex_);
+  std::vector<fs::path> files;
+  for (const auto& [f, text] : kept_) files.push_back(f);
+  return files;
 }
 
 }  // namespace wb::shader

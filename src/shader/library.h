@@ -72,8 +72,16 @@ class ShaderLibrary {
   // Keyed by canonical path: every compiled stage file, and included files that have diagnostics.
   std::map<fs::path, FileStatus> fileStatuses() const;
 
-  // Forget cached stat information for these files (the watcher saw them change).
+  // Forget cached stat information for these files (the watcher saw them change), and the texts kept for
+  // them.
   void invalidateFiles(const std::vector<fs::path>& files);
+
+  // A revert (the A/B panel's): until a file's next change on disk (invalidateFiles), compiles read the text
+  // these stages were compiled from instead of the file, so that what is built later (a variant: the cost
+  // view, the inspector, asserts) is the reverted code and not the edit on disk. Returns the files whose text
+  // is no longer known (their compiles read the file on disk).
+  std::vector<fs::path> keepSourcesOf(const std::vector<std::shared_ptr<const CompiledShader>>& stages);
+  std::vector<fs::path> keptSources() const;  // the files read from kept texts now
 
  private:
   struct MemEntry {
@@ -92,6 +100,8 @@ class ShaderLibrary {
     Hash128 variant;
   };
   Resolved resolve(const ShaderKey& key) const;
+  // A file's content hash as compiles see it: its kept text's, else the file's (hashes_).
+  std::optional<uint64_t> currentHash(const fs::path& file);
   std::optional<Hash128> contentKey(const Hash128& variant, const std::vector<fs::path>& files,
                                     std::vector<uint64_t>* hashes);
   void warn(const std::string& w);
@@ -129,6 +139,7 @@ class ShaderLibrary {
   DependencyGraph graph_;
   std::vector<Program> programs_;
   std::map<fs::path, FileStatus> statuses_;
+  std::map<fs::path, std::string> kept_;  // keepSourcesOf's texts, by canonical path
 };
 
 }  // namespace wb::shader

@@ -88,9 +88,10 @@ struct CompiledShader {
   ShaderKey key;
   Stage stage = Stage::Compute;
   std::vector<uint32_t> spirv;
-  std::vector<fs::path> files;  // the file and every file it includes, canonical, main file first
-  bool cacheHit = false;        // true when loaded from the disk cache (no glslang compile)
-  double compileMs = 0;         // glslang + validation time (or disk load time on a hit)
+  std::vector<fs::path> files;       // the file and every file it includes, canonical, main file first
+  std::vector<uint64_t> fileHashes;  // xxh3-64 of each file's text as compiled, parallel to files
+  bool cacheHit = false;             // true when loaded from the disk cache (no glslang compile)
+  double compileMs = 0;              // glslang + validation time (or disk load time on a hit)
   std::vector<Diagnostic> warnings;
   Reflection reflection;
 };

@@ -84,6 +84,14 @@ TEST_F(EditLoopTest, ABrokenSaveIsOverAtOnceAndAWorkingOneAfterItsFirstFrameAndC
   render::Pass& pass = *session_->pathTracer().passes().at(0);
   const auto original = pass.installed().pipeline;
   const fs::path miss = root_ / "shaders/pathtracer/miss.rmiss";
+  // The miss stage of a variant the session has not built (as the inspector's or the cost view's would be).
+  auto& library = session_->library();
+  shader::ShaderKey variantMiss;
+  for (const auto& k : library.programStages(pass.program()))
+    if (k.path.filename() == "miss.rmiss") variantMiss = k;
+  ASSERT_FALSE(variantMiss.path.empty());
+  variantMiss.defines.push_back({"WB_TEST_VARIANT", "1"});
+  const auto variantBefore = library.compile(variantMiss)->spirv;
 
   replaceIn(miss, "payload.radiance = envRadiance(dir) * misWeight;", "payload.radiance = broken;");
   auto broken = framesUntilCompleted(loop);
@@ -109,7 +117,18 @@ TEST_F(EditLoopTest, ABrokenSaveIsOverAtOnceAndAWorkingOneAfterItsFirstFrameAndC
   EXPECT_EQ(c.installed[0].before.pipeline, original);
   EXPECT_NE(pass.installed().pipeline, original);
 
-  loop.revert(c.installed);
+  EXPECT_NE(library.compile(variantMiss)->spirv, variantBefore) << "the edit is in the variant";
+
+  EXPECT_TRUE(loop.revert(c.installed).empty()) << "the old text is known";
   EXPECT_EQ(pass.installed().pipeline, original) << "Revert did not reinstall the old pipeline";
   EXPECT_TRUE(loop.hot().history().back().reverted);
+  // What is built after the revert is the reverted code, until the file is saved again.
+  EXPECT_EQ(library.compile(variantMiss)->spirv, variantBefore) << "a variant built later compiled the edit";
+  replaceIn(miss, "* misWeight * 0.5;", "* misWeight * 0.25;");
+  auto saved = framesUntilCompleted(loop);
+  ASSERT_EQ(saved.size(), 1u);
+  EXPECT_TRUE(saved[0].event.ok) << saved[0].event.error;
+  EXPECT_NE(pass.installed().pipeline, original) << "the next save is built from the file";
+  EXPECT_NE(library.compile(variantMiss)->spirv, variantBefore);
+  EXPECT_TRUE(library.keptSources().empty());
 }

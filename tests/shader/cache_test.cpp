@@ -325,3 +325,53 @@ TEST_F(CacheFixture, PruneBySize) {
   DiskCache d(cache(), nullptr, CachePruneLimits{30, 0});
   EXPECT_TRUE(entries(cache()).empty());
 }
+
+namespace {
+
+bool holdsWord(const std::vector<uint32_t>& spirv, uint32_t word) {
+  return std::find(spirv.begin(), spirv.end(), word) != spirv.end();
+}
+
+}  // namespace
+
+// A revert keeps the text its stages were compiled from: until a file's next save every compile reads it (a
+// variant never built before too), from memory, the disk cache or glslang; a save of the file ends it.
+TEST_F(CacheFixture, KeptSourcesStandForTheirFilesUntilTheNextSave) {
+  for (const fs::path& dir : {cache(), fs::path()}) {
+    SCOPED_TRACE(dir.empty() ? "memory only" : "disk cache");
+    const fs::path inc = t / "inc.glsl", main = t / "a.comp";
+    writeFile(inc, "#define VALUE 12345u\n");
+    writeFile(main, kComputeMain);
+    ShaderLibrary l({.cacheDir = dir, .printWarnings = false});
+    const auto v1 = l.compile({main});
+    ASSERT_TRUE(holdsWord(v1->spirv, 12345u));
+    ASSERT_EQ(v1->fileHashes.size(), v1->files.size());
+
+    writeFile(inc, "#define VALUE 67890u\n");  // the edit, in the include and the main file
+    writeFile(main, std::string(kComputeMain) + "// edited\n");
+    l.invalidateFiles({inc, main});
+    ASSERT_TRUE(holdsWord(l.compile({main})->spirv, 67890u));
+
+    EXPECT_TRUE(l.keepSourcesOf({v1}).empty()) << "both texts are known";
+    EXPECT_EQ(l.keptSources(), (std::vector<fs::path>{main, inc}));
+    EXPECT_EQ(l.compile({main})->spirv, v1->spirv);
+    const auto variant = l.compile({main, std::nullopt, {{"EXTRA", "1"}}});
+    EXPECT_TRUE(holdsWord(variant->spirv, 12345u)) << "a variant built after the revert is the reverted code";
+    EXPECT_FALSE(holdsWord(variant->spirv, 67890u));
+
+    writeFile(inc, "#define VALUE 55555u\n");  // the next save of the include
+    l.invalidateFiles({inc});
+    EXPECT_EQ(l.keptSources(), std::vector<fs::path>{main}) << "the main file was not saved again";
+    EXPECT_TRUE(holdsWord(l.compile({main, std::nullopt, {{"EXTRA", "1"}}})->spirv, 55555u));
+    l.invalidateFiles({main});
+    EXPECT_TRUE(l.keptSources().empty());
+
+    // A text never read (not in the last FileHashCache::kKeptTexts versions): named, not kept.
+    auto unknown = std::make_shared<CompiledShader>();
+    unknown->files = {inc};
+    unknown->fileHashes = {42u};
+    EXPECT_EQ(l.keepSourcesOf({unknown}), std::vector<fs::path>{inc});
+    EXPECT_TRUE(l.keptSources().empty());
+    fs::remove_all(cache());
+  }
+}
