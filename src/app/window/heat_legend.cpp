@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "display/display_types.h"
@@ -11,12 +12,6 @@
 
 namespace wb::app {
 namespace {
-
-std::string number(float v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", double(v));
-  return buf;
-}
 
 ImU32 colour(glm::vec3 c) {
   // The ramp is displayed as stored values (no transfer curve), as the display shader shows it.
@@ -27,6 +22,19 @@ ImU32 colour(glm::vec3 c) {
 
 }  // namespace
 
+std::string legendNumber(float v) {
+  const double d = v, a = std::abs(d);
+  char buf[32];
+  if (a >= 999.5e3) {
+    std::snprintf(buf, sizeof buf, "%.3gM", d / 1e6);
+  } else if (a >= 999.5) {
+    std::snprintf(buf, sizeof buf, "%.3gk", d / 1e3);
+  } else {
+    std::snprintf(buf, sizeof buf, "%.3g", d);
+  }
+  return buf;
+}
+
 glm::vec3 heatRampColour(float t) {
   return gpu::heatRamp(t);
 }
@@ -35,7 +43,7 @@ std::optional<HeatLegend> heatLegend(uint32_t view, float maxVertices, const eva
   const float vertices = std::max(maxVertices, 1.0f), lastBounce = std::max(maxVertices - 1.0f, 1.0f);
   auto linear = [](float top) {
     return std::vector<std::pair<float, std::string>>{
-        {0.0f, "0"}, {0.5f, number(0.5f * top)}, {1.0f, number(top)}};
+        {0.0f, "0"}, {0.5f, legendNumber(0.5f * top)}, {1.0f, legendNumber(top)}};
   };
   switch (view) {
     case WB_VIEW_BOUNCES:

@@ -1,0 +1,38 @@
+// The heat-map legend's numbers and the cost views' scale, on the CPU.
+#include <gtest/gtest.h>
+
+#include "app/window/heat_legend.h"
+#include "display/display_types.h"
+#include "shared/pathtracer_types.h"
+
+using wb::app::heatLegend;
+using wb::app::legendNumber;
+
+TEST(HeatLegend, NumbersHaveThreeDigitsAndThousandsAsK) {
+  EXPECT_EQ(legendNumber(0.0f), "0");
+  EXPECT_EQ(legendNumber(4.5f), "4.5");
+  EXPECT_EQ(legendNumber(0.0123456f), "0.0123");
+  EXPECT_EQ(legendNumber(999.4f), "999");
+  EXPECT_EQ(legendNumber(999.6f), "1k");
+  EXPECT_EQ(legendNumber(20553.3f), "20.6k");
+  EXPECT_EQ(legendNumber(841528.5f), "842k");
+  EXPECT_EQ(legendNumber(1034426.75f), "1.03M");
+}
+
+TEST(HeatLegend, TheCostViewsScaleIsTheNinetyFifthPercentile) {
+  wb::eval::CostSummary cost;
+  cost.clock = WB_CLOCK_SUBGROUP;
+  cost.frame = 1e9;
+  cost.p95 = 41000.0;
+  cost.inefficiencyP95 = 0.25;
+  const auto c = heatLegend(WB_VIEW_COST, 8.0f, &cost);
+  ASSERT_TRUE(c.has_value());
+  ASSERT_EQ(c->ticks.size(), 3u);
+  EXPECT_EQ(c->ticks[1].second, "20.5k");
+  EXPECT_EQ(c->ticks[2].second, "41k (p95)");
+  EXPECT_NE(c->title.find("cycles"), std::string::npos) << c->title;
+  const auto i = heatLegend(WB_VIEW_INEFFICIENCY, 8.0f, &cost);
+  ASSERT_TRUE(i.has_value());
+  EXPECT_EQ(i->ticks[2].second, "0.25 (p95)");
+  EXPECT_FALSE(heatLegend(WB_VIEW_COST, 8.0f, nullptr).has_value()) << "no cost data: the panel says why";
+}
