@@ -12,7 +12,9 @@
 #     which prints "red wall / rest") with the subgroup clock and with the device clock (WB_DEVICE_CLOCK=1).
 #     Then the lane-isolation experiment (WB_COST_ISOLATE=1, docs/cost.md): the same ranking, and the inspector's
 #     test that the inspecting variant renders the normal variant's image, with the validation layer.
-#  3. Issue 29: `bench --only pathtracer`: the path tracer against the bare-ray roofline (lockstep shadows on).
+#  3. Issue 29: `bench --only pathtracer`: the path tracer against the bare-ray roofline (lockstep shadows on);
+#     `converge` at 256x256 on the sunlit glossy scene (4096-spp reference) and the Cornell box (Cycles reference
+#     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe).
 set -uo pipefail
 OUT=${OUT:-out/h200_open}
@@ -40,6 +42,16 @@ step cost_device env WB_DEVICE_CLOCK=1 "$T" --gtest_filter='DebugVariants.CostRa
 step cost_isolated env WB_COST_ISOLATE=1 WB_VALIDATION=1 "$T" --gtest_filter='DebugVariants.CostRanks*'
 step inspect_isolated env WB_COST_ISOLATE=1 WB_VALIDATION=1 "$I" --gtest_filter='PathInspector.*'
 step pathtracer "$W" bench "${quick[@]}" --only pathtracer --out "$OUT/pathtracer.json"
+csize=256x256 cref=4096 cspp=256
+[ "${QUICK:-0}" = 1 ] && csize=64x64 cref=64 cspp=16
+configs=(--config default: --config launch-auto:--samples-per-launch=0)
+step converge_sunlit "$W" converge assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5 --size "$csize" \
+  --reference-spp "$cref" --max-spp "$cspp" --seconds 3600 --runs 3 --target-relmse 0.01 "${configs[@]}" \
+  --out "$OUT/sunlit"
+shared=${WB_SHARED_DIR:-../shared}
+step converge_cornell "$W" converge "$shared/reference/cornell.gltf" --env-color 0,0,0 --max-bounces 64 \
+  --size "$csize" --reference "$shared/reference/cornell_cycles.exr" --max-spp "$((cspp < 128 ? cspp : 128))" \
+  --seconds 3600 --runs 3 --target-relmse 0.01 "${configs[@]}" --out "$OUT/cornell"
 
 echo "== summary ($OUT)"
 python3 - "$OUT" <<'PY'
@@ -71,6 +83,17 @@ try:
     print("inspector with isolated lanes:", "passed" if passed(text) else "FAILED")
 except OSError:
     pass
+for scene in ("sunlit", "cornell"):
+    try:
+        md = open(os.path.join(out, scene, "converge.md")).read()
+    except OSError:
+        continue
+    for line in md.splitlines():
+        cells = [c.strip() for c in line.split("|")[1:-1]]
+        if len(cells) > 10 and cells[0] not in ("config",) and not cells[0].startswith("-"):
+            ttr = cells[10] + ("" if cells[10] == "not reached" else " s")
+            print("converge %-8s %-12s time to relMSE 0.01: %s (%s spp, %s s at the end)" %
+                  (scene, cells[0], ttr, cells[2], cells[3]))
 p = load("pathtracer.json")
 for e in (p or {}).get("pathtracer", []):
     if "pathtracer_vs_bare_diffuse_ratio" in e:

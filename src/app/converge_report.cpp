@@ -59,6 +59,10 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+std::string secondsText(double s) {
+  return s >= 100.0 ? fmt("%.0f", s) : fmt("%.3g", s);
+}
+
 double renderSeconds(const Checkpoint& cp) {
   if (cp.seconds.size() < 2) return mean(cp.seconds);
   return mean(std::vector<double>(cp.seconds.begin() + 1, cp.seconds.end()));
@@ -259,10 +263,10 @@ void writeSummary(const fs::path& dir, const std::vector<ConfigResult>& results,
       bias += (k ? " " : "") + fmt("%+.2f", refMean[k] != 0 ? 100.0 * (mm[k] / refMean[k] - 1.0) : 0.0);
     const auto ttr = timeToReach(rows, target);
     md << "| " << name << " | `" << (r.flags.empty() ? "(base)" : r.flags) << "` | " << cp.spp << " | "
-       << fmt("%.2f", t) << " | " << fmt("%.4g", std::sqrt(m)) << " | " << fmt("%.4g", mean(cp.relMse))
+       << secondsText(t) << " | " << fmt("%.4g", std::sqrt(m)) << " | " << fmt("%.4g", mean(cp.relMse))
        << " | " << fmt("%.3g", cp.variance) << " | " << fmt("%.3g", std::max(0.0, m - cp.variance)) << " | "
        << bias << " | " << fmt("%.4g", m > 0 && t > 0 ? 1.0 / (m * t) : 0.0) << " | "
-       << (ttr ? fmt("%.2f", *ttr) : std::string("not reached")) << " | " << r.dropped << " | "
+       << (ttr ? secondsText(*ttr) : std::string("not reached")) << " | " << r.dropped << " | "
        << fmt("%.1f", r.fireflies.maxOverMean) << " | " << fmt("%.2g", r.fireflies.fractionAbove10x)
        << " |\n";
   };

@@ -60,6 +60,9 @@ double mean(const std::vector<double>& v);  // 0 for none
 // holds a round trip to the device per sample; the others render each checkpoint's samples in one submission,
 // as `render` does. With one run, its time.
 double renderSeconds(const Checkpoint& cp);
+// Seconds for the report's tables: 3 significant digits below 100 s ("0.0143", "2.43"), whole seconds above
+// (a GPU's milliseconds and a CPU's minutes alike).
+std::string secondsText(double s);
 // A file-name-safe version of a configuration name (letters, digits, - and _; others become _).
 std::string safeName(const std::string& name);
 // The image mean of a checkpoint, averaged over its runs.

@@ -56,6 +56,9 @@ TEST(ConvergeReport, NamesAndNumbers) {
   EXPECT_DOUBLE_EQ(mean({1.0, 2.0, 6.0}), 3.0);
   EXPECT_DOUBLE_EQ(mean({}), 0.0);
   EXPECT_EQ(fmt("%.2f", 3.14159), "3.14");
+  EXPECT_EQ(secondsText(0.014318), "0.0143");
+  EXPECT_EQ(secondsText(2.4321), "2.43");
+  EXPECT_EQ(secondsText(1234.56), "1235");
 }
 
 namespace {
