@@ -31,6 +31,9 @@ TEST(HeatLegend, TheCostViewsScaleIsTheNinetyFifthPercentile) {
   EXPECT_EQ(c->ticks[1].second, "20.5k");
   EXPECT_EQ(c->ticks[2].second, "41k (p95)");
   EXPECT_NE(c->title.find("cycles"), std::string::npos) << c->title;
+  EXPECT_NE(c->note.find("subgroup's slowest lane"), std::string::npos) << "lanes shared: " << c->note;
+  cost.lanesIsolated = true;
+  EXPECT_EQ(heatLegend(WB_VIEW_COST, 8.0f, &cost)->note, "red: the 5% most expensive pixels");
   const auto i = heatLegend(WB_VIEW_INEFFICIENCY, 8.0f, &cost);
   ASSERT_TRUE(i.has_value());
   EXPECT_EQ(i->ticks[2].second, "0.25 (p95)");

@@ -71,7 +71,10 @@ std::optional<HeatLegend> heatLegend(uint32_t view, float maxVertices, const eva
       if (isCost)
         return HeatLegend{"cost: " + units + " per sample (" + render::clockName(cost->clock) +
                               " clock, each pixel's " + eval::costEstimateName(cost->estimate) + ")",
-                          ticks, "red: the 5% most expensive pixels"};
+                          ticks,
+                          cost->lanesIsolated
+                              ? "red: the 5% most expensive pixels"
+                              : "red: the 5% most expensive; pixels show their subgroup's slowest lane"};
       return HeatLegend{"inefficiency: relative variance x " + units + " per sample (noisy and expensive)",
                         ticks, "red: the 5% least efficient pixels"};
     }
