@@ -65,13 +65,8 @@ json benchCostVariants(uint32_t width, uint32_t height, uint32_t spp, int repeat
                 {"pass_ms", passMsJson(v.session->renderer().passTimer())},
                 {"pathtracer_gpu_overhead", baseGpu > 0 ? gpu / baseGpu - 1.0 : 0.0}};
     if (std::string(v.name) == "cost") {
-      auto& t = v.session->pathTracer();
-      const auto estimate =
-          v.session->context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
-      auto summary = eval::summarizeCost(t.readAccumulation(), t.readAov(render::Aov::Stats),
-                                         t.readAov(render::Aov::Cost), width, height, t.clock(), estimate);
-      summary.lanesIsolated = t.isolatesLanes();
-      row["cost"] = costJson(summary);
+      const auto& t = v.session->pathTracer();
+      row["cost"] = costJson(t.summarizeCost(t.readAov(render::Aov::Cost)));
     }
     rows.push_back(row);
   }

@@ -63,18 +63,12 @@ uint32_t writeDebugOutputs(const RenderCommand& c, render::RenderSession& sessio
   const std::filesystem::path out(c.out);
   if (c.options.aovCost) {
     const auto cost = tracer.readAov(render::Aov::Cost);
-    const auto accum = tracer.readAccumulation();
-    const auto heat = tracer.readAov(render::Aov::Stats);
-    const auto estimate =
-        session.context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
-    eval::CostSummary summary =
-        eval::summarizeCost(accum, heat, cost, s.width, s.height, tracer.clock(), estimate);
-    summary.lanesIsolated = tracer.isolatesLanes();
+    const eval::CostSummary summary = tracer.summarizeCost(cost);
     const auto file = beside(out, "cost", out.extension().string());
     if (out.extension() == ".exr") {
       eval::writeExr(file, {s.width, s.height, cost});  // means: r total, g trace, b shade; a the median
     } else {
-      const auto perPixel = eval::pixelCosts(cost, s.width, s.height, estimate);
+      const auto perPixel = eval::pixelCosts(cost, s.width, s.height, summary.estimate);
       eval::writePng8(file, s.width, s.height, eval::heatMapRgba8(perPixel, summary.p95));
     }
     stats["cost"] = costJson(summary);

@@ -62,12 +62,7 @@ void Instruments::frameFinished(render::RenderSession& session, bool pathTracerS
   if (!costOn_ || !pathTracerShown || tracer.samplesAccumulated() == 0) return;
   if (cost_ && std::chrono::duration<double>(now - lastCostRead_).count() < kCostReadSeconds) return;
   lastCostRead_ = now;
-  const auto& s = tracer.settings();
-  const auto estimate =
-      session.context().policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
-  cost_ = eval::summarizeCost(tracer.readAccumulation(), tracer.readAov(render::Aov::Stats),
-                              tracer.readAov(render::Aov::Cost), s.width, s.height, tracer.clock(), estimate);
-  cost_->lanesIsolated = tracer.isolatesLanes();
+  cost_ = tracer.summarizeCost(tracer.readAov(render::Aov::Cost));
 }
 
 }  // namespace wb::live

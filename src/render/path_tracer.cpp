@@ -590,6 +590,14 @@ std::vector<float> PathTracer::readAccumulation() const {
   return readFloatImage(accum_);
 }
 
+eval::CostSummary PathTracer::summarizeCost(const std::vector<float>& costAov) const {
+  const auto estimate = ctx_.policy().costByMedian ? eval::CostEstimate::Median : eval::CostEstimate::Mean;
+  eval::CostSummary s = eval::summarizeCost(readAccumulation(), readAov(Aov::Stats), costAov, settings_.width,
+                                            settings_.height, clock_, estimate);
+  s.lanesIsolated = isolatesLanes();
+  return s;
+}
+
 std::vector<float> PathTracer::readAov(Aov aov) const {
   if (aov == Aov::Stats || aov == Aov::Cost) return readFloatImage(aovImage(aov));
   return halvesToFloats(aovImage(aov).download(VK_IMAGE_LAYOUT_GENERAL));

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/cost_map.h"
 #include "render/denoiser.h"
 #include "render/renderer.h"
 #include "scene/features.h"
@@ -170,6 +171,10 @@ class PathTracer final : public Renderer {
   // Readbacks (they wait for the device).
   std::vector<float> readAccumulation() const;  // RGBA32F, alpha = samples accumulated in the pixel
   std::vector<float> readAov(Aov aov) const;    // RGBA, from the AOV images
+  // The cost variant's summary of the image so far from its cost AOV (readAov(Aov::Cost)), read with the
+  // accumulation and the stats AOV: each pixel by this device's estimate (DevicePolicy::costByMedian), in its
+  // clock, and whether its lanes were isolated.
+  eval::CostSummary summarizeCost(const std::vector<float>& costAov) const;
   const vk::Image& aovImage(Aov aov) const {
     return aov == Aov::Albedo   ? albedo_
            : aov == Aov::Normal ? normal_

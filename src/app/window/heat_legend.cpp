@@ -3,9 +3,8 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 
+#include "app/window/number_text.h"
 #include "display/display_types.h"
 #include "render/path_inspector.h"
 #include "shared/heat_ramp.h"
@@ -21,19 +20,6 @@ ImU32 colour(glm::vec3 c) {
 }
 
 }  // namespace
-
-std::string legendNumber(float v) {
-  const double d = v, a = std::abs(d);
-  char buf[32];
-  if (a >= 999.5e3) {
-    std::snprintf(buf, sizeof buf, "%.3gM", d / 1e6);
-  } else if (a >= 999.5) {
-    std::snprintf(buf, sizeof buf, "%.3gk", d / 1e3);
-  } else {
-    std::snprintf(buf, sizeof buf, "%.3g", d);
-  }
-  return buf;
-}
 
 glm::vec3 heatRampColour(float t) {
   return gpu::heatRamp(t);

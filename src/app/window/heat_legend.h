@@ -20,8 +20,6 @@ struct HeatLegend {
   std::string note;                                  // what a colour outside the ramp means ("" none)
 };
 
-// A legend's number: at most 3 significant digits, thousands and millions as k and M ("20.6k", "1.03M").
-std::string legendNumber(float v);
 // The display shader's heat ramp at t (clamped to 0..1), linear RGB.
 glm::vec3 heatRampColour(float t);
 // The legend of debug view `view` (WB_VIEW_*), or nullopt when the view is no heat map or, for the cost

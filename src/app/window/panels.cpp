@@ -10,6 +10,7 @@
 
 #include "app/window/heat_legend.h"
 #include "app/window/instruments_panel.h"
+#include "app/window/number_text.h"
 #include "app/window/parameter_panel.h"
 #include "app/window/widget_rects.h"
 #include "common/paths.h"
@@ -307,20 +308,6 @@ void statsPanel(PanelContext& c) {
 }
 
 }  // namespace
-
-std::string humanCount(double v) {
-  char buf[32];
-  if (v >= 1e9) {
-    std::snprintf(buf, sizeof buf, "%.2f G", v / 1e9);
-  } else if (v >= 1e6) {
-    std::snprintf(buf, sizeof buf, "%.2f M", v / 1e6);
-  } else if (v >= 1e3) {
-    std::snprintf(buf, sizeof buf, "%.1f k", v / 1e3);
-  } else {
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-  }
-  return buf;
-}
 
 float sidePanelWidth(float windowWidth) {
   return std::min(400.0f, std::floor(windowWidth * 0.45f));

@@ -36,7 +36,5 @@ float drawSidePanel(PanelContext& c, float windowWidth, float windowHeight, floa
 // Status line and the shader error banner over the image area.
 void drawOverlays(PanelContext& c, const Rect& view);
 
-// "12.3 M" style numbers.
-std::string humanCount(double v);
 
 }  // namespace wb::app
