@@ -51,7 +51,7 @@ void main() {
   const vec3 albedo = demodulationAlbedo(imageLoad(albedoImage, p).rgb);
   const vec3 denoised = filteredP.rgb * albedo;
   float a = 1.0;
-  if (pc.handoverTau >= 0.0) {
+  if (pc.handoverTau >= 0.0 && pc.conserve == 0u) {
     const float v = handover[i].y;
     const float assumed = pc.handoverTau * luminance(filteredP.rgb);
     const float total = v + max(filteredP.a, 0.0) + max(assumed * assumed, observedBias2(p));

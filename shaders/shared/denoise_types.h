@@ -48,7 +48,8 @@ struct DenoisePush {
   float sigmaDepth;       // depth edge-stopping, in multiples of the expected depth change
   float handoverTau;      // relative error assumed for the filtered image (hand-over to the raw one); < 0: none
   uint last;              // a-trous: 1 in the last iteration (it also writes the bias buffer)
-  float pad1, pad2;
+  uint conserve;          // 1: the conservative a-trous form (atrous.comp's exchangePixel); final: no hand-over
+  float pad2;
 };
 
 WB_NAMESPACE_END

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "common/env.h"
 #include "common/paths.h"
 
 namespace wb::render {
@@ -30,6 +31,7 @@ Denoiser::Denoiser(vk::Context& ctx, shader::ShaderLibrary& library) : ctx_(ctx)
     passes_[i]->setPushConstantBytes(sizeof(gpu::DenoisePush));
     passes_[i]->useProgram(kProgramNames[i], {keys[i]});
   }
+  options_.conserve = env::enabled("WB_DENOISE_CONSERVE");
   resize(1, 1);
   for (auto& p : passes_) p->rebuild();
 }
@@ -121,6 +123,7 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
   push.sigmaNormal = options_.sigmaNormal;
   push.sigmaDepth = options_.sigmaDepth;
   push.handoverTau = options_.handoverTau;
+  push.conserve = options_.conserve ? 1u : 0u;
   vk::memoryBarrier(cmd);  // the path tracer's writes before the first read
   dispatch(cmd, *passes_[kPrepare], push, push.rows);
   dispatch(cmd, *passes_[kVariance], push, push.rows);  // filter plane 0 -> 1

@@ -22,6 +22,9 @@ struct DenoiseOptions {
   float sigmaNormal = 128.0f;   // exponent of the normals' cosine
   float sigmaDepth = 1.0f;      // depth edge-stopping, in multiples of the depth change per pixel
   float handoverTau = 0.1f;     // relative error assumed for the filtered image; < 0: no hand-over (tests)
+  // The conservative a-trous form (shaders/denoise/atrous.comp): the image's radiance kept exactly, at the
+  // price of spreading fireflies instead of removing them; WB_DENOISE_CONSERVE=1 (docs/reports/denoiser.md).
+  bool conserve = false;
 };
 
 // The images the denoiser reads (the path tracer's, GENERAL layout): radiance rgba32f with the samples per

@@ -601,7 +601,9 @@ TEST_F(DenoiserFixture, NoiseOfKnownVarianceIsReducedByTheKernelsFactor) {
   for (uint32_t seed = 0; seed < 4; ++seed) {
     Frame f(size, size, 4.0f);
     addIrradianceNoise(f, sigma, 10 + seed);
-    const auto out = denoise(f, geometryOnly(iterations));
+    auto options = geometryOnly(iterations);
+    options.conserve = seed % 2 == 1;  // the conservative form reduces noise as much on one surface
+    const auto out = denoise(f, options);
     for (uint32_t y = border; y < size - border; ++y)
       for (uint32_t x = border; x < size - border; ++x)
         for (int c = 0; c < 3; ++c) {
@@ -613,6 +615,52 @@ TEST_F(DenoiserFixture, NoiseOfKnownVarianceIsReducedByTheKernelsFactor) {
   const double ratio = sum2 / double(count) / inputVariance, expected = expectedVarianceFactor(iterations);
   EXPECT_NEAR(ratio / expected, 1.0, 0.2) << "measured " << ratio << ", expected " << expected;
   EXPECT_LT(expectedVarianceFactor(5), expected) << "more iterations reduce more";
+}
+
+// The conservative form (DenoiseOptions::conserve): what the filter takes from a firefly its surface
+// receives, across albedos, so the image's radiance is kept; the normalised gather loses most of a firefly's
+// energy.
+TEST_F(DenoiserFixture, TheConservativeFormKeepsTheImagesRadiance) {
+  Frame f(40, 40, 16.0f);
+  addIrradianceNoise(f, 0.1f, 7);
+  for (uint32_t y = 0; y < f.height; ++y)
+    for (uint32_t x = 0; x < f.width; ++x) {
+      const size_t i = f.at(x, y);
+      const float a = x < 20 ? 0.2f : 0.8f;  // one plane, two grey albedos: the exchange crosses them
+      f.mean[i] *= a / 0.5f;
+      f.albedo[i] = glm::vec3(a);
+      f.meanVariance[i] *= (a / 0.5f) * (a / 0.5f);
+    }
+  for (const auto& [x, y] : {std::pair{18u, 12u}, std::pair{30u, 25u}}) {  // one sample 400x the mean
+    const size_t i = f.at(x, y);
+    const glm::vec3 firefly = f.mean[i] * (1.0f + 400.0f / f.samples[i]);
+    const float l = luminance(firefly - f.mean[i]);
+    f.mean[i] = firefly;
+    f.meanVariance[i] = l * l / f.samples[i];
+  }
+  auto total = [](const std::vector<glm::vec3>& image) {
+    glm::dvec3 sum(0.0);
+    for (const auto& v : image) sum += glm::dvec3(v);
+    return sum;
+  };
+  const glm::dvec3 in = total(f.mean);
+  render::DenoiseOptions conserve;
+  conserve.conserve = true;
+  const auto out = denoise(f, conserve);
+  const auto gathered = denoise(f, render::DenoiseOptions{});
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(total(out)[c] / in[c], 1.0, 1e-4) << "channel " << c;
+    EXPECT_LT(total(gathered)[c] / in[c], 0.99)
+        << "the gather loses the fireflies' energy (channel " << c << ")";
+  }
+  const size_t firefly = f.at(18, 12);
+  EXPECT_LT(luminance(out[firefly]), 0.25f * luminance(f.mean[firefly])) << "the firefly is spread";
+  // A flat image stays flat.
+  Frame flat(24, 24, 8.0f);
+  for (size_t i = 0; i < flat.mean.size(); ++i) flat.meanVariance[i] = 0.05f;
+  const auto flatOut = denoise(flat, conserve);
+  for (size_t i = 0; i < flatOut.size(); ++i)
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(flatOut[i][c], 0.5f, 1e-5f) << "pixel " << i;
 }
 
 TEST_F(DenoiserFixture, HandsOverToTheRawImageAsTheMeanBecomesPrecise) {
