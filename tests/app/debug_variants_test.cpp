@@ -204,16 +204,16 @@ TEST(DebugVariants, PrintEqualsTheInspectorsRecordOfTheVertex) {
 TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
   // The loop's value decides the status the shader returns (a value the loop can reach: it stays within
   // [-0.5, 1.5]), so that no compiler can prove it dead and drop it: a store the shader overwrites later,
-  // or a comparison with a value out of sin()'s range, let NVIDIA's compiler remove it.
+  // or a comparison with a value out of sin()'s range, let NVIDIA's compiler remove it. Its trip count is the
+  // material's (0 elsewhere) rather than a branch around a fixed-count loop, which a compiler may run for
+  // every hit with the result selected afterwards.
   const fs::path root = editedRoot(
       "cost_root", {{"pathtracer/closesthit.rchit", "  const Material m = materials[g.materialIndex];\n",
                      "  const Material m = materials[g.materialIndex];\n"
                      "#ifdef WB_EXPENSIVE_MATERIAL\n"
-                     "  float expensiveX = 0.0;\n"
-                     "  if (g.materialIndex == WB_EXPENSIVE_MATERIAL) {\n"
-                     "    expensiveX = gl_HitTEXT;\n"
-                     "    for (int i = 0; i < 8000; ++i) expensiveX = sin(expensiveX) * 1.0001 + 0.5;\n"
-                     "  }\n"
+                     "  float expensiveX = gl_HitTEXT;\n"
+                     "  const int expensiveWork = g.materialIndex == WB_EXPENSIVE_MATERIAL ? 8000 : 0;\n"
+                     "  for (int i = 0; i < expensiveWork; ++i) expensiveX = sin(expensiveX) * 1.0001 + 0.5;\n"
                      "#endif\n"},
                     {"pathtracer/closesthit.rchit", "  payload.status = PAYLOAD_CONTINUE;\n",
                      "#ifdef WB_EXPENSIVE_MATERIAL\n"
