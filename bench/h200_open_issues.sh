@@ -55,19 +55,19 @@ shared=${WB_SHARED_DIR:-../shared}
 step converge_cornell "$W" converge "$shared/reference/cornell.gltf" --env-color 0,0,0 --max-bounces 64 \
   --size "$csize" --reference "$shared/reference/cornell_cycles.exr" --max-spp "$((cspp < 128 ? cspp : 128))" \
   --seconds 3600 --runs 3 --target-relmse 0.01 "${configs[@]}" --out "$OUT/cornell"
-# Issue 30: raw against denoised to 4096 spp at 256x256, the filter as it is and its conservative form
-# (WB_DENOISE_CONSERVE=1, docs/reports/denoiser.md): the default scene against a 16384-spp reference and the
+# Issue 30: raw against denoised to 4096 spp at 256x256, the filter with and without its windowed gain
+# (WB_DENOISE_WINDOW=0, docs/reports/denoiser.md): the default scene against a 16384-spp reference and the
 # Cornell box against Cycles. converge.md has the denoised mean against the raw one per checkpoint.
 dspp=4096 dref=16384
 [ "${QUICK:-0}" = 1 ] && dspp=32 dref=64
-for conserve in 0 1; do
-  step "denoise_default_c$conserve" env WB_DENOISE_CONSERVE=$conserve "$W" converge assets/default_scene.gltf \
+for window in 1 0; do
+  step "denoise_default_w$window" env WB_DENOISE_WINDOW=$window "$W" converge assets/default_scene.gltf \
     --size "$csize" --reference-spp "$dref" --max-spp "$dspp" --seconds 3600 --runs 3 --target-relmse 0.01 \
-    --config denoised:--denoise --out "$OUT/denoise_default_c$conserve"
-  step "denoise_cornell_c$conserve" env WB_DENOISE_CONSERVE=$conserve "$W" converge "$shared/reference/cornell.gltf" \
+    --config denoised:--denoise --out "$OUT/denoise_default_w$window"
+  step "denoise_cornell_w$window" env WB_DENOISE_WINDOW=$window "$W" converge "$shared/reference/cornell.gltf" \
     --env-color 0,0,0 --max-bounces 64 --size "$csize" --reference "$shared/reference/cornell_cycles.exr" \
     --max-spp "$dspp" --seconds 3600 --runs 3 --target-relmse 0.01 --config denoised:--denoise \
-    --out "$OUT/denoise_cornell_c$conserve"
+    --out "$OUT/denoise_cornell_w$window"
 done
 
 echo "== summary ($OUT)"

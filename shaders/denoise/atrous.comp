@@ -63,71 +63,13 @@ vec4 filterPixel(ivec2 p, uint i, uint source, const bool squaring) {
   return vec4(sum / weights, variance / (weights * weights));
 }
 
-// The conservative form of one iteration (pc.conserve): pixels exchange what differs between them instead of
-// each gathering a normalised average, out_p = x_p + sum_q w_pq (x_q - x_p), with weights alike both ways
-// (w_pq = w_qp: the kernel's, the normals', the depths' against the larger of the two gradients, and the
-// luminance difference in standard deviations of the difference of the two means) times the larger of the two
-// pixels' trust in the filter (h = V / (V + (tau L)^2), V the raw mean's variance: the hand-over, inside the
-// exchange). What one pixel gives its neighbour the neighbour receives, so the image's sum in the demodulated
-// radiance is kept exactly: a firefly's energy spreads over its surface instead of vanishing. The weights of
-// the eight taps sum to at most 3/4, so the output is a convex combination. As the means become precise, h and
-// the luminance weights go to 0 and the output to the raw mean.
-float trust(vec4 h) {
-  const float assumed = pc.handoverTau * h.x;
-  const float total = h.y + assumed * assumed;
-  return pc.handoverTau < 0.0 ? 1.0 : (total > 0.0 ? h.y / total : 0.0);
-}
-
-vec4 exchangePixel(ivec2 p, uint i, uint source, const bool squaring) {
-  const vec4 center = filtered[source + i];
-  const vec4 geometryP = geometry[i];
-  const float gradientP = gradient[i];
-  const vec4 handoverP = handover[i];
-  const float trustP = trust(handoverP);
-  const bool missP = geometryP.w < 0.0;
-  const float lumP = luminance(center.rgb);
-  const float varianceP = max(center.a, 0.0);
-  vec3 sum = vec3(0.0);
-  float given = 0.0, variance = 0.0;
-  for (int y = -1; y <= 1; ++y) {
-    for (int x = -1; x <= 1; ++x) {
-      const ivec2 q = p + ivec2(x, y) * int(pc.step);
-      if ((x == 0 && y == 0) || !insideImage(q)) continue;
-      const uint j = pixelIndex(q);
-      const vec4 c = filtered[source + j];
-      const vec4 geometryQ = geometry[j];
-      const bool missQ = geometryQ.w < 0.0, hits = !missP && !missQ;
-      const float normal = normalWeight(geometryP.xyz, geometryQ.xyz, squaring);
-      const float depth = depthExponent(max(geometryP.w, geometryQ.w), max(gradientP, gradient[j]),
-                                        min(geometryP.w, geometryQ.w), float(pc.step) * length(vec2(x, y)));
-      const float difference = luminance(c.rgb) - lumP;
-      const float reach = 2.0 * pc.sigmaLuminance * pc.sigmaLuminance * (varianceP + max(c.a, 0.0));
-      const float luminanceExponent =
-          reach > 0.0 ? difference * difference / reach : (difference == 0.0 ? 0.0 : 1.0e30);
-      const float exponent = (hits ? depth : 0.0) + (pc.sigmaLuminance > 0.0 ? luminanceExponent : 0.0);
-      const vec4 handoverQ = handover[j];
-      // Exchanged as radiance: what p gains times its albedo is what q loses times its albedo.
-      float w = kernelWeight(x) * kernelWeight(y) * (hits ? normal : 1.0) * exp(-exponent) *
-                max(trustP, trust(handoverQ)) * min(handoverP.w, handoverQ.w) / handoverP.w;
-      w = missP == missQ ? w : 0.0;
-      sum += w * (c.rgb - center.rgb);
-      given += w;
-      variance += w * w * max(c.a, 0.0);
-    }
-  }
-  const float kept = 1.0 - given;
-  return vec4(center.rgb + sum, variance + kept * kept * varianceP);
-}
-
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (!insideImage(p)) return;
   const uint i = pixelIndex(p), source = pc.source * planeSize(), destination = (pc.source ^ 1u) * planeSize();
   // One branch per pixel around the whole loop, with a loop for each case (see normalWeight).
   vec4 result;
-  if (pc.conserve != 0u) {
-    result = pc.sigmaNormal == 128.0 ? exchangePixel(p, i, source, true) : exchangePixel(p, i, source, false);
-  } else if (pc.sigmaNormal == 128.0) {
+  if (pc.sigmaNormal == 128.0) {
     result = filterPixel(p, i, source, true);
   } else {
     result = filterPixel(p, i, source, false);

@@ -27,6 +27,8 @@ bool insideImage(ivec2 q) {
 // Where pixel q is in the denoiser's buffers, and how many elements one plane of them holds.
 uint pixelIndex(ivec2 q) { return uint(q.y) * pc.imageSize.x + uint(q.x); }
 uint planeSize() { return pc.imageSize.x * pc.imageSize.y; }
+// The 8x8 groups of final.comp over the whole image (its dispatch).
+uvec2 groupCount() { return (pc.imageSize + 7u) / 8u; }
 
 // The normals' part of the edge-stopping weight: their cosine to the power sigmaNormal; `squaring` (a constant
 // at each call: the caller has checked sigmaNormal == 128) by squaring, with no transcendental function per tap.

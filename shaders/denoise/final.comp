@@ -20,6 +20,7 @@ layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer Deno
 };
 layout(std430, set = 0, binding = WB_DENOISE_BIND_BIAS) readonly buffer DenoiseBiasBlock { float bias[]; };
 layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
+layout(std430, set = 0, binding = WB_DENOISE_BIND_TILES) writeonly buffer DenoiseTilesBlock { vec4 tiles[]; };
 
 // The squared bias of the filter seen around p: over the 5x5 neighbourhood, the mean of (filtered - raw)^2
 // less the mean variance of the raw means (what noise alone puts there), floored at 0. Each pixel's term is
@@ -38,24 +39,48 @@ float observedBias2(ivec2 p) {
   return max(excess, 0.0) / float(max(n, 1));
 }
 
-void main() {
-  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (p.x >= int(pc.imageSize.x) || p.y >= int(pc.imageSize.y)) return;
-  const vec4 raw = imageLoad(radianceImage, p);
-  if (!insideImage(p)) {
-    imageStore(outputImage, p, raw);
-    return;
-  }
+// The output of pixel p inside the filtered rows: raw + a (denoised - raw).
+vec4 handedOver(ivec2 p, vec4 raw) {
   const uint source = pc.source * planeSize(), i = pixelIndex(p);
   const vec4 filteredP = filtered[source + i];
   const vec3 albedo = demodulationAlbedo(imageLoad(albedoImage, p).rgb);
   const vec3 denoised = filteredP.rgb * albedo;
   float a = 1.0;
-  if (pc.handoverTau >= 0.0 && pc.conserve == 0u) {
+  if (pc.handoverTau >= 0.0) {
     const float v = handover[i].y;
     const float assumed = pc.handoverTau * luminance(filteredP.rgb);
     const float total = v + max(filteredP.a, 0.0) + max(assumed * assumed, observedBias2(p));
     a = total > 0.0 ? v / total : 0.0;
   }
-  imageStore(outputImage, p, vec4(raw.rgb + a * (denoised - raw.rgb), raw.a));
+  return vec4(raw.rgb + a * (denoised - raw.rgb), raw.a);
+}
+
+// With pc.window, each 8x8 group also sums its raw and its output radiance for gain.comp.
+shared vec3 rawSums[64], outputSums[64];
+
+void main() {
+  const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  vec4 raw = vec4(0.0), result = vec4(0.0);
+  if (p.x < int(pc.imageSize.x) && p.y < int(pc.imageSize.y)) {
+    raw = imageLoad(radianceImage, p);
+    result = insideImage(p) ? handedOver(p, raw) : raw;  // rows not filtered are copied
+    imageStore(outputImage, p, result);
+  }
+  if (pc.window == 0u) return;
+  const uint l = gl_LocalInvocationIndex;
+  rawSums[l] = raw.rgb;
+  outputSums[l] = result.rgb;
+  barrier();
+  for (uint stride = 32u; stride > 0u; stride >>= 1u) {
+    if (l < stride) {
+      rawSums[l] += rawSums[l + stride];
+      outputSums[l] += outputSums[l + stride];
+    }
+    barrier();
+  }
+  if (l == 0u) {
+    const uint g = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    tiles[2u * g] = vec4(rawSums[0], 0.0);
+    tiles[2u * g + 1u] = vec4(outputSums[0], 0.0);
+  }
 }

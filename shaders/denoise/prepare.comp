@@ -40,7 +40,7 @@ void main() {
     variance = max(lum2 - lum * lum, 0.0) * n / (n - 1.0) * scale * scale;
   }
   filtered[i] = vec4(demodulated, variance);  // plane 0
-  handover[i] = vec4(lumDemodulated, 0.0, n, luminance(albedo));
+  handover[i] = vec4(lumDemodulated, 0.0, n, 0.0);
 
   const vec4 normalDepth = imageLoad(normalImage, p);
   geometry[i] = vec4(unitNormal(normalDepth.xyz), normalDepth.a);

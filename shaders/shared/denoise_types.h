@@ -19,6 +19,9 @@
 #define WB_DENOISE_BIND_OUTPUT 8    // rgba32f: the denoised radiance (a = samples in the pixel, as the input)
 #define WB_DENOISE_BIND_BIAS 9      // buffer of float per pixel: (filtered - raw)^2 less the raw mean's variance, in
                                     // the demodulated luminance (the last a-trous iteration's, for final.comp)
+#define WB_DENOISE_BIND_TILES 10    // buffer of 2 vec4 per 8x8 group of final.comp: its raw and its output radiance
+                                    // summed (rgb)
+#define WB_DENOISE_BIND_GAIN 11     // buffer of vec4 per 8x8 group: raw over output radiance in its window (rgb)
 
 // The a-trous kernel over taps -1, 0, 1 (`step` pixels apart): 1/4, 1/2, 1/4. SVGF's B3 spline (5 taps) costs
 // three times the weights per iteration for no gain the converge reports show
@@ -33,6 +36,10 @@
 // black, and kept their raw value (the dark specks of a denoised image at 1-4 spp).
 #define WB_DENOISE_SAME_SURFACE 0.1
 
+// The window over which the output's radiance is made the raw image's (gain.comp): groups of 8x8 pixels this
+// many groups either side (2: 40x40 pixels).
+#define WB_DENOISE_WINDOW_GROUPS 2
+
 // Below this many samples a pixel's variance also takes its neighbourhood's spread (variance.comp).
 #define WB_DENOISE_SHORT_HISTORY 4.0
 
@@ -40,7 +47,7 @@ WB_NAMESPACE_BEGIN
 
 struct DenoisePush {
   uvec2 imageSize;
-  uint step;              // a-trous: tap spacing in pixels (1, 2, 4, ...)
+  uint step;              // a-trous: tap spacing in pixels (1, 2, 4, ...); gain: the phase (0, 1)
   uint source;            // the filter plane read (0 or 1); the other one is written (final: where the result is)
   uint rows;              // rows [0, rows) hold the current accumulation; the rest is not read (the window's strips)
   float sigmaLuminance;   // luminance edge-stopping, in standard deviations of the mean; 0: off
@@ -48,7 +55,7 @@ struct DenoisePush {
   float sigmaDepth;       // depth edge-stopping, in multiples of the expected depth change
   float handoverTau;      // relative error assumed for the filtered image (hand-over to the raw one); < 0: none
   uint last;              // a-trous: 1 in the last iteration (it also writes the bias buffer)
-  uint conserve;          // 1: the conservative a-trous form (atrous.comp's exchangePixel); final: no hand-over
+  uint window;            // 1: the output's radiance made the raw image's over windows (gain.comp, scale.comp)
   float pad2;
 };
 

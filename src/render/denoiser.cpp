@@ -11,10 +11,16 @@ namespace {
 
 constexpr uint32_t kGroupSize = 8;  // local_size of shaders/denoise/*.comp
 const char* const kPassNames[] = {"denoise prepare (compute)", "denoise variance (compute)",
-                                  "denoise a-trous (compute)", "denoise final (compute)"};
+                                  "denoise a-trous (compute)", "denoise final (compute)",
+                                  "denoise gain (compute)",    "denoise scale (compute)"};
 const char* const kProgramNames[] = {"denoise-prepare", "denoise-variance", "denoise-atrous",
-                                     "denoise-final"};
-const char* const kFiles[] = {"prepare.comp", "variance.comp", "atrous.comp", "final.comp"};
+                                     "denoise-final",   "denoise-gain",     "denoise-scale"};
+const char* const kFiles[] = {"prepare.comp", "variance.comp", "atrous.comp",
+                              "final.comp",   "gain.comp",     "scale.comp"};
+
+uint32_t groups(uint32_t pixels) {
+  return (pixels + kGroupSize - 1) / kGroupSize;
+}
 
 }  // namespace
 
@@ -31,7 +37,7 @@ Denoiser::Denoiser(vk::Context& ctx, shader::ShaderLibrary& library) : ctx_(ctx)
     passes_[i]->setPushConstantBytes(sizeof(gpu::DenoisePush));
     passes_[i]->useProgram(kProgramNames[i], {keys[i]});
   }
-  options_.conserve = env::enabled("WB_DENOISE_CONSERVE");
+  options_.window = env::choice("WB_DENOISE_WINDOW").value_or(true);
   resize(1, 1);
   for (auto& p : passes_) p->rebuild();
 }
@@ -61,12 +67,15 @@ void Denoiser::resize(uint32_t width, uint32_t height) {
   gradient_ = vk::Buffer(ctx_, pixels * sizeof(float), bufferUsage, false);
   handover_ = vk::Buffer(ctx_, pixels * 4 * sizeof(float), bufferUsage, false);
   bias_ = vk::Buffer(ctx_, pixels * sizeof(float), bufferUsage, false);
+  const VkDeviceSize tiles = VkDeviceSize(groups(width)) * groups(height);
+  tiles_ = vk::Buffer(ctx_, tiles * 2 * 4 * sizeof(float), bufferUsage, false);
+  gains_ = vk::Buffer(ctx_, tiles * 4 * sizeof(float), bufferUsage, false);
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     vk::transition(cmd, output_.handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     VkClearColorValue zero{};
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     vkCmdClearColorImage(cmd, output_.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
-    for (const vk::Buffer* b : {&geometry_, &filter_, &gradient_, &handover_, &bias_})
+    for (const vk::Buffer* b : {&geometry_, &filter_, &gradient_, &handover_, &bias_, &tiles_, &gains_})
       vkCmdFillBuffer(cmd, b->handle(), 0, VK_WHOLE_SIZE, 0);
   });
   bind();
@@ -88,6 +97,8 @@ void Denoiser::bind() {
     p->setBuffer("DenoiseGradientBlock", gradient_);
     p->setBuffer("DenoiseHandoverBlock", handover_);
     p->setBuffer("DenoiseBiasBlock", bias_);
+    p->setBuffer("DenoiseTilesBlock", tiles_);
+    p->setBuffer("DenoiseGainBlock", gains_);
     p->setStorageImage("outputImage", output_.view());
   }
 }
@@ -111,7 +122,7 @@ void Denoiser::dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::Denois
                         uint32_t rows) const {
   pass.bind(cmd);
   pass.push(cmd, push);
-  pass.dispatch(cmd, (width_ + kGroupSize - 1) / kGroupSize, (rows + kGroupSize - 1) / kGroupSize);
+  pass.dispatch(cmd, groups(width_), groups(rows));
   vk::memoryBarrier(cmd);
 }
 
@@ -123,7 +134,7 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
   push.sigmaNormal = options_.sigmaNormal;
   push.sigmaDepth = options_.sigmaDepth;
   push.handoverTau = options_.handoverTau;
-  push.conserve = options_.conserve ? 1u : 0u;
+  push.window = options_.window ? 1u : 0u;
   vk::memoryBarrier(cmd);  // the path tracer's writes before the first read
   dispatch(cmd, *passes_[kPrepare], push, push.rows);
   dispatch(cmd, *passes_[kVariance], push, push.rows);  // filter plane 0 -> 1
@@ -137,6 +148,16 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
     push.source ^= 1u;
   }
   dispatch(cmd, *passes_[kFinal], push, height_);  // every row: those not filtered are copied
+  if (!options_.window) return;
+  // One invocation per 8x8 group of the final pass.
+  passes_[kGain]->bind(cmd);
+  for (uint32_t phase = 0; phase < 2; ++phase) {
+    push.step = phase;
+    passes_[kGain]->push(cmd, push);
+    passes_[kGain]->dispatch(cmd, groups(groups(width_)), groups(groups(height_)));
+    vk::memoryBarrier(cmd);
+  }
+  dispatch(cmd, *passes_[kScale], push, height_);
 }
 
 void Denoiser::recordCompileOnly(VkCommandBuffer cmd) const {

@@ -22,9 +22,9 @@ struct DenoiseOptions {
   float sigmaNormal = 128.0f;   // exponent of the normals' cosine
   float sigmaDepth = 1.0f;      // depth edge-stopping, in multiples of the depth change per pixel
   float handoverTau = 0.1f;     // relative error assumed for the filtered image; < 0: no hand-over (tests)
-  // The conservative a-trous form (shaders/denoise/atrous.comp): the image's radiance kept exactly, at the
-  // price of spreading fireflies instead of removing them; WB_DENOISE_CONSERVE=1 (docs/reports/denoiser.md).
-  bool conserve = false;
+  // The output's radiance made the raw image's over 40x40-pixel windows (shaders/denoise/gain.comp): what the
+  // filter takes from fireflies goes back to their surroundings. WB_DENOISE_WINDOW=0 turns it off.
+  bool window = true;
 };
 
 // The images the denoiser reads (the path tracer's, GENERAL layout): radiance rgba32f with the samples per
@@ -63,11 +63,11 @@ class Denoiser {
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
 
-  // prepare, variance, a-trous, final.
+  // prepare, variance, a-trous, final, gain, scale.
   std::vector<Pass*> passes() const;
 
  private:
-  enum { kPrepare, kVariance, kAtrous, kFinal, kPassCount };
+  enum { kPrepare, kVariance, kAtrous, kFinal, kGain, kScale, kPassCount };
   void bind();
   void dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push, uint32_t rows) const;
 
@@ -78,7 +78,7 @@ class Denoiser {
   DenoiseInputs inputs_;
   // The intermediates, storage buffers of a pixel per element (shaders/shared/denoise_types.h): a CPU driver
   // gathers from a buffer for much less than it loads from an image.
-  vk::Buffer geometry_, filter_, gradient_, handover_, bias_;
+  vk::Buffer geometry_, filter_, gradient_, handover_, bias_, tiles_, gains_;
   vk::Image output_;
 };
 
