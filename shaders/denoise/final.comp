@@ -12,8 +12,8 @@
 
 layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly image2D radianceImage;
 layout(set = 0, binding = WB_DENOISE_BIND_ALBEDO, rgba16f) uniform readonly image2D albedoImage;
-layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) readonly buffer DenoiseFilterBlock {
-  vec4 filtered[];
+layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock {
+  vec4 filtered[];  // with pc.window the output goes to the plane not read, for scale.comp
 };
 layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer DenoiseHandoverBlock {
   vec4 handover[];  // the raw mean's demodulated luminance, its variance, the samples
@@ -64,23 +64,27 @@ void main() {
   if (p.x < int(pc.imageSize.x) && p.y < int(pc.imageSize.y)) {
     raw = imageLoad(radianceImage, p);
     result = insideImage(p) ? handedOver(p, raw) : raw;  // rows not filtered are copied
-    imageStore(outputImage, p, result);
+    if (pc.window == 0u) {
+      imageStore(outputImage, p, result);
+    } else {
+      filtered[(pc.source ^ 1u) * planeSize() + pixelIndex(p)] = result;  // a CPU driver stores to a buffer faster
+    }
   }
   if (pc.window == 0u) return;
   const uint l = gl_LocalInvocationIndex;
   rawSums[l] = raw.rgb;
   outputSums[l] = result.rgb;
+  // One barrier and one invocation summing: a CPU driver runs a group's invocations on one thread, where each
+  // barrier of a tree reduction costs a switch of all of them.
   barrier();
-  for (uint stride = 32u; stride > 0u; stride >>= 1u) {
-    if (l < stride) {
-      rawSums[l] += rawSums[l + stride];
-      outputSums[l] += outputSums[l + stride];
-    }
-    barrier();
-  }
   if (l == 0u) {
+    vec3 rawSum = vec3(0.0), outputSum = vec3(0.0);
+    for (uint k = 0u; k < 64u; ++k) {
+      rawSum += rawSums[k];
+      outputSum += outputSums[k];
+    }
     const uint g = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-    tiles[2u * g] = vec4(rawSums[0], 0.0);
-    tiles[2u * g + 1u] = vec4(outputSums[0], 0.0);
+    tiles[2u * g] = vec4(rawSum, 0.0);
+    tiles[2u * g + 1u] = vec4(outputSum, 0.0);
   }
 }

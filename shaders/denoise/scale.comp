@@ -1,11 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The last pass with DenoisePush::window: each output pixel times its window's gain (gain.comp), interpolated
-// bilinearly between the centres of the 8x8 groups so that no group's edge shows.
+// The last pass with DenoisePush::window: each output pixel (final.comp left it in the filter plane it did not
+// read) times its window's gain (gain.comp), interpolated bilinearly between the centres of the 8x8 groups so that
+// no group's edge shows, into the output image.
 #include "common.glsl"
 
 layout(std430, set = 0, binding = WB_DENOISE_BIND_GAIN) readonly buffer DenoiseGainBlock { vec4 gain[]; };
-layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform image2D outputImage;
+layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) readonly buffer DenoiseFilterBlock {
+  vec4 filtered[];
+};
+layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
 
 vec3 gainAt(ivec2 g, ivec2 groups) {
   const ivec2 q = clamp(g, ivec2(0), groups - 1);
@@ -21,6 +25,6 @@ void main() {
   const vec2 f = u - floor(u);
   const vec3 scale = mix(mix(gainAt(g, groups), gainAt(g + ivec2(1, 0), groups), f.x),
                          mix(gainAt(g + ivec2(0, 1), groups), gainAt(g + ivec2(1, 1), groups), f.x), f.y);
-  const vec4 v = imageLoad(outputImage, p);
+  const vec4 v = filtered[(pc.source ^ 1u) * planeSize() + pixelIndex(p)];
   imageStore(outputImage, p, vec4(v.rgb * scale, v.a));
 }
