@@ -113,6 +113,15 @@ for scene in ("sunlit", "cornell"):
             ttr = cells[10] + ("" if cells[10] == "not reached" else " s")
             print("converge %-8s %-12s time to relMSE 0.01: %s (%s spp, %s s at the end)" %
                   (scene, cells[0], ttr, cells[2], cells[3]))
+for name in sorted(os.listdir(out)):
+    if name.startswith("denoise_") and os.path.isdir(os.path.join(out, name)):
+        try:
+            md = open(os.path.join(out, name, "converge.md")).read()
+        except OSError:
+            continue
+        for line in md.splitlines():
+            if line.startswith(("- Time to relMSE", "- Denoised relMSE", "- At ")):
+                print("%s: %s" % (name, line[2:]))
 p = load("pathtracer.json")
 for e in (p or {}).get("pathtracer", []):
     if "pathtracer_vs_bare_diffuse_ratio" in e:
