@@ -15,6 +15,8 @@
 #  3. Issue 29: `bench --only pathtracer`: the path tracer against the bare-ray roofline (lockstep shadows on);
 #     `converge` at 256x256 on the sunlit glossy scene (4096-spp reference) and the Cornell box (Cycles reference
 #     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch.
+#  4. Issue 30: `converge` of the denoiser to 4096 spp at 256x256 on the default scene (16384-spp reference) and
+#     the Cornell box, with and without its windowed gain (WB_DENOISE_WINDOW): its mean against the raw one.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe).
 set -uo pipefail
 OUT=${OUT:-out/h200_open}

@@ -5,7 +5,7 @@
 #define WB_DENOISE_COMMON_GLSL
 #include "../shared/denoise_types.h"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = WB_DENOISE_GROUP_SIZE, local_size_y = WB_DENOISE_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DenoisePush pc; };
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
@@ -27,8 +27,8 @@ bool insideImage(ivec2 q) {
 // Where pixel q is in the denoiser's buffers, and how many elements one plane of them holds.
 uint pixelIndex(ivec2 q) { return uint(q.y) * pc.imageSize.x + uint(q.x); }
 uint planeSize() { return pc.imageSize.x * pc.imageSize.y; }
-// The 8x8 groups of final.comp over the whole image (its dispatch).
-uvec2 groupCount() { return (pc.imageSize + 7u) / 8u; }
+// The workgroups of final.comp over the whole image (its dispatch).
+uvec2 groupCount() { return (pc.imageSize + uint(WB_DENOISE_GROUP_SIZE - 1)) / uint(WB_DENOISE_GROUP_SIZE); }
 
 // The normals' part of the edge-stopping weight: their cosine to the power sigmaNormal; `squaring` (a constant
 // at each call: the caller has checked sigmaNormal == 128) by squaring, with no transcendental function per tap.

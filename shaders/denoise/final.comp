@@ -55,8 +55,9 @@ vec4 handedOver(ivec2 p, vec4 raw) {
   return vec4(raw.rgb + a * (denoised - raw.rgb), raw.a);
 }
 
-// With pc.window, each 8x8 group also sums its raw and its output radiance for gain.comp.
-shared vec3 rawSums[64], outputSums[64];
+// With pc.window, each workgroup also sums its raw and its output radiance for gain.comp.
+const uint kGroupPixels = WB_DENOISE_GROUP_SIZE * WB_DENOISE_GROUP_SIZE;
+shared vec3 rawSums[kGroupPixels], outputSums[kGroupPixels];
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -79,7 +80,7 @@ void main() {
   barrier();
   if (l == 0u) {
     vec3 rawSum = vec3(0.0), outputSum = vec3(0.0);
-    for (uint k = 0u; k < 64u; ++k) {
+    for (uint k = 0u; k < kGroupPixels; ++k) {
       rawSum += rawSums[k];
       outputSum += outputSums[k];
     }

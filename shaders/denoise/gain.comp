@@ -8,8 +8,10 @@
 //   phase 0: c_j = (raw_j - output_j) / (the output summed over j's window), into tiles[2j];
 //   phase 1: gain_g = 1 + sum of c_j over g's window (the windows are symmetric: g is in j's window where j is
 //            in g's), into gain[g].
-// A group's output times its gain sums, over the image, to the raw radiance exactly (per channel): only the
-// distribution within a window is the filter's. scale.comp applies the gains. One invocation per group.
+// Each group's output times its gain sums, over the image, to the raw radiance (per channel; exactly where no gain
+// is clamped at 0): only the distribution within a window is the filter's. scale.comp applies the gains,
+// interpolated between group centres, which keeps the sum to ~2e-4 (DenoiserFixture.TheWindowedGainKeepsThe...).
+// One invocation per group.
 #include "common.glsl"
 
 layout(std430, set = 0, binding = WB_DENOISE_BIND_TILES) buffer DenoiseTilesBlock { vec4 tiles[]; };

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // The last pass with DenoisePush::window: each output pixel (final.comp left it in the filter plane it did not
-// read) times its window's gain (gain.comp), interpolated bilinearly between the centres of the 8x8 groups so that
+// read) times its window's gain (gain.comp), interpolated bilinearly between the centres of the groups so that
 // no group's edge shows, into the output image.
 #include "common.glsl"
 
@@ -20,7 +20,7 @@ void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= int(pc.imageSize.x) || p.y >= int(pc.imageSize.y)) return;
   const ivec2 groups = ivec2(groupCount());
-  const vec2 u = (vec2(p) + 0.5) / 8.0 - 0.5;
+  const vec2 u = (vec2(p) + 0.5) / float(WB_DENOISE_GROUP_SIZE) - 0.5;
   const ivec2 g = ivec2(floor(u));
   const vec2 f = u - floor(u);
   const vec3 scale = mix(mix(gainAt(g, groups), gainAt(g + ivec2(1, 0), groups), f.x),

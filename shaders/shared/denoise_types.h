@@ -36,8 +36,12 @@
 // black, and kept their raw value (the dark specks of a denoised image at 1-4 spp).
 #define WB_DENOISE_SAME_SURFACE 0.1
 
-// The window over which the output's radiance is made the raw image's (gain.comp): groups of 8x8 pixels this
-// many groups either side (2: 40x40 pixels).
+// The side of every denoiser pass's workgroup in pixels; the windowed gain (gain.comp) works per group of
+// final.comp.
+#define WB_DENOISE_GROUP_SIZE 8
+
+// The window over which the output's radiance is made the raw image's (gain.comp): this many groups either side
+// (2: 40x40 pixels).
 #define WB_DENOISE_WINDOW_GROUPS 2
 
 // Below this many samples a pixel's variance also takes its neighbourhood's spread (variance.comp).

@@ -9,7 +9,7 @@
 namespace wb::render {
 namespace {
 
-constexpr uint32_t kGroupSize = 8;  // local_size of shaders/denoise/*.comp
+constexpr uint32_t kGroupSize = WB_DENOISE_GROUP_SIZE;  // local_size of shaders/denoise/*.comp
 const char* const kPassNames[] = {"denoise prepare (compute)", "denoise variance (compute)",
                                   "denoise a-trous (compute)", "denoise final (compute)",
                                   "denoise gain (compute)",    "denoise scale (compute)"};

@@ -404,15 +404,17 @@ class ReferenceDenoiser {
     return out;
   }
 
-  // gain.comp and scale.comp: per 8x8 group, its deficit (raw - output) shared among the groups of its window
-  // in proportion to their output; each pixel times its group's gain, interpolated between group centres.
+  // gain.comp and scale.comp: per group of final.comp, its deficit (raw - output) shared among the groups of
+  // its window in proportion to their output; each pixel times its group's gain, interpolated between group
+  // centres.
   std::vector<glm::vec3> windowGain(const std::vector<glm::vec3>& out) const {
-    const int gw = (w_ + 7) / 8, gh = (h_ + 7) / 8, r = WB_DENOISE_WINDOW_GROUPS;
+    const int n = WB_DENOISE_GROUP_SIZE, gw = (w_ + n - 1) / n, gh = (h_ + n - 1) / n,
+              r = WB_DENOISE_WINDOW_GROUPS;
     std::vector<glm::dvec3> raw(size_t(gw) * gh, glm::dvec3(0)), result(raw.size(), glm::dvec3(0));
     for (int y = 0; y < h_; ++y)
       for (int x = 0; x < w_; ++x) {
-        raw[size_t(y / 8) * gw + x / 8] += glm::dvec3(f_.mean[at(x, y)]);
-        result[size_t(y / 8) * gw + x / 8] += glm::dvec3(out[at(x, y)]);
+        raw[size_t(y / n) * gw + x / n] += glm::dvec3(f_.mean[at(x, y)]);
+        result[size_t(y / n) * gw + x / n] += glm::dvec3(out[at(x, y)]);
       }
     auto windowSum = [&](const std::vector<glm::dvec3>& v, int gx, int gy) {
       glm::dvec3 sum(0);
@@ -436,7 +438,7 @@ class ReferenceDenoiser {
     std::vector<glm::vec3> scaled(out.size());
     for (int y = 0; y < h_; ++y)
       for (int x = 0; x < w_; ++x) {
-        const double ux = (x + 0.5) / 8.0 - 0.5, uy = (y + 0.5) / 8.0 - 0.5;
+        const double ux = (x + 0.5) / n - 0.5, uy = (y + 0.5) / n - 0.5;
         const int gx = int(std::floor(ux)), gy = int(std::floor(uy));
         const double fx = ux - gx, fy = uy - gy;
         const glm::dvec3 g = (gainAt(gx, gy) * (1 - fx) + gainAt(gx + 1, gy) * fx) * (1 - fy) +
