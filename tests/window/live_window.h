@@ -9,6 +9,8 @@
 #include <functional>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -31,11 +33,32 @@ inline bool waitForFile(const std::filesystem::path& p, double seconds,
   return true;
 }
 
-// The JSON of a file another process writes atomically, once it exists (null after `seconds`).
-inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds = 600) {
-  if (!waitForFile(p, seconds)) return nullptr;
-  std::ifstream f(p);
-  return nlohmann::json::parse(f, nullptr, false);
+// The JSON object in a file another process writes, once it exists and holds one: null after `seconds`, or as
+// soon as `alive` says the writer has ended without writing it. A file that does not parse (yet) is read again
+// until then; a failure says on stderr what the file held, or that it never appeared.
+inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds = 600,
+                                const std::function<bool()>& alive = {}) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string text;
+  bool seen = false;
+  for (;;) {
+    const bool ended = alive && !alive();  // before reading: a writer that ended has written all it will
+    if (std::filesystem::exists(p)) {
+      seen = true;
+      std::ifstream f(p);
+      text.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+      auto j = nlohmann::json::parse(text, nullptr, false);
+      if (j.is_object()) return j;
+    }
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (ended || waited > seconds) {
+      std::cerr << "awaitJson: " << p.string() << (seen ? " holds no JSON object" : " does not exist") << " after "
+                << waited << " s" << (ended ? " (its writer has ended)" : "")
+                << (seen ? ": '" + text.substr(0, 400) + "'" : std::string()) << "\n";
+      return nullptr;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
 }
 
 class LiveWindow {
@@ -87,12 +110,16 @@ class LiveWindow {
     if (thread_.joinable()) thread_.join();
     return result_;
   }
+  // Ends the window now (Ctrl+Q, as a user would) and waits for it: what a failed assertion prints, without
+  // waiting for the script's own time limits to run out.
+  CommandResult stop() {
+    if (!exited_ && !display_.empty()) xdotool("key ctrl+q");
+    return finish();
+  }
   const std::string& display() const { return display_; }
   // awaitJson, giving up as soon as the window has exited (a script that failed writes nothing more).
   nlohmann::json awaitJson(const std::filesystem::path& p, double seconds = 600) const {
-    if (!waitForFile(p, seconds, [this] { return !exited_.load(); })) return nullptr;
-    std::ifstream f(p);
-    return nlohmann::json::parse(f, nullptr, false);
+    return wb::testing::awaitJson(p, seconds, [this] { return !exited_.load(); });
   }
 
  private:

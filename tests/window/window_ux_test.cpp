@@ -81,28 +81,28 @@ TEST(WindowUx, ClicksOnWidgetsLandWhileTheImageConverges) {
   }
   writeFile(dir / "s.txt", script + "quit\n");
   LiveWindow w(dir, "--window 800x600 --set budget_ms=300 --script " + (dir / "s.txt").string());
-  const auto c0 = awaitJson(dir / "c0.json");
-  ASSERT_TRUE(c0.is_object()) << w.finish().output;
+  const auto c0 = w.awaitJson(dir / "c0.json");
+  ASSERT_TRUE(c0.is_object()) << w.stop().output;
   ASSERT_TRUE(c0["widgets"].contains("preview")) << c0["widgets"].dump();
   EXPECT_EQ(w.xdotool("mousemove " + LiveWindow::centre(c0, "preview") + " click 1"), 0);
-  const auto c1 = awaitJson(dir / "c1.json");
-  ASSERT_TRUE(c1.is_object()) << w.finish().output;
+  const auto c1 = w.awaitJson(dir / "c1.json");
+  ASSERT_TRUE(c1.is_object()) << w.stop().output;
   EXPECT_NE(c1["preview_enabled"], c0["preview_enabled"]) << "the checkbox click was lost";
 
   EXPECT_EQ(w.xdotool("mousemove " + LiveWindow::centre(c1, "param.tonemap") + " click 1"), 0);
-  const auto c2 = awaitJson(dir / "c2.json");
-  ASSERT_TRUE(c2.is_object()) << w.finish().output;
+  const auto c2 = w.awaitJson(dir / "c2.json");
+  ASSERT_TRUE(c2.is_object()) << w.stop().output;
   const std::string before = c2["parameters"]["tonemap"];
   const std::string want = before == "aces" ? "reinhard" : "aces";
   ASSERT_TRUE(c2["widgets"].contains("param.tonemap." + want)) << "the combo did not open: " << c2["widgets"];
   EXPECT_EQ(w.xdotool("mousemove " + LiveWindow::centre(c2, "param.tonemap." + want) + " click 1"), 0);
-  const auto c3 = awaitJson(dir / "c3.json");
-  ASSERT_TRUE(c3.is_object()) << w.finish().output;
+  const auto c3 = w.awaitJson(dir / "c3.json");
+  ASSERT_TRUE(c3.is_object()) << w.stop().output;
   EXPECT_EQ(c3["parameters"]["tonemap"], want) << "the combo item's click was lost";
 
   EXPECT_EQ(w.xdotool("mousemove " + imagePoint(c3, 0.25, 0.75) + " click 1"), 0);
-  const auto c4 = awaitJson(dir / "c4.json");
-  ASSERT_TRUE(c4.is_object()) << w.finish().output;
+  const auto c4 = w.awaitJson(dir / "c4.json");
+  ASSERT_TRUE(c4.is_object()) << w.stop().output;
   ASSERT_TRUE(c4["inspect_pixel"].is_array()) << "the click on the image was lost";
   EXPECT_NEAR(c4["inspect_pixel"][0].get<double>(), 0.25 * c4["target_width"].get<double>(), 2.0);
   EXPECT_NEAR(c4["inspect_pixel"][1].get<double>(), 0.75 * c4["target_height"].get<double>(), 2.0);
@@ -123,12 +123,12 @@ TEST(WindowUx, TabGivesTheImageTheWholeWindowAndEscQuits) {
                                " 600\nframes 3\nstats " + p("c.json") + "\nwait_file " + p("never") +
                                " 300\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
-  const auto a = awaitJson(dir / "a.json");
-  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  const auto a = w.awaitJson(dir / "a.json");
+  ASSERT_TRUE(a.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("mousemove 500 200 key Tab"), 0);
   w.signal("go");
-  const auto b = awaitJson(dir / "b.json");
-  ASSERT_TRUE(b.is_object()) << w.finish().output;
+  const auto b = w.awaitJson(dir / "b.json");
+  ASSERT_TRUE(b.is_object()) << w.stop().output;
   EXPECT_EQ(b["panel_visible"], false);
   EXPECT_FALSE(b["widgets"].contains("side_panel"));
   // The image had the view beside the panel; now it has the window's width (times the resolution scale).
@@ -138,8 +138,8 @@ TEST(WindowUx, TabGivesTheImageTheWholeWindowAndEscQuits) {
   // Tab again: the panel and the image beside it come back with the samples it had.
   EXPECT_EQ(w.xdotool("key Tab"), 0);
   w.signal("go2");
-  const auto c = awaitJson(dir / "c.json");
-  ASSERT_TRUE(c.is_object()) << w.finish().output;
+  const auto c = w.awaitJson(dir / "c.json");
+  ASSERT_TRUE(c.is_object()) << w.stop().output;
   EXPECT_EQ(c["panel_visible"], true);
   EXPECT_EQ(c["target_width"], a["target_width"]);
   EXPECT_GE(c["samples"].get<int>(), a["samples"].get<int>()) << "going back to the size left restarted it";
@@ -175,8 +175,8 @@ TEST(WindowUx, TheABPanelClosesAndTheComparisonStaysOn) {
                 p("ab2.json") + "\nset panel off\nframes 2\nstats " + p("hidden.json") +
                 "\nset panel on\nab_revert\nframes 2\nstats " + p("reverted.json") + "\nquit\n");
   LiveWindow w(dir, "--window 800x600 --script " + p("s.txt"), "WB_ROOT=" + root.string());
-  const auto ab1 = awaitJson(dir / "ab1.json");
-  ASSERT_TRUE(ab1.is_object()) << w.finish().output;
+  const auto ab1 = w.awaitJson(dir / "ab1.json");
+  ASSERT_TRUE(ab1.is_object()) << w.stop().output;
   EXPECT_EQ(ab1["ab_open"], true);
   ASSERT_TRUE(ab1["widgets"].contains("ab.close")) << ab1["widgets"].dump();
   EXPECT_EQ(w.xdotool("mousemove " + LiveWindow::centre(ab1, "ab.close") + " click 1"), 0);
@@ -213,33 +213,33 @@ TEST(WindowUx, ClickSelectsDragOrbitsWheelDolliesCtrlQQuits) {
               p(std::string(step) + ".json") + "\n";
   writeFile(dir / "s.txt", script + "wait_file " + p("never") + " 300\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
-  const auto a = awaitJson(dir / "a.json");
-  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  const auto a = w.awaitJson(dir / "a.json");
+  ASSERT_TRUE(a.is_object()) << w.stop().output;
   // Hover the left edge (the red wall), then click the middle of the image (the back wall): the click selects
   // what is under it, and the name shown follows the cursor; then move back to the left edge.
   EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.03, 0.5)), 0);
   w.signal("go_a2");
-  const auto a2 = awaitJson(dir / "a2.json");
-  ASSERT_TRUE(a2.is_object()) << w.finish().output;
+  const auto a2 = w.awaitJson(dir / "a2.json");
+  ASSERT_TRUE(a2.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.5, 0.5) + " click 1"), 0);
   w.signal("go_b");
-  const auto b = awaitJson(dir / "b.json");
-  ASSERT_TRUE(b.is_object()) << w.finish().output;
+  const auto b = w.awaitJson(dir / "b.json");
+  ASSERT_TRUE(b.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.03, 0.5)), 0);
   w.signal("go_c");
-  const auto c = awaitJson(dir / "c.json");
-  ASSERT_TRUE(c.is_object()) << w.finish().output;
+  const auto c = w.awaitJson(dir / "c.json");
+  ASSERT_TRUE(c.is_object()) << w.stop().output;
   // A drag from 5% to 95% of the image's width, in steps, then three wheel steps forward.
   std::string drag = "mousemove " + imagePoint(a, 0.05, 0.5) + " mousedown 1";
   for (int i = 1; i <= 9; ++i) drag += " mousemove " + imagePoint(a, 0.05 + 0.1 * i, 0.5) + " sleep 0.05";
   EXPECT_EQ(w.xdotool(drag + " mouseup 1"), 0);
   w.signal("go_d");
-  const auto d = awaitJson(dir / "d.json");
-  ASSERT_TRUE(d.is_object()) << w.finish().output;
+  const auto d = w.awaitJson(dir / "d.json");
+  ASSERT_TRUE(d.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("click 4 click 4 click 4"), 0);
   w.signal("go_e");
-  const auto e = awaitJson(dir / "e.json");
-  ASSERT_TRUE(e.is_object()) << w.finish().output;
+  const auto e = w.awaitJson(dir / "e.json");
+  ASSERT_TRUE(e.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("key ctrl+q"), 0);
   const auto r = w.finish();
   EXPECT_EQ(r.code, 0) << r.output;
@@ -279,7 +279,7 @@ TEST(WindowUx, ADragBetweenTwoPollsKeepsItsStart) {
                                "\nquit\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
   const auto a = w.awaitJson(dir / "a.json");
-  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  ASSERT_TRUE(a.is_object()) << w.stop().output;
   std::string drag = "mousemove " + imagePoint(a, 0.05, 0.5) + " sleep 0.1 mousedown 1";
   for (int i = 1; i <= 9; ++i) drag += " mousemove " + imagePoint(a, 0.05 + 0.1 * i, 0.5) + " sleep 0.01";
   EXPECT_EQ(w.xdotool(drag + " mouseup 1"), 0);
@@ -306,8 +306,8 @@ TEST(WindowUx, TheInspectorHoldsTheChosenSample) {
                 p("a.json") + "\nwait_file " + p("go") + " 600\nframes 3\nstats " + p("b.json") +
                 "\nwait_samples 8 600\nframes 2\nstats " + p("c.json") + "\nquit\n");
   LiveWindow w(dir, "--window 800x700 --set budget_ms=100 --script " + p("s.txt"));
-  const auto a = awaitJson(dir / "a.json");
-  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  const auto a = w.awaitJson(dir / "a.json");
+  ASSERT_TRUE(a.is_object()) << w.stop().output;
   ASSERT_TRUE(a["widgets"].contains("inspect_sample")) << a["widgets"].dump();
   // The slider's left end: the oldest kept sample.
   const auto& s = a["widgets"]["inspect_sample"];
@@ -470,7 +470,7 @@ TEST(WindowUx, TabDuringAPendingComparisonKeepsTheOldSamples) {
                 tab("go3") + "ab_revert\nframes 1\n" + tab("go4") + "stats " + p("back.json") + "\nquit\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"), "WB_ROOT=" + root.string());
   for (const std::string go : {"go1", "go2", "go3", "go4"}) {
-    ASSERT_TRUE(w.awaitJson(dir / (go + ".json")).is_object()) << go << "\n" << w.finish().output;
+    ASSERT_TRUE(w.awaitJson(dir / (go + ".json")).is_object()) << go << "\n" << w.stop().output;
     EXPECT_EQ(w.xdotool("mousemove 500 200 key Tab"), 0);
     w.signal(go);
   }
@@ -496,11 +496,11 @@ TEST(WindowUx, APickedPixelFollowsTheImageThroughTab) {
                                "\nwait_clicks 1 600\nframes 2\nstats " + p("b.json") + "\nwait_file " +
                                p("go") + " 600\nframes 3\nstats " + p("c.json") + "\nquit\n");
   LiveWindow w(dir, "--window 640x480 --script " + p("s.txt"));
-  const auto a = awaitJson(dir / "a.json");
-  ASSERT_TRUE(a.is_object()) << w.finish().output;
+  const auto a = w.awaitJson(dir / "a.json");
+  ASSERT_TRUE(a.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("mousemove " + imagePoint(a, 0.5, 0.5) + " click 1"), 0);
-  const auto b = awaitJson(dir / "b.json");
-  ASSERT_TRUE(b.is_object()) << w.finish().output;
+  const auto b = w.awaitJson(dir / "b.json");
+  ASSERT_TRUE(b.is_object()) << w.stop().output;
   EXPECT_EQ(w.xdotool("key Tab"), 0);
   w.signal("go");
   const auto r = w.finish();
