@@ -34,8 +34,8 @@ inline bool waitForFile(const std::filesystem::path& p, double seconds,
 }
 
 // The JSON object in a file another process writes, once it exists and holds one: null after `seconds`, or as
-// soon as `alive` says the writer has ended without writing it. A file that does not parse (yet) is read again
-// until then; a failure says on stderr what the file held, or that it never appeared.
+// soon as `alive` says the writer has ended without writing it. A file that does not parse (yet) is read
+// again until then; a failure says on stderr what the file held, or that it never appeared.
 inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds = 600,
                                 const std::function<bool()>& alive = {}) {
   const auto start = std::chrono::steady_clock::now();
@@ -52,8 +52,8 @@ inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds =
     }
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (ended || waited > seconds) {
-      std::cerr << "awaitJson: " << p.string() << (seen ? " holds no JSON object" : " does not exist") << " after "
-                << waited << " s" << (ended ? " (its writer has ended)" : "")
+      std::cerr << "awaitJson: " << p.string() << (seen ? " holds no JSON object" : " does not exist")
+                << " after " << waited << " s" << (ended ? " (its writer has ended)" : "")
                 << (seen ? ": '" + text.substr(0, 400) + "'" : std::string()) << "\n";
       return nullptr;
     }
