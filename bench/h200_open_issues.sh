@@ -14,7 +14,8 @@
 #     test that the inspecting variant renders the normal variant's image, with the validation layer.
 #  3. Issue 29: `bench --only pathtracer`: the path tracer against the bare-ray roofline (lockstep shadows on);
 #     `converge` at 256x256 on the sunlit glossy scene (4096-spp reference) and the Cornell box (Cycles reference
-#     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch.
+#     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch,
+#     and on the sunlit scene reflector guiding with coherent and with per-pixel choices.
 #  4. Issue 30: `converge` of the denoiser to 4096 spp at 256x256 on the default scene (16384-spp reference) and
 #     the Cornell box, with and without its windowed gain (WB_DENOISE_WINDOW): its mean against the raw one.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe).
@@ -50,9 +51,13 @@ step pathtracer "$W" bench "${quick[@]}" --only pathtracer --out "$OUT/pathtrace
 csize=256x256 cref=4096 cspp=256
 [ "${QUICK:-0}" = 1 ] && csize=64x64 cref=64 cspp=16
 configs=(--config default: --config launch-auto:--samples-per-launch=0)
+# Reflector guiding (item 4) on the sunlit scene: with its tiles' coherent choices (the guiding default) and
+# with each pixel's own (the form the H200 measured at 1.19-1.88x per sample, docs/bench/roofline.md).
+guiding=(--config "guiding:--define WB_REFLECTOR_GUIDING=1"
+  --config "guiding-own:--define WB_REFLECTOR_GUIDING=1 --define WB_REFLECTOR_COHERENT=0")
 step converge_sunlit "$W" converge assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5 --size "$csize" \
   --reference-spp "$cref" --max-spp "$cspp" --seconds 3600 --runs 3 --target-relmse 0.01 "${configs[@]}" \
-  --out "$OUT/sunlit"
+  "${guiding[@]}" --out "$OUT/sunlit"
 shared=${WB_SHARED_DIR:-../shared}
 step converge_cornell "$W" converge "$shared/reference/cornell.gltf" --env-color 0,0,0 --max-bounces 64 \
   --size "$csize" --reference "$shared/reference/cornell_cycles.exr" --max-spp "$((cspp < 128 ? cspp : 128))" \

@@ -6,9 +6,9 @@
 // those the point sees above its surface), otherwise the BRDF's; the pdf is the mixture's, defensive through the
 // BRDF's part, so every estimate that weighs against BRDF sampling (next-event estimation's MIS, the miss and
 // emission weights through payload.pdf) uses pathPdf. Without reflectors (c = 0) it is plain BRDF sampling.
-// Off by default (docs/bench/roofline.md: less error per sample on a sunlit glossy scene, but the guided rays
-// hit geometry and cost more than they save on lavapipe); --define WB_REFLECTOR_GUIDING=1 turns it on,
-// WB_REFLECTOR_FRACTION=F sets the fraction.
+// Off by default (docs/bench/roofline.md: less error per sample on a sunlit glossy scene, but the guided rays hit
+// geometry and cost 1.2-1.9x per sample: off until a GPU shows it pays there too); --define WB_REFLECTOR_GUIDING=1
+// turns it on, WB_REFLECTOR_FRACTION=F sets the fraction.
 #ifndef WB_PT_GUIDING_GLSL
 #define WB_PT_GUIDING_GLSL
 #include "../shared/brdf.h"
@@ -19,6 +19,15 @@
 #endif
 #ifndef WB_REFLECTOR_FRACTION
 #define WB_REFLECTOR_FRACTION 0.3
+#endif
+// Coherent choices: the number that picks between a reflector direction and the BRDF's is shared by the pixels
+// of an aligned 8x4 tile (the tile's first pixel's sample of that dimension), so the lanes of one SIMD vector or
+// warp (a CPU driver's 8 pixels of a row, a GPU's 8x4) guide together or not at all: a guided ray traverses the
+// reflector's geometry where most cosine rays escape to the sky, and one guided lane makes its whole vector wait.
+// Each pixel's own estimate is unchanged in distribution (its choices are still uniform and independent of its
+// other dimensions); only neighbours' choices are correlated. 0: each pixel draws its own.
+#ifndef WB_REFLECTOR_COHERENT
+#define WB_REFLECTOR_COHERENT 1
 #endif
 
 layout(set = 0, binding = WB_BIND_REFLECTORS, scalar) readonly buffer ReflectorBlock { vec4 reflectors[]; };
@@ -87,6 +96,18 @@ float pathLobeProbability(SurfaceMaterial sm, vec3 ns, vec3 wo, vec3 x, vec3 ng,
   const float c = reflectorFraction(sm, ns, wo, reflectorView(x, ng, vec3(0.0)).visible);
   const float pDiffuse = brdfDiffuseProbability(sm, dot(ns, wo));
   return lobe == WB_LOBE_REFLECTOR ? c : (1.0 - c) * (lobe == WB_LOBE_DIFFUSE ? pDiffuse : 1.0 - pDiffuse);
+}
+
+// The number that picks the part of the mixture at this vertex (pathSample's u.x): the pixel's own `own`, or with
+// WB_REFLECTOR_COHERENT its tile's.
+float pathPartSample(uvec2 pixel, uint sampleIndex, uint dim, float own) {
+#if WB_REFLECTOR_GUIDING && WB_REFLECTOR_COHERENT
+  if (frame.reflectorCount > 0u) {
+    const SamplerState tile = samplerInit(pixel & ~uvec2(7u, 3u), sampleIndex, gSampler.seed, gSampler.mode);
+    return samplerGet1D(tile, dim);
+  }
+#endif
+  return own;
 }
 
 // A continuation direction from the mixture; pdf and weight (brdfEval / pdf) are the mixture's. u.x picks the

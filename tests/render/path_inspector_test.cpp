@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
+#include "common/paths.h"
 #include "gpu_fixture.h"
 #include "render/path_inspector.h"
 #include "shared/brdf.h"
@@ -372,4 +374,42 @@ TEST(PathInspector, NamesWhereAnInfiniteValueEnters) {
   EXPECT_GE(atEscape, 4u) << "pixel 0,0 sees past the sphere";
   EXPECT_GT(atLightSample, 0u) << "pixel 8,8 sees the sphere";
   expectNoValidationErrors(*session);
+}
+
+// Reflector guiding's coherent choices (pathtracer/guiding.glsl): two ground pixels of one aligned 8x4 tile,
+// on the sunlit glossy scene, pick a reflector direction at their first hit in the same samples; with each
+// pixel's own choice (WB_REFLECTOR_COHERENT=0) they pick it in different ones.
+TEST(PathInspector, GuidedPixelsOfOneTileChooseTogether) {
+  auto countMismatches = [](bool coherent) {
+    auto o = defaultSceneOptions(32);
+    o.scenePath = (wb::defaultScenePath().parent_path() / "sunlit_spheres.gltf").string();
+    o.settings.envColor = glm::vec3(0.2f, 0.3f, 0.5f);
+    o.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}, {"WB_REFLECTOR_COHERENT", coherent ? "1" : "0"}};
+    auto session = makeSession(o);
+    std::map<uint32_t, bool> guided[2];
+    const uint32_t columns[2] = {8u, 15u};  // the first and last column of the tile x 8..15, rows 28..31
+    for (int k = 0; k < 2; ++k) {
+      for (const auto& s : inspect(*session, columns[k], 29, 64)) {
+        if (s.vertices.empty()) continue;
+        guided[k][s.record.sampleIndex] = s.vertices[0].record.lobe == WB_LOBE_REFLECTOR;
+      }
+    }
+    expectNoValidationErrors(*session);
+    size_t both = 0, mismatches = 0, reflector = 0;
+    for (const auto& [sample, g] : guided[0]) {
+      const auto other = guided[1].find(sample);
+      if (other == guided[1].end()) continue;
+      ++both;
+      mismatches += g != other->second;
+      reflector += g;
+    }
+    EXPECT_EQ(both, 64u) << "the inspector recorded both pixels' 64 samples";
+    EXPECT_GT(reflector, 5u) << "the first hit (the ground) picks a reflector direction in ~30% of samples";
+    return mismatches;
+  };
+  const size_t coherent = countMismatches(true), own = countMismatches(false);
+  std::printf(" first-hit choices that differ between the tile's pixels: %zu of 64 coherent, %zu own\n",
+              coherent, own);
+  EXPECT_LE(coherent, 2u) << "one tile, one choice";
+  EXPECT_GE(own, 10u) << "each pixel's own choice (~27 of 64 differ)";
 }

@@ -13,6 +13,7 @@ Estimate estimateMean(render::RenderSession& session, render::RenderSettings set
   settings.sampler = sampler;
   const size_t pixels = size_t(settings.width) * settings.height;
   std::vector<double> sum(pixels, 0.0), sum2(pixels, 0.0);
+  double batchSum = 0, batchSum2 = 0;  // of each render's image mean
   Estimate e;
   for (int k = 0; k < batches; ++k) {
     settings.seed = seedBase + uint32_t(k);
@@ -20,6 +21,7 @@ Estimate estimateMean(render::RenderSession& session, render::RenderSettings set
     session.render(spp);
     e.dropped += session.pathTracer().readCounters().droppedSamples;
     const auto img = session.image();
+    double batchMean = 0;
     for (size_t p = 0; p < pixels; ++p) {
       double v = 0;
       for (int c = 0; c < 3; ++c) {
@@ -29,7 +31,10 @@ Estimate estimateMean(render::RenderSession& session, render::RenderSettings set
       }
       sum[p] += v;
       sum2[p] += v * v;
+      batchMean += v / double(pixels);
     }
+    batchSum += batchMean;
+    batchSum2 += batchMean * batchMean;
   }
   double total = 0, varSum = 0;
   for (size_t p = 0; p < pixels; ++p) {
@@ -37,7 +42,13 @@ Estimate estimateMean(render::RenderSession& session, render::RenderSettings set
     varSum += std::max(0.0, (sum2[p] - sum[p] * sum[p] / batches) / (batches - 1));
   }
   e.mean = total / (double(pixels) * batches);
-  e.sigma = std::sqrt(varSum / batches) / double(pixels);
+  // The sum of the pixels' variances is the image mean's when pixels are independent; the spread of the
+  // renders' image means holds also where they are not (pixels that share a random choice: the reflector
+  // guiding's coherent tiles). The larger of the two.
+  const double pixelSigma = std::sqrt(varSum / batches) / double(pixels);
+  const double batchVar =
+      batches > 1 ? std::max(0.0, (batchSum2 - batchSum * batchSum / batches) / (batches - 1)) : 0.0;
+  e.sigma = std::max(pixelSigma, std::sqrt(batchVar / batches));
   return e;
 }
 

@@ -21,7 +21,9 @@ struct Estimate {
 // PCG sampler unless told otherwise, seeds seedBase, seedBase + 1, ...: independent random numbers; owen is
 // an independent randomisation per seed too, sobol is not). Per pixel p the batch values x_pk are iid, so the
 // image mean M = sum_pk x_pk / (P K) has Var(M) = sum_p Var(x_p) / (K P^2); Var(x_p) is estimated by the
-// unbiased per-pixel sample variance across batches.
+// unbiased per-pixel sample variance across batches. Where pixels share random choices (the reflector
+// guiding's coherent tiles) they are not independent: sigma is then the larger of that and the spread of the
+// batches' image means.
 Estimate estimateMean(render::RenderSession& session, render::RenderSettings settings, int batches,
                       uint32_t spp, uint32_t seedBase,
                       render::SamplerKind sampler = render::SamplerKind::Pcg);

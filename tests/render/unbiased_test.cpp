@@ -117,7 +117,8 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
 // Continuation rays towards glossy reflectors (pathtracer/guiding.glsl): the sun focused by a smooth metal
 // sphere onto the floor. The mixture's pdf weighs every estimate that weighs against BRDF sampling, so guided
 // MIS, guided BRDF sampling alone (no next-event estimation: the sun, here of angular size, is reached
-// through the miss shader) and unguided MIS (the default) must agree.
+// through the miss shader), guided MIS with each pixel's own choice (not its tile's) and unguided MIS (the
+// default) must agree.
 TEST(Unbiased, ReflectorGuidingAgreesWithBrdfSampling) {
   render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
@@ -129,24 +130,31 @@ TEST(Unbiased, ReflectorGuidingAgreesWithBrdfSampling) {
   o.settings = envSettings();
   o.settings.envPath.clear();
   o.settings.envColor = glm::vec3(0.2f, 0.3f, 0.5f);
-  render::SessionOptions offOptions = o;
+  render::SessionOptions offOptions = o, ownOptions = o;
   o.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}};
+  ownOptions.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}, {"WB_REFLECTOR_COHERENT", "0"}};
   auto session = makeSession(o);
   auto offSession = makeSession(offOptions);
+  auto ownSession = makeSession(ownOptions);
   render::RenderSettings mis = o.settings, brdfOnly = o.settings;
   brdfOnly.nee = false;
   const Estimate eMis = estimateMean(*session, mis, 16, 16, 100);
   const Estimate eBrdf = estimateMean(*session, brdfOnly, 16, 64, 300);
   const Estimate eOff = estimateMean(*offSession, offOptions.settings, 16, 16, 400);
+  const Estimate eOwn = estimateMean(*ownSession, ownOptions.settings, 16, 16, 500);
   expectClean("guided mis", eMis);
   expectClean("guided brdf only", eBrdf);
   expectClean("unguided mis", eOff);
+  expectClean("guided mis, own", eOwn);
   std::printf(" sun and a glossy metal sphere:\n");
   expectAgree("guided mis", eMis, "guided brdf only", eBrdf);
   expectAgree("guided mis", eMis, "unguided mis", eOff);
   expectAgree("guided brdf only", eBrdf, "unguided mis", eOff);
+  expectAgree("guided mis, own", eOwn, "unguided mis", eOff);
+  expectAgree("guided mis, own", eOwn, "guided mis", eMis);
   expectNoValidationErrors(*session);
   expectNoValidationErrors(*offSession);
+  expectNoValidationErrors(*ownSession);
 }
 
 // Russian roulette only reweights surviving paths: on, off, from the first bounce with a tight survival clamp
