@@ -56,8 +56,13 @@ std::optional<ReloadEvent> EditLoop::beginFrame() {
 
 void EditLoop::frameFinished(Clock::time_point frameBegin) {
   hot_->frameFinished(frameBegin);
-  frameSeconds_.push_back(std::chrono::duration<double>(Clock::now() - frameBegin).count());
-  if (frameSeconds_.size() > 32) frameSeconds_.pop_front();
+  // The typical frame leaves out the frames that may have compiled a pipeline (a driver that compiles at the
+  // first dispatch does it there): the loop's first frame and the frames of a new pipeline until its image's
+  // first frame is done. One of those, seconds long, would otherwise set the hang limit to minutes.
+  if (framesFinished_++ > 0 && !awaitingFirstFrame_) {
+    frameSeconds_.push_back(std::chrono::duration<double>(Clock::now() - frameBegin).count());
+    if (frameSeconds_.size() > 32) frameSeconds_.pop_front();
+  }
   if (!awaitingFirstFrame_) return;
   const auto last = hot_->lastEvent();
   if (!last || last->editToFirstFrameMs < 0) return;  // the new image's first frame is not done yet

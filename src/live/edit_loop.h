@@ -76,8 +76,8 @@ class EditLoop {
   bool compiling() const { return hot_->compiling(); }
 
   // The longest the next frame may take before it counts as hung: the device policy's floor or many times
-  // the frames before it, and longer for the first frame with a new pipeline (a driver that compiles at the
-  // first dispatch compiles it there when the warm-up could not).
+  // the frames before it (not those that may have compiled a pipeline), and longer for the first frame with a
+  // new pipeline (a driver that compiles at the first dispatch compiles it there when the warm-up could not).
   std::chrono::nanoseconds frameLimit() const;
   // What the user reads when a frame did not finish within frameLimit(): the last reload's files. A device
   // here cannot cancel the work, so the caller ends the process after saying it.
@@ -105,7 +105,8 @@ class EditLoop {
   ABBudgetPlanner planner_;
   std::unique_ptr<ABComparison> comparison_;  // made on the first comparison
   bool awaitingFirstFrame_ = false;
-  std::deque<double> frameSeconds_;  // the last frames' durations
+  uint64_t framesFinished_ = 0;
+  std::deque<double> frameSeconds_;  // the last frames' durations, those that may have compiled left out
   std::deque<CompletedReload> completed_;
 };
 

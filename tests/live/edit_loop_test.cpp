@@ -132,3 +132,22 @@ TEST_F(EditLoopTest, ABrokenSaveIsOverAtOnceAndAWorkingOneAfterItsFirstFrameAndC
   EXPECT_NE(library.compile(variantMiss)->spirv, variantBefore);
   EXPECT_TRUE(library.keptSources().empty());
 }
+
+// The hang limit follows the frames the loop draws, not one that compiled a pipeline: the loop's first frame
+// (here a long one, as a driver's JIT at the first dispatch makes it) leaves the limit at its first-frame
+// allowance (ten floors) instead of fifty times that frame; steady frames then set it.
+TEST_F(EditLoopTest, AFrameThatCompiledDoesNotSetTheHangLimit) {
+  live::EditLoop loop(*session_, {});
+  const double floor = session_->context().policy().hangSeconds;
+  auto seconds = [](std::chrono::nanoseconds d) { return std::chrono::duration<double>(d).count(); };
+  auto finishedFrameOf = [&](double s) {
+    loop.frameFinished(
+        std::chrono::steady_clock::now() -
+        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s)));
+  };
+  EXPECT_NEAR(seconds(loop.frameLimit()), 10.0 * floor, 1e-6) << "before any frame";
+  finishedFrameOf(40.0 * floor);
+  EXPECT_NEAR(seconds(loop.frameLimit()), 10.0 * floor, 1e-6) << "after the first frame, which compiled";
+  for (int i = 0; i < 3; ++i) finishedFrameOf(0.5 * floor);
+  EXPECT_NEAR(seconds(loop.frameLimit()), 25.0 * floor, 1e-3 * floor) << "fifty times the steady frames";
+}
