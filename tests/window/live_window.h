@@ -42,7 +42,10 @@ inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds =
   std::string text;
   bool seen = false;
   for (;;) {
-    const bool ended = alive && !alive();  // before reading: a writer that ended has written all it will
+    // Both before reading: a writer that ended has written all it will, and a file there when the time is up
+    // (after a stall of the whole machine too) is still read.
+    const bool ended = alive && !alive();
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (std::filesystem::exists(p)) {
       seen = true;
       std::ifstream f(p);
@@ -50,7 +53,6 @@ inline nlohmann::json awaitJson(const std::filesystem::path& p, double seconds =
       auto j = nlohmann::json::parse(text, nullptr, false);
       if (j.is_object()) return j;
     }
-    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (ended || waited > seconds) {
       std::cerr << "awaitJson: " << p.string() << (seen ? " holds no JSON object" : " does not exist")
                 << " after " << waited << " s" << (ended ? " (its writer has ended)" : "")
