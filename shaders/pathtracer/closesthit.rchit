@@ -281,8 +281,7 @@ void main() {
   payload.shadowRequestCount = shadowRequests;
 
   // Continuation ray by BRDF sampling (mixed with reflector directions: guiding.glsl).
-  const float uPart = pathPartSample(gl_LaunchIDEXT.xy + pc.tileOffset, WB_SAMPLE_INDEX,
-                                     sampleDimension(bounce, WB_DIM_LOBE), VERTEX_SAMPLE(WB_DIM_LOBE));
+  const float uPart = pathPartSample(sampleDimension(bounce, WB_DIM_LOBE), VERTEX_SAMPLE(WB_DIM_LOBE));
   const vec3 uBrdf = vec3(uPart, VERTEX_SAMPLE(WB_DIM_BRDF), VERTEX_SAMPLE(WB_DIM_BRDF + 1u));
   const BrdfSample s = pathSample(sm, ns, wo, position, ng, uBrdf);
 #if WB_INSPECT

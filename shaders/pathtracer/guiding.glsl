@@ -98,12 +98,13 @@ float pathLobeProbability(SurfaceMaterial sm, vec3 ns, vec3 wo, vec3 x, vec3 ng,
   return lobe == WB_LOBE_REFLECTOR ? c : (1.0 - c) * (lobe == WB_LOBE_DIFFUSE ? pDiffuse : 1.0 - pDiffuse);
 }
 
-// The number that picks the part of the mixture at this vertex (pathSample's u.x): the pixel's own `own`, or with
-// WB_REFLECTOR_COHERENT its tile's.
-float pathPartSample(uvec2 pixel, uint sampleIndex, uint dim, float own) {
+// The number that picks the part of the mixture at this vertex (pathSample's u.x) from sample dimension `dim`:
+// the pixel's own `own`, or with WB_REFLECTOR_COHERENT its tile's (gSampler's pixel, rounded down to the tile).
+float pathPartSample(uint dim, float own) {
 #if WB_REFLECTOR_GUIDING && WB_REFLECTOR_COHERENT
   if (frame.reflectorCount > 0u) {
-    const SamplerState tile = samplerInit(pixel & ~uvec2(7u, 3u), sampleIndex, gSampler.seed, gSampler.mode);
+    const SamplerState tile =
+        samplerInit(gSampler.pixel & ~uvec2(7u, 3u), gSampler.sampleIndex, gSampler.seed, gSampler.mode);
     return samplerGet1D(tile, dim);
   }
 #endif

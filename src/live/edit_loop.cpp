@@ -59,10 +59,11 @@ void EditLoop::frameFinished(Clock::time_point frameBegin) {
   // The typical frame leaves out the frames that may have compiled a pipeline (a driver that compiles at the
   // first dispatch does it there): the loop's first frame and the frames of a new pipeline until its image's
   // first frame is done. One of those, seconds long, would otherwise set the hang limit to minutes.
-  if (framesFinished_++ > 0 && !awaitingFirstFrame_) {
+  if (firstFrameDone_ && !awaitingFirstFrame_) {
     frameSeconds_.push_back(std::chrono::duration<double>(Clock::now() - frameBegin).count());
     if (frameSeconds_.size() > 32) frameSeconds_.pop_front();
   }
+  firstFrameDone_ = true;
   if (!awaitingFirstFrame_) return;
   const auto last = hot_->lastEvent();
   if (!last || last->editToFirstFrameMs < 0) return;  // the new image's first frame is not done yet

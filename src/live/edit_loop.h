@@ -105,7 +105,7 @@ class EditLoop {
   ABBudgetPlanner planner_;
   std::unique_ptr<ABComparison> comparison_;  // made on the first comparison
   bool awaitingFirstFrame_ = false;
-  uint64_t framesFinished_ = 0;
+  bool firstFrameDone_ = false;
   std::deque<double> frameSeconds_;  // the last frames' durations, those that may have compiled left out
   std::deque<CompletedReload> completed_;
 };
