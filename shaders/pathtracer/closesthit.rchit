@@ -22,7 +22,7 @@ void main() {
   const uint shadeStart = wbClock();  // the cost variants: this shading's clocks go back in the payload
 #endif
   wbDebugAtBounce(payload.bounce);
-  initPathSampler(gl_LaunchIDEXT.xy + pc.tileOffset, WB_SAMPLE_INDEX);
+  initPathSampler(WB_PIXEL, WB_SAMPLE_INDEX);
   const GeometryInfo g = hitGeometry();
   const Material m = materials[g.materialIndex];
   const TriangleHit h = fetchTriangle(g, gl_PrimitiveID, attribs);

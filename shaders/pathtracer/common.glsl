@@ -65,6 +65,16 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 // them to the sample slots; resolve.comp accumulates them in order).
 #define WB_SAMPLE_INDEX (pc.sampleIndex + gl_LaunchIDEXT.z)
 
+// The pixel this invocation traces. With lane isolation (WB_COST_ISOLATE, raygen.rgen) one lane of each subgroup
+// traces pixels it takes from a queue, so the pixel is not the launch ID: raygen puts the pixel's index within
+// the launch in the payload, where every stage reads it.
+#if WB_COST_ISOLATE
+#define WB_PIXEL                                                                                                \
+  (pc.tileOffset + uvec2(payload.launchPixel % gl_LaunchSizeEXT.x, payload.launchPixel / gl_LaunchSizeEXT.x))
+#else
+#define WB_PIXEL (gl_LaunchIDEXT.xy + pc.tileOffset)
+#endif
+
 #define PATH_PAYLOAD_LOCATION 0
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u

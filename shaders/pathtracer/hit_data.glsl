@@ -7,8 +7,7 @@
 GeometryInfo hitGeometry() { return geometries[gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT]; }
 
 // A hash of pixel, sample, primitive and geometry for stochastic transparency.
-float alphaHash(uint primitive, uint geometry) {
-  uvec2 pixel = gl_LaunchIDEXT.xy + pc.tileOffset;
+float alphaHash(uvec2 pixel, uint primitive, uint geometry) {
   uint h = hashCombine(pixel.x, pixel.y);
   h = hashCombine(h, WB_SAMPLE_INDEX ^ (pc.seed * 0x68bc21ebu));
   h = hashCombine(h, primitive);

@@ -44,7 +44,11 @@ struct PathPayload {
   float pad;
 #endif
   vec3 geoNormal;  // out at bounce 0: geometric normal, facing the ray (AOV)
+#if WB_COST_ISOLATE
+  uint launchPixel;  // in: the pixel's index within the launch (WB_PIXEL in common.glsl)
+#else
   float pad2;
+#endif
   ShadowRequest shadowRequests[WB_SHADOW_REQUESTS];  // out: NEE shadow rays, all leaving from origin
 #ifdef WB_PAYLOAD_PAD_VEC4  // payload-size experiments: --define WB_PAYLOAD_PAD_VEC4=N adds N unused vec4s
   vec4 experimentPad[WB_PAYLOAD_PAD_VEC4];

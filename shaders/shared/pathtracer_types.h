@@ -72,6 +72,7 @@ struct Counters {
   uint rayCount;        // all rays traced (approximate, atomics per pixel)
   uint shadowRayCount;
   uint pathCount;
+  uint isolateNext;  // the next pixel of the lane-isolated cost variant's queue (raygen.rgen; reset per launch)
 };
 
 WB_NAMESPACE_END

@@ -23,6 +23,12 @@ constexpr size_t kSpareSets = 2;                  // image sets of earlier sizes
 
 }  // namespace
 
+bool PathTracer::isolatesLanes(bool inspect, const Instrumentation& instrumentation, uint32_t clock,
+                               bool isolateLanes) {
+  return isolateLanes && instrumentation.cost && !instrumentation.asserts && !inspect &&
+         clock != WB_CLOCK_NONE;
+}
+
 uint32_t PathTracer::clockOf(const vk::Context& ctx) {
   return ctx.shaderClock().subgroup ? WB_CLOCK_SUBGROUP
          : ctx.shaderClock().device ? WB_CLOCK_DEVICE
@@ -42,7 +48,8 @@ std::vector<shader::ShaderKey> PathTracer::stageKeys(const scene::SceneFeatures&
   if (instrumentation.asserts) defines.push_back({"WB_ASSERTS", "1"});
   if ((inspect || instrumentation.cost) && clock != WB_CLOCK_NONE) {
     defines.push_back({"WB_CLOCK", std::to_string(clock)});
-    if (isolateLanes) defines.push_back({"WB_COST_ISOLATE", "1"});
+    if (isolatesLanes(inspect, instrumentation, clock, isolateLanes))
+      defines.push_back({"WB_COST_ISOLATE", "1"});
   }
   std::vector<shader::ShaderKey> keys = {
       {dir / "raygen.rgen", std::nullopt, defines},
@@ -81,7 +88,8 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   resolve_->useProgram("pathtracer resolve", {{shaderDir() / "pathtracer" / "resolve.comp"}});
   sampleSlots_ = vk::Buffer(ctx_, sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   frameUniforms_ = vk::Buffer(ctx_, sizeof(gpu::FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-  counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+  counters_ = vk::Buffer(ctx_, sizeof(gpu::Counters),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   resetCounters();
   blueNoise_ = vk::makeBuffer(ctx_, blueNoiseTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   sobol_ = vk::makeBuffer(ctx_, sobolTable(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -489,6 +497,11 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_
   // A restart counts the asserts' failures anew.
   if (instrumentation_.asserts && sampleIndex_ == 0 && r.x == 0 && r.y == 0) {
     vkCmdFillBuffer(cmd, assertHeader_.handle(), 0, sizeof(uint32_t), 0);
+    vk::memoryBarrier(cmd);
+  }
+  // Lane isolation: every launch starts its pixel queue anew (raygen.rgen).
+  if (isolatesLanes()) {
+    vkCmdFillBuffer(cmd, counters_.handle(), offsetof(gpu::Counters, isolateNext), sizeof(uint32_t), 0);
     vk::memoryBarrier(cmd);
   }
   lastRecordedSample_ = sampleIndex_;

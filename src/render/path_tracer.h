@@ -69,8 +69,8 @@ class PathTracer final : public Renderer {
   // function at the first trace (shaders/pathtracer/common.glsl).
   // inspect defines WB_INSPECT=1: the path inspector's variant; `instrumentation` WB_COST / WB_ASSERTS; both
   // measuring variants read the shader clock `clock` (WB_CLOCK_*: WB_CLOCK=N; none: left undefined), and with
-  // isolateLanes (DevicePolicy::costIsolatesLanes) trace their subgroups' lanes one at a time
-  // (WB_COST_ISOLATE=1).
+  // isolateLanes (DevicePolicy::costIsolatesLanes) the cost variant traces each sample alone in its subgroup
+  // (WB_COST_ISOLATE=1, isolatesLanes).
   static std::vector<shader::ShaderKey> stageKeys(const scene::SceneFeatures& features, bool cpuDeviceCode,
                                                   bool inspect = false,
                                                   const Instrumentation& instrumentation = {},
@@ -78,9 +78,15 @@ class PathTracer final : public Renderer {
   // The shader clock this device's cost variants read (WB_CLOCK_*): the subgroup clock where there is one,
   // else the device clock, else none (their costs read 0).
   static uint32_t clockOf(const vk::Context& ctx);
+  // Whether a variant isolates its lanes where the policy asks for it: the cost variant alone, with a clock
+  // (the inspecting and asserting variants read the pixel from the launch ID in every stage).
+  static bool isolatesLanes(bool inspect, const Instrumentation& instrumentation, uint32_t clock,
+                            bool isolateLanes);
   uint32_t clock() const { return clock_; }
   // Whether the measuring variants trace each subgroup's lanes alone (WB_COST_ISOLATE, stageKeys).
-  bool isolatesLanes() const { return clock_ != WB_CLOCK_NONE && ctx_.policy().costIsolatesLanes; }
+  bool isolatesLanes() const {
+    return isolatesLanes(inspectVariant_, instrumentation_, clock_, ctx_.policy().costIsolatesLanes);
+  }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
   shader::ShaderLibrary::ProgramId program() const { return pass_->program(); }

@@ -78,10 +78,10 @@ struct DevicePolicy {
   // clock, which they read by default: WB_DEVICE_CLOCK=1, to compare the two where the subgroup clock counts
   // more than the invocation's own work (an SM's cycles spent on other warps).
   bool deviceClock = false;
-  // WB_COST_ISOLATE=1, an experiment: the measuring variants trace each subgroup's lanes one at a time
-  // (shaders/pathtracer/raygen.rgen), so that a pixel's clocks would be its own path's work and not its
-  // subgroup's slowest lane's, on devices whose ray generation has subgroup votes (not lavapipe). Off by
-  // default: not yet shown to serialise the lanes, or to keep the image, on an NVIDIA GPU (docs/cost.md).
+  // WB_COST_ISOLATE=1, an experiment: the cost variant traces each sample alone in its subgroup
+  // (shaders/pathtracer/raygen.rgen), so that a pixel's clocks are its own path's work and not its subgroup's
+  // slowest lane's, on devices whose ray generation has subgroup operations (not lavapipe). Off by default: the
+  // cost variant then runs at a fraction of the device's width (docs/cost.md).
   bool costIsolatesLanes = false;
   // The cost views and maps read each pixel's running median of a sample's clocks rather than its mean: on a
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would

@@ -207,20 +207,21 @@ TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
   // or a comparison with a value out of sin()'s range, let NVIDIA's compiler remove it. Its trip count is the
   // material's (0 elsewhere) rather than a branch around a fixed-count loop, which a compiler may run for
   // every hit with the result selected afterwards.
-  const fs::path root = editedRoot(
-      "cost_root", {{"pathtracer/closesthit.rchit", "  const Material m = materials[g.materialIndex];\n",
-                     "  const Material m = materials[g.materialIndex];\n"
-                     "#ifdef WB_EXPENSIVE_MATERIAL\n"
-                     "  float expensiveX = gl_HitTEXT;\n"
-                     "  const int expensiveWork = g.materialIndex == WB_EXPENSIVE_MATERIAL ? 8000 : 0;\n"
-                     "  for (int i = 0; i < expensiveWork; ++i) expensiveX = sin(expensiveX) * 1.0001 + 0.5;\n"
-                     "#endif\n"},
-                    {"pathtracer/closesthit.rchit", "  payload.status = PAYLOAD_CONTINUE;\n",
-                     "#ifdef WB_EXPENSIVE_MATERIAL\n"
-                     "  payload.status = expensiveX == 0.7071234 ? PAYLOAD_ABSORBED : PAYLOAD_CONTINUE;\n"
-                     "#else\n"
-                     "  payload.status = PAYLOAD_CONTINUE;\n"
-                     "#endif\n"}});
+  const fs::path root =
+      editedRoot("cost_root",
+                 {{"pathtracer/closesthit.rchit", "  const Material m = materials[g.materialIndex];\n",
+                   "  const Material m = materials[g.materialIndex];\n"
+                   "#ifdef WB_EXPENSIVE_MATERIAL\n"
+                   "  float expensiveX = gl_HitTEXT;\n"
+                   "  const int expensiveWork = g.materialIndex == WB_EXPENSIVE_MATERIAL ? 8000 : 0;\n"
+                   "  for (int i = 0; i < expensiveWork; ++i) expensiveX = sin(expensiveX) * 1.0001 + 0.5;\n"
+                   "#endif\n"},
+                  {"pathtracer/closesthit.rchit", "  payload.status = PAYLOAD_CONTINUE;\n",
+                   "#ifdef WB_EXPENSIVE_MATERIAL\n"
+                   "  payload.status = expensiveX == 0.7071234 ? PAYLOAD_ABSORBED : PAYLOAD_CONTINUE;\n"
+                   "#else\n"
+                   "  payload.status = PAYLOAD_CONTINUE;\n"
+                   "#endif\n"}});
   const fs::path d = tempDir("cost");
   struct Run {
     double redCost = 0, otherCost = 0, passMs = 0, frameClocks = 0;
@@ -263,6 +264,39 @@ TEST(DebugVariants, CostRanksAnExpensiveMaterialAndItsPassTimeGrows) {
   // device slows one of the two renders by up to ~2x: the time is a wall clock on a shared machine).
   EXPECT_GT(expensive.passMs / plain.passMs, std::min(2.0, 1.0 + 0.5 * (clockGrowth - 1.0)))
       << "pass_ms " << plain.passMs << " -> " << expensive.passMs << ", frame clocks x" << clockGrowth;
+}
+
+// The cost variant renders the default variant's image: its clocks change no path (and with lane isolation,
+// WB_COST_ISOLATE=1 on a device that has it, the lane that traces a pixel does not change its random
+// numbers). The default scene has an alpha-tested leaf: any-hit's stochastic transparency reads the pixel
+// too.
+TEST(DebugVariants, TheCostVariantRendersTheDefaultImage) {
+  const fs::path d = tempDir("cost_image");
+  auto render = [&](const std::string& name, const std::string& flags) {
+    const auto r = wb::testing::runCommand(
+        "timeout 600 " + std::string(WB_WORKBENCH_BIN) + " render --size 40x40 --spp 4 --out " +
+        (d / (name + ".exr")).string() + " --stats " + (d / (name + ".json")).string() + flags);
+    EXPECT_EQ(r.code, 0) << r.output;
+    return wb::eval::readExr(d / (name + ".exr"));
+  };
+  const auto plain = render("plain", "");
+  const auto cost = render("cost", " --aov cost");
+  ASSERT_EQ(plain.pixels.size(), cost.pixels.size());
+  double meanPlain = 0, meanCost = 0, maxRel = 0;
+  for (size_t i = 0; i < plain.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    meanPlain += plain.pixels[i];
+    meanCost += cost.pixels[i];
+    // Equal up to floating-point reassociation in the compiled code.
+    maxRel = std::max(maxRel, std::abs(double(plain.pixels[i]) - cost.pixels[i]) /
+                                  (std::abs(double(plain.pixels[i])) + 1e-2));
+  }
+  const std::string lanes = readJson(d / "cost.json")["cost"]["lanes"].get<std::string>();
+  std::printf("cost variant (lanes %s) against the default: largest relative difference %.3g\n",
+              lanes.c_str(), maxRel);
+  EXPECT_GT(meanPlain, 0.0);
+  EXPECT_NEAR(meanCost / meanPlain, 1.0, 1e-4) << "lanes " << lanes;
+  EXPECT_LT(maxRel, 1e-2) << "lanes " << lanes;
 }
 
 // Without a shader clock (WB_SHADER_CLOCK=0 stands for a device without VK_KHR_shader_clock) the cost map

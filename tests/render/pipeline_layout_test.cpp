@@ -102,16 +102,17 @@ TEST(PathTracerLayout, RaygenIsTheOnlyStageThatTracesRaysFromOneCallSite) {
   }
 }
 
-// The measuring variants trace a subgroup's lanes one at a time where the device policy asks for it
-// (DevicePolicy::costIsolatesLanes): their ray generation stage then uses subgroup operations; the default
-// variant never does, nor a measuring variant without a shader clock (nothing to isolate).
-TEST(PathTracerLayout, MeasuringVariantsIsolateLanesOnlyWhereAsked) {
+// The cost variant traces each sample alone in its subgroup where the device policy asks for it
+// (DevicePolicy::costIsolatesLanes): its ray generation stage then uses subgroup operations; the default
+// variant never does, nor the inspecting or asserting variants, nor a cost variant without a shader clock
+// (nothing to isolate).
+TEST(PathTracerLayout, TheCostVariantIsolatesLanesOnlyWhereAsked) {
   shader::ShaderLibrary::Options o;
   o.includeRoots = {shaderDir()};
   shader::ShaderLibrary lib(o);
   // SPIR-V's OpCapability GroupNonUniform (word 0x00020011: opcode 17, two words; capability 61).
   auto isolates = [&](bool inspect, const render::Instrumentation& instrumentation, uint32_t clock,
-                   bool isolate) {
+                      bool isolate) {
     const auto keys = render::PathTracer::stageKeys(scene::genericFeatures(), false, inspect, instrumentation,
                                                     clock, isolate);
     const auto raygen = lib.compile(keys.front());
@@ -124,7 +125,10 @@ TEST(PathTracerLayout, MeasuringVariantsIsolateLanesOnlyWhereAsked) {
   const render::Instrumentation cost{.cost = true}, none{};
   EXPECT_TRUE(isolates(false, cost, WB_CLOCK_SUBGROUP, true));
   EXPECT_TRUE(isolates(false, cost, WB_CLOCK_DEVICE, true));
-  EXPECT_TRUE(isolates(true, none, WB_CLOCK_SUBGROUP, true)) << "the inspected pixel's subgroup";
+  EXPECT_FALSE(isolates(true, none, WB_CLOCK_SUBGROUP, true)) << "the inspecting variant";
+  EXPECT_FALSE(isolates(true, cost, WB_CLOCK_SUBGROUP, true)) << "the inspecting variant with the cost AOV";
+  EXPECT_FALSE(
+      isolates(false, render::Instrumentation{.cost = true, .asserts = true}, WB_CLOCK_SUBGROUP, true));
   EXPECT_FALSE(isolates(false, cost, WB_CLOCK_SUBGROUP, false));
   EXPECT_FALSE(isolates(false, cost, WB_CLOCK_NONE, true)) << "no clock: nothing to isolate";
   EXPECT_FALSE(isolates(false, none, WB_CLOCK_SUBGROUP, true)) << "the default variant";
