@@ -9,9 +9,9 @@
 #  1. Issue 30: `bench --only denoise`: the denoiser against one sample at 512x512 and 1920x1080 (goal: 1 ms there)
 #     and the Cornell box's time to relMSE 0.01, denoised against raw (reads WB_SHARED_DIR's reference).
 #  2. Issue 31: the cost view's ranking of a deliberately expensive material (test_debug_variants' CostRanks test,
-#     which prints "red wall / rest") with the subgroup clock and with the device clock (WB_DEVICE_CLOCK=1).
-#     Then lane isolation (WB_COST_ISOLATE=1, docs/cost.md: each sample alone in its subgroup): the same ranking,
-#     and the test that the cost variant renders the default image, with the validation layer.
+#     which prints "red wall / rest") with lane isolation (the default on GPUs, docs/cost.md: each sample alone
+#     in its subgroup) and the validation layer, with the device clock (WB_DEVICE_CLOCK=1) and without isolation
+#     (WB_COST_ISOLATE=0); the test that the cost variant renders the default image; `bench --only cost`.
 #  3. Issue 29: `bench --only pathtracer`: the path tracer against the bare-ray roofline (lockstep shadows on);
 #     `converge` at 256x256 on the sunlit glossy scene (4096-spp reference) and the Cornell box (Cycles reference
 #     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch,
@@ -43,11 +43,11 @@ step() {  # name command...
   fi
 }
 step denoise "$W" bench "${quick[@]}" --only denoise --out "$OUT/denoise.json"
-step cost_subgroup "$T" --gtest_filter='DebugVariants.CostRanks*'
+step cost_isolated env WB_VALIDATION=1 "$T" --gtest_filter='DebugVariants.CostRanks*'
 step cost_device env WB_DEVICE_CLOCK=1 "$T" --gtest_filter='DebugVariants.CostRanks*'
-step cost_isolated env WB_COST_ISOLATE=1 WB_VALIDATION=1 "$T" --gtest_filter='DebugVariants.CostRanks*'
-step cost_image_isolated env WB_COST_ISOLATE=1 WB_VALIDATION=1 "$T" \
-  --gtest_filter='DebugVariants.TheCostVariantRendersTheDefaultImage'
+step cost_shared env WB_COST_ISOLATE=0 "$T" --gtest_filter='DebugVariants.CostRanks*'
+step cost_image_isolated env WB_VALIDATION=1 "$T" --gtest_filter='DebugVariants.TheCostVariantRendersTheDefaultImage'
+step cost_bench "$W" bench --only cost --size 1920x1080 --out "$OUT/cost_bench.json"
 # The hybrid inspector's tests take 0.4 s each on lavapipe but had not finished after ~225 s on the H100 (with
 # the validation layer, 2026-12-05): a hang or a slow path there. Bounded, so the rest of the batch runs.
 step hybrid_inspector env WB_VALIDATION=1 timeout 180 "$I" --gtest_filter='HybridInspector.*'
@@ -101,7 +101,7 @@ if d:
     print("denoised_vs_raw_time_to_relmse_0.01:", d.get("denoised_vs_raw_time_to_relmse_0.01"))
 def passed(text):
     return re.search(r"\[  PASSED  \] [1-9]", text) and "[  FAILED  ]" not in text
-for run in ("subgroup", "device", "isolated", "image_isolated"):
+for run in ("isolated", "device", "shared", "image_isolated"):
     try:
         text = open(os.path.join(out, "cost_%s.log" % run)).read()
     except OSError:

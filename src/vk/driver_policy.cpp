@@ -65,7 +65,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   if (overrides.hangSeconds) p.hangSeconds = *overrides.hangSeconds;
   p.shaderClock = device.shaderClockSupported && overrides.shaderClock.value_or(true);
   p.deviceClock = overrides.deviceClock.value_or(false);
-  p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(false);
+  p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(true);
   p.costByMedian = cpu;
   return p;
 }

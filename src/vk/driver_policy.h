@@ -78,10 +78,11 @@ struct DevicePolicy {
   // clock, which they read by default: WB_DEVICE_CLOCK=1, to compare the two where the subgroup clock counts
   // more than the invocation's own work (an SM's cycles spent on other warps).
   bool deviceClock = false;
-  // WB_COST_ISOLATE=1, an experiment: the cost variant traces each sample alone in its subgroup
-  // (shaders/pathtracer/raygen.rgen), so that a pixel's clocks are its own path's work and not its subgroup's
-  // slowest lane's, on devices whose ray generation has subgroup operations (not lavapipe). Off by default: the
-  // cost variant then runs at a fraction of the device's width (docs/cost.md).
+  // The cost variant traces each sample alone in its subgroup (shaders/pathtracer/raygen.rgen), so that a
+  // pixel's clocks are its own path's work and not its subgroup's slowest lane's, on devices whose ray
+  // generation has subgroup operations (GPUs; not lavapipe, whose lanes stay shared). It then runs at a
+  // fraction of the device's width (the H100: 8.6x the default variant's time at 1920x1080, docs/cost.md).
+  // WB_COST_ISOLATE=0: the subgroup's time per pixel, what the device pays for divergence.
   bool costIsolatesLanes = false;
   // The cost views and maps read each pixel's running median of a sample's clocks rather than its mean: on a
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would

@@ -188,12 +188,14 @@ TEST(DriverPolicy, TheDeviceClockIsChosenOnlyWhenAsked) {
   ::unsetenv("WB_DEVICE_CLOCK");
 }
 
-// Lane isolation in the measuring variants is asked for (WB_COST_ISOLATE=1) and needs subgroup votes in ray
-// generation: never by default, never on a device without the votes.
-TEST(DriverPolicy, LaneIsolationIsAskedForAndNeedsSubgroupVotesInRayGeneration) {
+// Lane isolation in the cost variant needs subgroup operations in ray generation: on by default where the
+// device has them, WB_COST_ISOLATE=0 turns it off, never on a device without them.
+TEST(DriverPolicy, LaneIsolationIsTheDefaultWhereRayGenerationHasSubgroupOperations) {
   DeviceTraits voting = gpu();
   voting.raygenSubgroupVote = true;
-  EXPECT_FALSE(resolveDevicePolicy(voting, {}).costIsolatesLanes) << "an experiment: off by default";
+  EXPECT_TRUE(resolveDevicePolicy(voting, {}).costIsolatesLanes) << "on by default";
+  EXPECT_FALSE(resolveDevicePolicy(gpu(), {}).costIsolatesLanes)
+      << "no subgroup operations in ray generation";
   ::setenv("WB_COST_ISOLATE", "1", 1);
   const PolicyOverrides asked = PolicyOverrides::fromEnvironment();
   EXPECT_TRUE(resolveDevicePolicy(voting, asked).costIsolatesLanes);
