@@ -292,6 +292,34 @@ TEST(Window, AnEndlessLoopIsRefusedAndTheWindowDrawsOn) {
   EXPECT_EQ(fixed["banner"], "");
 }
 
+// Without the trial frame (WB_TRIAL_RUN=0) a closest-hit that never returns is installed, and the window's next
+// frame never finishes. The frame loop may then be blocked in a call that waits for that frame (lavapipe's
+// present does) rather than in its own wait with a limit: the watchdog still says which edit hung and ends the
+// window with status 4, as `watch` does, instead of hanging for good.
+TEST(Window, WithoutTheTrialFrameAnEndlessLoopEndsTheWindowSayingWhichEdit) {
+  REQUIRE_XVFB();
+  const auto dir = tempDir("endless_untried");
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
+  std::string endless = readFile(watched);
+  const auto body = endless.find('{', endless.find("void main()")) + 1;
+  endless.insert(body, "\n  while (payload.radiance.x >= 0.0) { payload.radiance.x += 1.0; }\n");
+  writeFile(dir / "endless.rchit", endless);
+  const auto script = dir / "script.txt";
+  // After the reload the script waits for samples that never come: only the hang ends the window.
+  writeFile(script, "wait_samples 1 300\ncopy " + (dir / "endless.rchit").string() + " " + watched.string() +
+                        "\nwait_reload 300\nwait_samples 1000000 600\n");
+  auto r = runWindow("--script " + script.string(),
+                     "WB_ROOT=" + root.string() + " WB_HANG_SECONDS=3 WB_TRIAL_RUN=0", 500);
+  ASSERT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("did not finish"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("after the reload of"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("closesthit.rchit"), std::string::npos) << r.output;
+}
+
 TEST(Window, AnUnchangedSaveKeepsTheAccumulation) {
   REQUIRE_XVFB();
   const auto dir = tempDir("unchanged");

@@ -4,7 +4,10 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <atomic>
 #include <cstdio>
+#include <thread>
+#include <unistd.h>
 
 #include "common/env.h"
 #include "vk/check.h"
@@ -52,10 +55,22 @@ Presenter::Presenter(vk::Context& ctx, shader::ShaderLibrary& library, GLFWwindo
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   WB_VK(vkCreateSemaphore(ctx.device(), &si, nullptr, &imageAvailable_));
   timer_ = std::make_unique<vk::GpuTimer>(ctx, 3);
+  watchdog_ = std::make_unique<FrameWatchdog>(ctx.device(), [](const std::string& m) { endForHang(m); });
+}
+
+void Presenter::endForHang(const std::string& message) {
+  static std::atomic_flag ended = ATOMIC_FLAG_INIT;
+  if (ended.test_and_set())
+    for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+  std::fprintf(stderr, "workbench: error: %s\n", message.c_str());
+  std::fflush(stdout);
+  std::fflush(stderr);
+  ::_exit(4);
 }
 
 Presenter::~Presenter() {
   if (inFlight_) WB_VK(vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, UINT64_MAX));
+  watchdog_.reset();
   inFlight_ = false;
   ctx_.waitIdle();
   VkDevice d = ctx_.device();
@@ -111,12 +126,26 @@ void Presenter::waitForFence() {
   const auto limit = frameLimit_ ? frameLimit_() : std::chrono::nanoseconds::max();
   const uint64_t ns = limit == std::chrono::nanoseconds::max() ? UINT64_MAX : uint64_t(limit.count());
   const VkResult r = vkWaitForFences(ctx_.device(), 1, &fence_, VK_TRUE, ns);
+  if (r == VK_SUCCESS) watchdog_->disarm();
   if (r == VK_TIMEOUT) {
     FrameHang hang("a frame did not finish");
     hang.seconds = std::chrono::duration<double>(limit).count();
     throw hang;
   }
   WB_VK(r);
+}
+
+void Presenter::submit(const VkSubmitInfo& si) {
+  const auto limit = frameLimit_ ? frameLimit_() : std::chrono::nanoseconds::max();
+  const double seconds = std::chrono::duration<double>(limit).count();
+  std::string message = hangMessage_ ? hangMessage_(seconds) : "a frame did not finish within its limit";
+  auto watching = watchdog_->lock();
+  WB_VK(vkResetFences(ctx_.device(), 1, &fence_));
+  {
+    std::lock_guard lock(ctx_.queueMutex());
+    WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
+  }
+  watchdog_->arm(fence_, limit, std::move(message));
 }
 
 bool Presenter::finish() {
@@ -151,11 +180,7 @@ bool Presenter::traceOnly(const TraceRecorder& trace) {
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd_;
-  WB_VK(vkResetFences(ctx_.device(), 1, &fence_));
-  {
-    std::lock_guard lock(ctx_.queueMutex());
-    WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
-  }
+  submit(si);
   inFlight_ = true;
   finish();
   return true;
@@ -213,11 +238,7 @@ bool Presenter::present(const TraceRecorder& trace, const AfterTraceRecorder& af
   si.pCommandBuffers = &cmd_;
   si.signalSemaphoreCount = 1;
   si.pSignalSemaphores = &done;
-  WB_VK(vkResetFences(ctx_.device(), 1, &fence_));
-  {
-    std::lock_guard lock(ctx_.queueMutex());
-    WB_VK(vkQueueSubmit(ctx_.queue(), 1, &si, fence_));
-  }
+  submit(si);
   inFlight_ = true;
   if (!swapchain_->present(*index, done)) recreate();
   return true;

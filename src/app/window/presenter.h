@@ -12,6 +12,7 @@
 
 #include "app/window/capture.h"
 #include "app/window/display_pass.h"
+#include "app/window/frame_watchdog.h"
 #include "app/window/gui_layer.h"
 #include "vk/gpu_timer.h"
 #include "vk/swapchain.h"
@@ -44,6 +45,16 @@ class Presenter {
 
   // How long a submission may take before it counts as hung (FrameHang thrown by the waits).
   void setFrameLimit(std::function<std::chrono::nanoseconds()> limit) { frameLimit_ = std::move(limit); }
+  // What the user reads when a submission counts as hung (given the limit in seconds). Asked at each
+  // submission, on the frame loop's thread: the watchdog (FrameWatchdog), which says it when the frame loop
+  // is blocked in a call that waits for the hung frame, runs on its own.
+  void setHangMessage(std::function<std::string(double seconds)> message) {
+    hangMessage_ = std::move(message);
+  }
+  // Says `message` on stderr and ends the process with status 4: no driver here cancels a running shader, and
+  // the device cannot be closed while it runs. The first caller ends it; a second (the frame loop's own wait
+  // and the watchdog at once) waits for that.
+  [[noreturn]] static void endForHang(const std::string& message);
 
   DisplayPass& display() { return *display_; }
   const vk::Swapchain& swapchain() const { return *swapchain_; }
@@ -84,6 +95,8 @@ class Presenter {
   void readTimestamps();
   // Waits for the submission in flight within the frame limit; throws FrameHang past it.
   void waitForFence();
+  // Submits cmd_ with fence_ and arms the watchdog with the frame limit.
+  void submit(const VkSubmitInfo& si);
 
   vk::Context& ctx_;
   GLFWwindow* window_;
@@ -102,6 +115,8 @@ class Presenter {
   uint64_t tracedPixels_ = 0;
   double traceMs_ = 0, afterTraceMs_ = 0, displayMs_ = 0;
   std::function<std::chrono::nanoseconds()> frameLimit_;
+  std::function<std::string(double)> hangMessage_;
+  std::unique_ptr<FrameWatchdog> watchdog_;  // after fence_: it reads the fence until it is destroyed
 };
 
 }  // namespace wb::app

@@ -69,6 +69,7 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o)
                                            window_, vsync_, o.imguiIni);
   input_ = std::make_unique<WindowInput>(window_, *events_, *session_);
   presenter_->setFrameLimit([this] { return session_->loop().frameLimit(); });
+  presenter_->setHangMessage([this](double seconds) { return session_->loop().hangMessage(seconds); });
   session_->loop().addPass(presenter_->display().pass());
   session_->start(
       [] { glfwPostEmptyEvent(); });  // ends a rest or an idle wait: the build is committed at once
@@ -340,11 +341,8 @@ int WorkbenchWindow::run() {
   try {
     return frameLoop();
   } catch (const FrameHang& hang) {
-    // No driver here cancels a running shader: say which edit did it, and end (the device cannot be closed).
-    std::fprintf(stderr, "workbench: error: %s\n", session_->loop().hangMessage(hang.seconds).c_str());
-    std::fflush(stdout);
-    std::fflush(stderr);
-    ::_exit(4);
+    // Say which edit did it, and end (the watchdog does the same where the frame loop is blocked).
+    Presenter::endForHang(session_->loop().hangMessage(hang.seconds));
   }
 }
 
