@@ -40,7 +40,7 @@ configs=(
   "launch16|--samples-per-launch 16"
   "launch-auto|--samples-per-launch 0"
   "payload+128B|--define WB_PAYLOAD_PAD_VEC4=8"
-  "guiding|--define WB_REFLECTOR_GUIDING=1"
+  "no-guiding|--define WB_REFLECTOR_GUIDING=0"
 )
 # name|scene arguments
 scenes=("default|" "sunlit|${sunlit[*]}")
@@ -85,8 +85,8 @@ echo "== 3. error per sample on the sunlit glossy scene"
 csize=256x256 cref=4096 cspp=256
 [ "$quick" = 1 ] && csize=64x64 cref=256 cspp=16
 "$wb" converge "${sunlit[@]}" --size "$csize" --reference-spp "$cref" --seconds 3600 --max-spp "$cspp" --runs 3 \
-  --target-relmse 0.01 --config "default:" --config "guiding:--define WB_REFLECTOR_GUIDING=1" \
-  --config "guiding0.5:--define WB_REFLECTOR_GUIDING=1 --define WB_REFLECTOR_FRACTION=0.5" \
+  --target-relmse 0.01 --config "default:" --config "no-guiding:--define WB_REFLECTOR_GUIDING=0" \
+  --config "guiding0.5:--define WB_REFLECTOR_FRACTION=0.5" \
   --config "launch-auto:--samples-per-launch 0" --out "$out/sunlit_converge"
 shared=${WB_SHARED_DIR:-$repo/../shared}
 if [ -f "$shared/reference/cornell_cycles.exr" ]; then

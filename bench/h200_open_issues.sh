@@ -16,7 +16,7 @@
 #     `converge` at 256x256 on the sunlit glossy scene (4096-spp reference) and the Cornell box (Cycles reference
 #     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch,
 #     and on the sunlit scene reflector guiding with coherent and with per-pixel choices; the default scene
-#     (512-spp checkpoints against a 4096-spp reference) with and without guiding.
+#     with and without guiding.
 #  4. Issue 30: `converge` of the denoiser to 4096 spp at 256x256 on the default scene (16384-spp reference) and
 #     the Cornell box, with and without its windowed gain (WB_DENOISE_WINDOW): its mean against the raw one.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
@@ -55,10 +55,10 @@ step pathtracer "$W" bench "${quick[@]}" --only pathtracer --out "$OUT/pathtrace
 csize=256x256 cref=4096 cspp=256
 [ "${QUICK:-0}" = 1 ] && csize=64x64 cref=64 cspp=16
 configs=(--config default: --config launch-auto:--samples-per-launch=0)
-# Reflector guiding (item 4) on the sunlit scene: with its tiles' coherent choices (the guiding default) and
-# with each pixel's own (the form the H200 measured at 1.19-1.88x per sample, docs/bench/roofline.md).
-guiding=(--config "guiding:--define WB_REFLECTOR_GUIDING=1"
-  --config "guiding-own:--define WB_REFLECTOR_GUIDING=1 --define WB_REFLECTOR_COHERENT=0")
+# Reflector guiding (item 4; on by default, with its tiles' coherent choices) against none and against each
+# pixel's own choices (the form the H200 measured at 1.19-1.88x per sample, docs/bench/roofline.md).
+guiding=(--config "no-guiding:--define WB_REFLECTOR_GUIDING=0"
+  --config "guiding-own:--define WB_REFLECTOR_COHERENT=0")
 step converge_sunlit "$W" converge assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5 --size "$csize" \
   --reference-spp "$cref" --max-spp "$cspp" --seconds 3600 --runs 3 --target-relmse 0.01 "${configs[@]}" \
   "${guiding[@]}" --out "$OUT/sunlit"

@@ -6,16 +6,20 @@
 // those the point sees above its surface), otherwise the BRDF's; the pdf is the mixture's, defensive through the
 // BRDF's part, so every estimate that weighs against BRDF sampling (next-event estimation's MIS, the miss and
 // emission weights through payload.pdf) uses pathPdf. Without reflectors (c = 0) it is plain BRDF sampling.
-// Off by default (docs/bench/roofline.md: less error per sample on a sunlit glossy scene, but the guided rays hit
-// geometry and cost 1.2-1.9x per sample: off until a GPU shows it pays there too); --define WB_REFLECTOR_GUIDING=1
-// turns it on, WB_REFLECTOR_FRACTION=F sets the fraction.
+// On by default (docs/bench/roofline.md: on the sunlit glossy scene and the default scene less error for the
+// time on lavapipe and an H100, most where caustic fireflies rule the error); --define WB_REFLECTOR_GUIDING=0
+// turns it off, WB_REFLECTOR_FRACTION=F sets the fraction.
 #ifndef WB_PT_GUIDING_GLSL
 #define WB_PT_GUIDING_GLSL
 #include "../shared/brdf.h"
 #include "../shared/sun.h"
 
 #ifndef WB_REFLECTOR_GUIDING
-#define WB_REFLECTOR_GUIDING 0
+#if defined(WB_SPECIALIZED) && !WB_HAS_REFLECTORS
+#define WB_REFLECTOR_GUIDING 0  // a scene without glossy reflectors: plain BRDF sampling, none of the code
+#else
+#define WB_REFLECTOR_GUIDING 1
+#endif
 #endif
 #ifndef WB_REFLECTOR_FRACTION
 #define WB_REFLECTOR_FRACTION 0.3

@@ -108,6 +108,9 @@ EditLoop::Clock::time_point EditLoop::restUntil(Clock::time_point frameBegin, Cl
   return frameEnd + std::chrono::duration_cast<Clock::duration>((frameEnd - frameBegin) * ratio);
 }
 
+// A frame that may compile a pipeline gets this many times the policy's hang floor.
+constexpr double kFirstFrameFloors = 10.0;
+
 std::chrono::nanoseconds EditLoop::frameLimit() const {
   const double floor = session_.context().policy().hangSeconds;
   double typical = 0;
@@ -118,8 +121,14 @@ std::chrono::nanoseconds EditLoop::frameLimit() const {
   }
   double limit = std::max(floor, 50.0 * typical);
   // A first frame may compile its pipeline (the driver's JIT, where the warm-up did not): ten floors.
-  if (awaitingFirstFrame_ || frameSeconds_.empty()) limit = std::max(limit, 10.0 * floor);
+  if (awaitingFirstFrame_ || frameSeconds_.empty()) limit = std::max(limit, kFirstFrameFloors * floor);
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(limit));
+}
+
+std::chrono::nanoseconds EditLoop::compilingFrameLimit() const {
+  const double floor = session_.context().policy().hangSeconds;
+  return std::max(frameLimit(), std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                    std::chrono::duration<double>(kFirstFrameFloors * floor)));
 }
 
 std::string EditLoop::hangMessage(double seconds) const {

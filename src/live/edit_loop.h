@@ -79,6 +79,11 @@ class EditLoop {
   // the frames before it (not those that may have compiled a pipeline), and longer for the first frame with a
   // new pipeline (a driver that compiles at the first dispatch compiles it there when the warm-up could not).
   std::chrono::nanoseconds frameLimit() const;
+  // The limit of a frame that may compile pipelines anywhere in it: frameLimit(), and at least its
+  // first-frame allowance. The window's frames may run the display pass's, the denoiser's or a view's
+  // pipelines for the first time (a CPU driver compiles them there), and its watchdog times a frame from its
+  // submission.
+  std::chrono::nanoseconds compilingFrameLimit() const;
   // What the user reads when a frame did not finish within frameLimit(): the last reload's files. A device
   // here cannot cancel the work, so the caller ends the process after saying it.
   std::string hangMessage(double seconds) const;

@@ -1,5 +1,6 @@
 #include "live/jit_warmup.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -67,6 +68,17 @@ void awaitCacheWrite(std::chrono::steady_clock::duration dispatch, uint64_t byte
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
   while (mesaShaderCacheBytes() == bytesBefore && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+// The median of `seconds` (0 when empty), and `seconds` with `latest` added, keeping the last 16.
+double median(std::vector<double> seconds) {
+  if (seconds.empty()) return 0;
+  std::nth_element(seconds.begin(), seconds.begin() + long(seconds.size() / 2), seconds.end());
+  return seconds[seconds.size() / 2];
+}
+void remember(std::vector<double>& seconds, double latest) {
+  seconds.push_back(latest);
+  if (seconds.size() > 16) seconds.erase(seconds.begin());
 }
 
 const shader::CompiledShader* raygenStage(const shader::ShaderLibrary::ProgramBuild& build) {
@@ -187,16 +199,20 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
   pass.install(std::move(built));
   auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
   if (compileAhead) {
-    // The compile itself has no bound worth guessing on a busy machine; a renderer whose compile-only
-    // record runs shaders (the hybrid modes') still ends on a hang, after longer.
+    // The compile itself has no bound worth guessing on a busy machine (this thread and the driver's run at a
+    // lowered priority: beside two busy loops a compile took over a minute), so the limit grows with the
+    // compiles before it; a renderer whose compile-only record runs shaders (the hybrid modes') still ends
+    // on a hang, after longer.
     const uint64_t before = mesaShaderCacheBytes();
     const auto t1 = Clock::now();
-    const auto compileLimit = std::chrono::duration<double>(std::max(60.0, 12.0 * hangSeconds));
+    const auto compileLimit =
+        std::chrono::duration<double>(std::max({60.0, 12.0 * hangSeconds, 20.0 * median(compileSeconds_)}));
     if (!ctx.submitAndWaitFor([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); },
                               std::chrono::duration_cast<std::chrono::nanoseconds>(compileLimit))) {
       trialLimit_ = compileLimit.count();
       return WarmOutcome::Hung;
     }
+    remember(compileSeconds_, seconds(Clock::now() - t1));
     awaitCacheWrite(Clock::now() - t1, before);
   }
   if (!like.context().policy().trialRuns) {
@@ -205,13 +221,7 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
   }
   // The trial frame: a small image of real paths. It finishes in milliseconds; the limit is the policy's
   // floor or many times the trial frames before it, whichever is longer.
-  double typical = 0;
-  if (!trialSeconds_.empty()) {
-    auto sorted = trialSeconds_;
-    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
-    typical = sorted[sorted.size() / 2];
-  }
-  trialLimit_ = std::max(hangSeconds, 50.0 * typical);
+  trialLimit_ = std::max(hangSeconds, 50.0 * median(trialSeconds_));
   renderer_->resetAccumulation();
   const auto t2 = Clock::now();
   if (!ctx.submitAndWaitFor(
@@ -219,8 +229,7 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
           std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(trialLimit_))))
     return WarmOutcome::Hung;
   renderer_->advance();
-  trialSeconds_.push_back(seconds(Clock::now() - t2));
-  if (trialSeconds_.size() > 16) trialSeconds_.erase(trialSeconds_.begin());
+  remember(trialSeconds_, seconds(Clock::now() - t2));
   ++warmups_;
   return WarmOutcome::Warmed;
 }

@@ -99,7 +99,8 @@ class JitWarmup {
   std::unique_ptr<render::Renderer> renderer_;  // after device_: destroyed first
   std::vector<uint8_t> handles_;
   uint32_t warmups_ = 0;
-  std::vector<double> trialSeconds_;  // the finished trial frames', for the limit of the next
+  std::vector<double> trialSeconds_;    // the finished trial frames', for the limit of the next
+  std::vector<double> compileSeconds_;  // the finished compiles ahead', for the limit of the next
   double trialLimit_ = 0;
 };
 

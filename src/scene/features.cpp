@@ -1,5 +1,7 @@
 #include "scene/features.h"
 
+#include "scene/reflectors.h"
+
 namespace wb::scene {
 
 SceneFeatures genericFeatures(uint32_t directionalLights) {
@@ -11,7 +13,7 @@ SceneFeatures genericFeatures(uint32_t directionalLights) {
 SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
   SceneFeatures f;
   f.generic = false;
-  f.alphaMask = f.alphaBlend = f.normalMaps = f.emissive = f.textures = f.specular = false;
+  f.alphaMask = f.alphaBlend = f.normalMaps = f.emissive = f.textures = f.specular = f.reflectors = false;
   f.extensions = scene.extensionsUsed;
   // Only materials that some primitive uses count.
   std::vector<bool> used(scene.materials.size(), false);
@@ -30,6 +32,7 @@ SceneFeatures analyzeFeatures(const Scene& scene, EnvironmentKind environment) {
     f.specular = f.specular || m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f);
     f.textures = f.textures || m.baseColorTexture >= 0 || m.normalTexture >= 0 ||
                  m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+    f.reflectors = f.reflectors || isGlossyReflector(m);
   }
   f.directionalLights = static_cast<uint32_t>(scene.lights.size());
   f.environment = environment;
@@ -41,6 +44,7 @@ bool featuresCover(const SceneFeatures& f, const std::vector<gpu::Material>& mat
   for (const auto& m : materials) {
     if (m.emissive != glm::vec3(0.0f) && !f.emissive) return false;
     if ((m.specularFactor != 1.0f || m.specularColorFactor != glm::vec3(1.0f)) && !f.specular) return false;
+    if (isGlossyReflector(m) && !f.reflectors) return false;
   }
   return true;
 }
@@ -64,6 +68,7 @@ std::vector<shader::Define> featureDefines(const SceneFeatures& f) {
       {"WB_HAS_EMISSIVE", flag(f.emissive)},
       {"WB_HAS_TEXTURES", flag(f.textures)},
       {"WB_HAS_SPECULAR", flag(f.specular)},
+      {"WB_HAS_REFLECTORS", flag(f.reflectors)},
       {"WB_LIGHT_COUNT", std::to_string(f.directionalLights) + "u"},
       {"WB_ENV_MODE", std::to_string(static_cast<int>(f.environment))},
   };
@@ -85,6 +90,7 @@ std::string describeFeatures(const SceneFeatures& f) {
   if (f.emissive) s += " emissive";
   if (f.textures) s += " textures";
   if (f.specular) s += " specular";
+  if (f.reflectors) s += " reflectors";
   for (const auto& e : f.extensions) s += " " + e;
   return s + extra;
 }

@@ -21,6 +21,7 @@ struct SceneFeatures {
   bool textures = true;
   bool specular =
       true;  // some material sets KHR_materials_specular values other than the defaults (1, white)
+  bool reflectors = true;  // some material is a glossy reflector (scene/reflectors.h): reflector guiding
   // The generic build reads the light count at run time: there it only sizes the shadow requests of the path
   // payload (capacity kGenericMaxLights, or this when more).
   uint32_t directionalLights = 0;

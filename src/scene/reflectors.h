@@ -1,7 +1,7 @@
 // The scene's glossy reflectors: instances with a smooth metal or smooth specular surface, as world-space
-// bounding spheres. The path tracer can send part of the continuation rays of diffuse surfaces towards them
-// (`--define WB_REFLECTOR_GUIDING=1`, shaders/pathtracer/guiding.glsl): the sun reflected by a smooth sphere
-// onto the ground (a caustic) is a small, bright target that cosine sampling meets rarely.
+// bounding spheres. The path tracer sends part of the continuation rays of diffuse surfaces towards them
+// (shaders/pathtracer/guiding.glsl; `--define WB_REFLECTOR_GUIDING=0` turns it off): the sun reflected by a
+// smooth sphere onto the ground (a caustic) is a small, bright target that cosine sampling meets rarely.
 #pragma once
 #include <vector>
 

@@ -135,7 +135,8 @@ TEST_F(EditLoopTest, ABrokenSaveIsOverAtOnceAndAWorkingOneAfterItsFirstFrameAndC
 
 // The hang limit follows the frames the loop draws, not one that compiled a pipeline: the loop's first frame
 // (here a long one, as a driver's JIT at the first dispatch makes it) leaves the limit at its first-frame
-// allowance (ten floors) instead of fifty times that frame; steady frames then set it.
+// allowance (ten floors) instead of fifty times that frame; steady frames then set it. A frame that may compile
+// anywhere in it (the window's, compilingFrameLimit) keeps the allowance.
 TEST_F(EditLoopTest, AFrameThatCompiledDoesNotSetTheHangLimit) {
   live::EditLoop loop(*session_, {});
   const double floor = session_->context().policy().hangSeconds;
@@ -150,4 +151,9 @@ TEST_F(EditLoopTest, AFrameThatCompiledDoesNotSetTheHangLimit) {
   EXPECT_NEAR(seconds(loop.frameLimit()), 10.0 * floor, 1e-6) << "after the first frame, which compiled";
   for (int i = 0; i < 3; ++i) finishedFrameOf(0.5 * floor);
   EXPECT_NEAR(seconds(loop.frameLimit()), 25.0 * floor, 1e-3 * floor) << "fifty times the steady frames";
+  EXPECT_NEAR(seconds(loop.compilingFrameLimit()), 25.0 * floor, 1e-3 * floor);
+  for (int i = 0; i < 9; ++i) finishedFrameOf(0.01 * floor);
+  EXPECT_NEAR(seconds(loop.frameLimit()), floor, 1e-3 * floor) << "fast frames: the floor";
+  // A window frame may compile the display's or the denoiser's pipelines: the first-frame allowance stays.
+  EXPECT_NEAR(seconds(loop.compilingFrameLimit()), 10.0 * floor, 1e-6);
 }

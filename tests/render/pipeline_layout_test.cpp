@@ -46,6 +46,7 @@ TEST(PathTracerLayout, ReflectedBindingsMatchTheSharedHeader) {
       {WB_BIND_EMITTERS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},
       {WB_BIND_EMITTER_ALIAS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},
       {WB_BIND_SAMPLE_SLOTS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rgen, false}},
+      {WB_BIND_REFLECTORS, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, chit, false}},  // reflector guiding
   };
   std::map<uint32_t, const shader::DescriptorBinding*> got;
   for (const auto& b : build.layout.bindings) {

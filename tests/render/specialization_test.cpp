@@ -75,7 +75,8 @@ TEST(Specialization, DefaultSceneFeatures) {
   EXPECT_TRUE(f.emissive);  // the ceiling panel
   EXPECT_TRUE(f.textures);
   EXPECT_EQ(f.directionalLights, 1u);
-  EXPECT_TRUE(f.specular);  // Lambert walls: specularFactor 0
+  EXPECT_TRUE(f.specular);    // Lambert walls: specularFactor 0
+  EXPECT_TRUE(f.reflectors);  // the glossy spheres: reflector guiding
   EXPECT_NE(std::find(f.extensions.begin(), f.extensions.end(), "KHR_lights_punctual"), f.extensions.end());
   EXPECT_NE(scene::describeFeatures(f).find("KHR_materials_specular"), std::string::npos);
   EXPECT_EQ(render::PathTracer::stageKeys(f, false).size(), 5u)
@@ -88,12 +89,21 @@ TEST(Specialization, OpaqueSceneHasNoAnyHitStageAndNoTextures) {
   EXPECT_FALSE(f.textures);
   EXPECT_FALSE(f.emissive);
   EXPECT_FALSE(f.normalMaps);
+  EXPECT_FALSE(f.reflectors) << "no glossy reflector: the build leaves reflector guiding out";
   const auto keys = render::PathTracer::stageKeys(f, false);
   ASSERT_EQ(keys.size(), 4u);
   for (const auto& k : keys) EXPECT_NE(k.path.extension(), ".rahit");
   const auto defines = scene::featureDefines(f);
   EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_LIGHT_COUNT", "1u"}), defines.end());
   EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_ENV_MODE", "0"}), defines.end());
+  EXPECT_NE(std::find(defines.begin(), defines.end(), shader::Define{"WB_HAS_REFLECTORS", "0"}),
+            defines.end());
+  // A live edit that makes a material a smooth metal needs a build with the guiding code.
+  auto materials = makeShadowScene().scene.materials;
+  EXPECT_TRUE(scene::featuresCover(f, materials));
+  materials.at(0).metallic = 1.0f;
+  materials.at(0).roughness = 0.2f;
+  EXPECT_FALSE(scene::featuresCover(f, materials));
 }
 
 TEST(Specialization, SpecialisedAndGenericRenderTheSameImage) {

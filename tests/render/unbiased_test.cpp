@@ -117,8 +117,8 @@ TEST(Unbiased, MisAndLightOnlyAgreeWithTheSun) {
 // Continuation rays towards glossy reflectors (pathtracer/guiding.glsl): the sun focused by a smooth metal
 // sphere onto the floor. The mixture's pdf weighs every estimate that weighs against BRDF sampling, so guided
 // MIS, guided BRDF sampling alone (no next-event estimation: the sun, here of angular size, is reached
-// through the miss shader), guided MIS with each pixel's own choice (not its tile's) and unguided MIS (the
-// default) must agree.
+// through the miss shader), guided MIS with each pixel's own choice (not its tile's) and unguided MIS must
+// agree.
 TEST(Unbiased, ReflectorGuidingAgreesWithBrdfSampling) {
   render::SessionOptions o;
   o.sceneData = makeEnvSpheresScene();
@@ -132,6 +132,7 @@ TEST(Unbiased, ReflectorGuidingAgreesWithBrdfSampling) {
   o.settings.envColor = glm::vec3(0.2f, 0.3f, 0.5f);
   render::SessionOptions offOptions = o, ownOptions = o;
   o.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}};
+  offOptions.settings.defines = {{"WB_REFLECTOR_GUIDING", "0"}};
   ownOptions.settings.defines = {{"WB_REFLECTOR_GUIDING", "1"}, {"WB_REFLECTOR_COHERENT", "0"}};
   auto session = makeSession(o);
   auto offSession = makeSession(offOptions);

@@ -136,7 +136,7 @@ void Presenter::waitForFence() {
 }
 
 void Presenter::submit(const VkSubmitInfo& si) {
-  const auto limit = frameLimit_ ? frameLimit_() : std::chrono::nanoseconds::max();
+  const auto limit = watchdogLimit_ ? watchdogLimit_() : std::chrono::nanoseconds::max();
   const double seconds = std::chrono::duration<double>(limit).count();
   std::string message = hangMessage_ ? hangMessage_(seconds) : "a frame did not finish within its limit";
   auto watching = watchdog_->lock();

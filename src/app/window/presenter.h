@@ -43,8 +43,13 @@ class Presenter {
   Presenter(const Presenter&) = delete;
   Presenter& operator=(const Presenter&) = delete;
 
-  // How long a submission may take before it counts as hung (FrameHang thrown by the waits).
-  void setFrameLimit(std::function<std::chrono::nanoseconds()> limit) { frameLimit_ = std::move(limit); }
+  // How long a submission may take before it counts as hung: `limit` for the waits, counted from when they
+  // begin (FrameHang thrown), `watchdogLimit` for the watchdog, counted from the submission.
+  void setFrameLimit(std::function<std::chrono::nanoseconds()> limit,
+                     std::function<std::chrono::nanoseconds()> watchdogLimit) {
+    frameLimit_ = std::move(limit);
+    watchdogLimit_ = std::move(watchdogLimit);
+  }
   // What the user reads when a submission counts as hung (given the limit in seconds). Asked at each
   // submission, on the frame loop's thread: the watchdog (FrameWatchdog), which says it when the frame loop
   // is blocked in a call that waits for the hung frame, runs on its own.
@@ -114,7 +119,7 @@ class Presenter {
   std::string captureTarget_;
   uint64_t tracedPixels_ = 0;
   double traceMs_ = 0, afterTraceMs_ = 0, displayMs_ = 0;
-  std::function<std::chrono::nanoseconds()> frameLimit_;
+  std::function<std::chrono::nanoseconds()> frameLimit_, watchdogLimit_;
   std::function<std::string(double)> hangMessage_;
   std::unique_ptr<FrameWatchdog> watchdog_;  // after fence_: it reads the fence until it is destroyed
 };

@@ -68,7 +68,8 @@ WorkbenchWindow::WorkbenchWindow(GLFWwindow* window, const WindowOptions& o)
   presenter_ = std::make_unique<Presenter>(session_->render().context(), session_->render().library(),
                                            window_, vsync_, o.imguiIni);
   input_ = std::make_unique<WindowInput>(window_, *events_, *session_);
-  presenter_->setFrameLimit([this] { return session_->loop().frameLimit(); });
+  presenter_->setFrameLimit([this] { return session_->loop().frameLimit(); },
+                            [this] { return session_->loop().compilingFrameLimit(); });
   presenter_->setHangMessage([this](double seconds) { return session_->loop().hangMessage(seconds); });
   session_->loop().addPass(presenter_->display().pass());
   session_->start(
