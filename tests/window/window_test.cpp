@@ -60,6 +60,22 @@ CommandResult runWindow(const std::string& args, const std::string& env = "", in
                   xvfbRun() + WB_WORKBENCH_BIN + " --window 320x240 " + args);
 }
 
+// A private copy of shaders/ and assets/ in dir/root, the window's WB_ROOT, for a test that edits shaders.
+fs::path privateRoot(const fs::path& dir) {
+  const fs::path root = dir / "root";
+  fs::create_directories(root);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
+  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  return root;
+}
+
+// A closest-hit shader's text with a loop that never ends at the start of main (radiance only grows).
+std::string withEndlessLoop(std::string text) {
+  const auto body = text.find('{', text.find("void main()")) + 1;
+  text.insert(body, "\n  while (payload.radiance.x >= 0.0) { payload.radiance.x += 1.0; }\n");
+  return text;
+}
+
 // Mean brightness of the image area (right of the panel, above the status line) of a window screenshot.
 double imageAreaMean(const fs::path& png, int panelWidth) {
   int w = 0, h = 0, n = 0;
@@ -184,10 +200,7 @@ TEST(Window, ParameterChangeResetsAccumulationDisplayChangeDoesNot) {
 TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
   REQUIRE_XVFB();
   const auto dir = tempDir("reload");
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path root = privateRoot(dir);
   const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
   const std::string good = readFile(watched);
   // A syntax error on line 2 (after #version).
@@ -257,15 +270,10 @@ TEST(Window, BrokenShaderShowsErrorKeepsRenderingAndRecovers) {
 TEST(Window, AnEndlessLoopIsRefusedAndTheWindowDrawsOn) {
   REQUIRE_XVFB();
   const auto dir = tempDir("endless");
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path root = privateRoot(dir);
   const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
   const std::string good = readFile(watched);
-  std::string endless = good;
-  const auto body = endless.find('{', endless.find("void main()")) + 1;
-  endless.insert(body, "\n  while (payload.radiance.x >= 0.0) { payload.radiance.x += 1.0; }\n");
+  const std::string endless = withEndlessLoop(good);
   writeFile(dir / "endless.rchit", endless);
   std::string fixedText = good;
   const std::string needle = "const float minCos = 1e-3;";
@@ -292,21 +300,16 @@ TEST(Window, AnEndlessLoopIsRefusedAndTheWindowDrawsOn) {
   EXPECT_EQ(fixed["banner"], "");
 }
 
-// Without the trial frame (WB_TRIAL_RUN=0) a closest-hit that never returns is installed, and the window's next
-// frame never finishes. The frame loop may then be blocked in a call that waits for that frame (lavapipe's
-// present does) rather than in its own wait with a limit: the watchdog still says which edit hung and ends the
-// window with status 4, as `watch` does, instead of hanging for good.
+// Without the trial frame (WB_TRIAL_RUN=0) a closest-hit that never returns is installed, and the window's
+// next frame never finishes. The frame loop may then be blocked in a call that waits for that frame
+// (lavapipe's present does) rather than in its own wait with a limit: the watchdog still says which edit hung
+// and ends the window with status 4, as `watch` does, instead of hanging for good.
 TEST(Window, WithoutTheTrialFrameAnEndlessLoopEndsTheWindowSayingWhichEdit) {
   REQUIRE_XVFB();
   const auto dir = tempDir("endless_untried");
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path root = privateRoot(dir);
   const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
-  std::string endless = readFile(watched);
-  const auto body = endless.find('{', endless.find("void main()")) + 1;
-  endless.insert(body, "\n  while (payload.radiance.x >= 0.0) { payload.radiance.x += 1.0; }\n");
+  const std::string endless = withEndlessLoop(readFile(watched));
   writeFile(dir / "endless.rchit", endless);
   const auto script = dir / "script.txt";
   // After the reload the script waits for samples that never come: only the hang ends the window.
@@ -323,10 +326,7 @@ TEST(Window, WithoutTheTrialFrameAnEndlessLoopEndsTheWindowSayingWhichEdit) {
 TEST(Window, AnUnchangedSaveKeepsTheAccumulation) {
   REQUIRE_XVFB();
   const auto dir = tempDir("unchanged");
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path root = privateRoot(dir);
   const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
   writeFile(dir / "commented.rchit", readFile(watched) + "// a comment\n");
   const auto script = dir / "script.txt";
@@ -349,10 +349,7 @@ TEST(Window, AnUnchangedSaveKeepsTheAccumulation) {
 TEST(Window, AnEditShowsItsABVerdictAndReverts) {
   REQUIRE_XVFB();
   const auto dir = tempDir("ab");
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
+  const fs::path root = privateRoot(dir);
   const fs::path watched = root / "shaders/pathtracer/closesthit.rchit";
   std::string brighter = readFile(watched);
   const std::string needle = "  sm.baseColor = baseColor.rgb;";
