@@ -17,12 +17,14 @@
 #include <stb_image.h>
 
 #include "../common/run_command.h"
+#include "private_root.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 using wb::testing::CommandResult;
+using wb::testing::privateRoot;
 
 CommandResult runShell(const std::string& cmd) {
   return wb::testing::runCommand(cmd);
@@ -58,15 +60,6 @@ CommandResult runWindow(const std::string& args, const std::string& env = "", in
       limitSeconds > 0 ? "timeout -k 10 " + std::to_string(limitSeconds) + " " : std::string();
   return runShell(std::string(wb::testing::kOwnSession) + "env WB_VALIDATION=1 " + env + " " + limit +
                   xvfbRun() + WB_WORKBENCH_BIN + " --window 320x240 " + args);
-}
-
-// A private copy of shaders/ and assets/ in dir/root, the window's WB_ROOT, for a test that edits shaders.
-fs::path privateRoot(const fs::path& dir) {
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
-  return root;
 }
 
 // A closest-hit shader's text with a loop that never ends at the start of main (radiance only grows).

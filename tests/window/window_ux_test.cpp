@@ -15,10 +15,12 @@
 #include <stb_image.h>
 
 #include "live_window.h"
+#include "private_root.h"
 
 namespace fs = std::filesystem;
 using wb::testing::awaitJson;
 using wb::testing::LiveWindow;
+using wb::testing::privateRoot;
 
 namespace {
 
@@ -52,15 +54,6 @@ std::string imagePoint(const nlohmann::json& stats, double fx, double fy) {
   const auto& r = stats["widgets"]["image"];
   return std::to_string(int(r[0].get<double>() + fx * r[2].get<double>())) + " " +
          std::to_string(int(r[1].get<double>() + fy * r[3].get<double>()));
-}
-
-// A private copy of shaders/ and assets/ whose closest-hit shader the test edits.
-fs::path privateRoot(const fs::path& dir) {
-  const fs::path root = dir / "root";
-  fs::create_directories(root);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "shaders", root / "shaders", fs::copy_options::recursive);
-  fs::copy(fs::path(WB_SOURCE_DIR) / "assets", root / "assets", fs::copy_options::recursive);
-  return root;
 }
 
 }  // namespace
