@@ -9,8 +9,8 @@
 #  2. ROUNDS rounds (default 3); in each, every configuration below renders the default scene and the sunlit
 #     glossy scene at 256x256 and 2048x2048 one after another (`render --stats`, enough samples for ~0.5 s of
 #     tracing on an H200): wall seconds per sample (the first batch left out) and rays per second.
-#  3. `converge` on the sunlit glossy scene, 256x256, against a 4096-spp reference, 3 runs each: the default,
-#     reflector guiding (fractions 0.3 and 0.5) and the device's samples per launch; and on the Cornell box
+#  3. `converge` on the sunlit glossy scene, 256x256, against a 4096-spp reference, 3 runs each: the default
+#     (reflector guiding at fraction 0.3), no guiding, fraction 0.5 and the device's samples per launch; and on the Cornell box
 #     against ../shared's Cycles reference (WB_SHARED_DIR), default and samples per launch: relMSE per spp and
 #     seconds to relMSE 0.01 (timed on the runs after the first, which traces one sample per submission).
 # -q: a smoke run (one round, 64x64 and 128x128, few samples: a few minutes on lavapipe). Prints OUT/summary.md (Markdown) and

@@ -15,8 +15,8 @@
 #  3. Issue 29: `bench --only pathtracer`: the path tracer against the bare-ray roofline (lockstep shadows on);
 #     `converge` at 256x256 on the sunlit glossy scene (4096-spp reference) and the Cornell box (Cycles reference
 #     from WB_SHARED_DIR): time to relMSE 0.01 (goal 16.7 ms), the default against the device's samples per launch,
-#     and on the sunlit scene reflector guiding with coherent and with per-pixel choices; the default scene
-#     with and without guiding.
+#     and on the sunlit scene and the default scene reflector guiding (on by default, coherent choices) against
+#     none and against per-pixel choices.
 #  4. Issue 30: `converge` of the denoiser to 4096 spp at 256x256 on the default scene (16384-spp reference) and
 #     the Cornell box, with and without its windowed gain (WB_DENOISE_WINDOW): its mean against the raw one.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
