@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "common/paths.h"
+#include "common/statistics.h"
 
 namespace wb::live {
 
@@ -113,12 +114,7 @@ constexpr double kFirstFrameFloors = 10.0;
 
 std::chrono::nanoseconds EditLoop::frameLimit() const {
   const double floor = session_.context().policy().hangSeconds;
-  double typical = 0;
-  if (!frameSeconds_.empty()) {
-    std::vector<double> sorted(frameSeconds_.begin(), frameSeconds_.end());
-    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
-    typical = sorted[sorted.size() / 2];
-  }
+  const double typical = median(std::vector<double>(frameSeconds_.begin(), frameSeconds_.end()));
   double limit = std::max(floor, 50.0 * typical);
   // A first frame may compile its pipeline (the driver's JIT, where the warm-up did not): ten floors.
   if (awaitingFirstFrame_ || frameSeconds_.empty()) limit = std::max(limit, kFirstFrameFloors * floor);

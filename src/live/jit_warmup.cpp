@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "common/env.h"
+#include "common/statistics.h"
 #include "scene/procedural.h"
 #include "vk/check.h"
 #include "vk/pipeline_layout.h"
@@ -70,12 +71,7 @@ void awaitCacheWrite(std::chrono::steady_clock::duration dispatch, uint64_t byte
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
 }
 
-// The median of `seconds` (0 when empty), and `seconds` with `latest` added, keeping the last 16.
-double median(std::vector<double> seconds) {
-  if (seconds.empty()) return 0;
-  std::nth_element(seconds.begin(), seconds.begin() + long(seconds.size() / 2), seconds.end());
-  return seconds[seconds.size() / 2];
-}
+// `seconds` with `latest` added, keeping the last 16 (the limits take their median).
 void remember(std::vector<double>& seconds, double latest) {
   seconds.push_back(latest);
   if (seconds.size() > 16) seconds.erase(seconds.begin());

@@ -83,7 +83,7 @@ class PathTracer final : public Renderer {
   static bool isolatesLanes(bool inspect, const Instrumentation& instrumentation, uint32_t clock,
                             bool isolateLanes);
   uint32_t clock() const { return clock_; }
-  // Whether the measuring variants trace each subgroup's lanes alone (WB_COST_ISOLATE, stageKeys).
+  // Whether this tracer's variant traces each sample alone in its subgroup (WB_COST_ISOLATE, stageKeys).
   bool isolatesLanes() const {
     return isolatesLanes(inspectVariant_, instrumentation_, clock_, ctx_.policy().costIsolatesLanes);
   }

@@ -81,8 +81,8 @@ struct DevicePolicy {
   // The cost variant traces each sample alone in its subgroup (shaders/pathtracer/raygen.rgen), so that a
   // pixel's clocks are its own path's work and not its subgroup's slowest lane's, on devices whose ray
   // generation has subgroup operations (GPUs; not lavapipe, whose lanes stay shared). It then runs at a
-  // fraction of the device's width (the H100: 8.6x the default variant's time at 1920x1080, docs/cost.md).
-  // WB_COST_ISOLATE=0: the subgroup's time per pixel, what the device pays for divergence.
+  // fraction of the device's width (the H100: 8.6-9.9x the default variant's time at 1920x1080,
+  // docs/cost.md). WB_COST_ISOLATE=0: the subgroup's time per pixel, what the device pays for divergence.
   bool costIsolatesLanes = false;
   // The cost views and maps read each pixel's running median of a sample's clocks rather than its mean: on a
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would
