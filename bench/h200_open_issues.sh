@@ -19,6 +19,10 @@
 #     none and against per-pixel choices.
 #  4. Issue 30: `converge` of the denoiser to 4096 spp at 256x256 on the default scene (16384-spp reference) and
 #     the Cornell box, with and without its windowed gain (WB_DENOISE_WINDOW): its mean against the raw one.
+#  5. Issue 29: where next-event estimation's time goes (`nee_split`): `render --stats` of the default scene at
+#     2048x2048 (16 spp) and 512x512 (64 spp), two alternating rounds: the default, `--no-nee`, its shadow rays
+#     untraced (`--define WB_EXPERIMENT_SHADOWS_UNTRACED`: every one misses at once, biased) and the emitters
+#     sampled by area (`--define WB_EMITTER_SOLID_ANGLE=0`); GPU ms per sample and rays per sample.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
 # (e.g. ONLY='cost|guiding').
 set -uo pipefail
@@ -83,6 +87,30 @@ for window in 1 0; do
     --out "$OUT/denoise_cornell_w$window"
 done
 
+# Item 5: one render per configuration and size, alternating, two rounds; the summary prints pass_ms per sample.
+nee_split() {
+  local size spp round name
+  for round in 1 2; do
+    for size in 2048x2048:16 512x512:64; do
+      spp=${size#*:} size=${size%:*}
+      [ "${QUICK:-0}" = 1 ] && size=64x64 spp=4
+      for name in default no-nee untraced area; do
+        local args=()
+        case $name in
+          no-nee) args=(--no-nee) ;;
+          untraced) args=(--define WB_EXPERIMENT_SHADOWS_UNTRACED) ;;
+          area) args=(--define WB_EMITTER_SOLID_ANGLE=0) ;;
+        esac
+        "$W" render --size "$size" --spp "$spp" "${args[@]}" --stats "$OUT/nee_split/${name}_${size}_r$round.json" \
+          --out "$OUT/nee_split/image.png" || return 1
+      done
+    done
+  done
+  rm -f "$OUT/nee_split/image.png"
+}
+mkdir -p "$OUT/nee_split"
+step nee_split nee_split
+
 echo "== summary ($OUT)"
 python3 - "$OUT" <<'PY'
 import json, os, re, sys
@@ -96,8 +124,9 @@ d = load("denoise.json")
 if d:
     d = d.get("denoise", d)
     for c in d.get("cost", []):
-        print("denoise %-10s %8.3f ms, sample %8.3f ms, share %.3f" %
-              (c["size"], c["denoise_ms"], c["sample_ms"], c["denoise_share_of_sample"]))
+        print("denoise %-10s %8.3f ms, sample %8.3f ms, share %.3f; passes (ms): %s" %
+              (c["size"], c["denoise_ms"], c["sample_ms"], c["denoise_share_of_sample"],
+               " ".join("%s %.3f" % kv for kv in c.get("denoise_pass_ms", {}).items())))
     print("denoised_vs_raw_time_to_relmse_0.01:", d.get("denoised_vs_raw_time_to_relmse_0.01"))
 def passed(text):
     return re.search(r"\[  PASSED  \] [1-9]", text) and "[  FAILED  ]" not in text
@@ -114,6 +143,11 @@ for name, what in (("hybrid_inspector", "hybrid inspector (180 s bound)"),):
         print("%s: %s" % (what, "passed" if passed(text) else "FAILED or timed out"))
     except OSError:
         pass
+import glob
+for f in sorted(glob.glob(os.path.join(out, "nee_split", "*.json"))):
+    j = json.load(open(f))
+    ms = j["pass_ms"]["pathtracer"]
+    print("nee_split %-28s %8.3f ms/sample %10.4g rays/sample" % (os.path.basename(f)[:-5], ms, j["rays"] / j["spp"]))
 for scene in ("sunlit", "cornell", "default_guiding"):
     try:
         md = open(os.path.join(out, scene, "converge.md")).read()

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
 #include "app/converge_run.h"
 #include "app/progress.h"
 #include "common/paths.h"
+#include "common/statistics.h"
 #include "render/path_tracer.h"
 #include "render/render_session.h"
 #include "vk/context.h"
@@ -18,12 +21,6 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 // One sample traced then denoised in one submission; the GPU milliseconds of each (vk::GpuTimer scopes).
 std::pair<double, double> timeSampleAndDenoise(vk::Context& ctx, vk::GpuTimer& timer,
@@ -60,11 +57,23 @@ json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device)
     sampleMs.push_back(sample);
     denoiseMs.push_back(denoise);
   }
+  // Each pass's part: the same accumulation denoised again with a scope per pass (their sum is a little
+  // above the whole's: each scope adds its timestamps). Keys: prepare, variance, atrous (its iterations
+  // summed), final, gain, scale.
+  vk::GpuTimer perPass(s.context(), 16);
+  std::map<std::string, std::vector<double>> passMs;
+  for (int r = 0; r < std::max(repeats, 1); ++r) {
+    s.context().submitAndWait([&](VkCommandBuffer cmd) { tracer.recordDenoise(cmd, ~0u, &perPass); });
+    for (const auto& t : perPass.collect()) passMs[t.pass].push_back(t.ms);
+  }
+  json passes = json::object();
+  for (const auto& [pass, ms] : passMs) passes[pass.substr(pass.find('_') + 1)] = median(ms);
   const double d = median(denoiseMs), t = median(sampleMs);
   return {{"size", std::to_string(w) + "x" + std::to_string(h)},
           {"denoise_ms", d},
           {"sample_ms", t},
           {"denoise_share_of_sample", t > 0 ? d / t : 0.0},
+          {"denoise_pass_ms", passes},
           {"iterations", tracer.denoiser()->options().iterations},
           {"device", s.context().deviceName()},
           {"driver", s.context().driverInfo()}};

@@ -15,6 +15,8 @@ const char* const kPassNames[] = {"denoise prepare (compute)", "denoise variance
                                   "denoise gain (compute)",    "denoise scale (compute)"};
 const char* const kProgramNames[] = {"denoise-prepare", "denoise-variance", "denoise-atrous",
                                      "denoise-final",   "denoise-gain",     "denoise-scale"};
+const char* const kTimerKeys[] = {"denoise_prepare", "denoise_variance", "denoise_atrous",
+                                  "denoise_final",   "denoise_gain",     "denoise_scale"};
 const char* const kFiles[] = {"prepare.comp", "variance.comp", "atrous.comp",
                               "final.comp",   "gain.comp",     "scale.comp"};
 
@@ -118,15 +120,16 @@ std::vector<Pass*> Denoiser::passes() const {
   return out;
 }
 
-void Denoiser::dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push,
-                        uint32_t rows) const {
-  pass.bind(cmd);
-  pass.push(cmd, push);
-  pass.dispatch(cmd, groups(width_), groups(rows));
+void Denoiser::dispatch(VkCommandBuffer cmd, size_t pass, const gpu::DenoisePush& push, uint32_t rows,
+                        vk::GpuTimer* perPass) const {
+  vk::GpuTimer::Scope scope(perPass, cmd, kTimerKeys[pass]);
+  passes_[pass]->bind(cmd);
+  passes_[pass]->push(cmd, push);
+  passes_[pass]->dispatch(cmd, groups(width_), groups(rows));
   vk::memoryBarrier(cmd);
 }
 
-void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
+void Denoiser::record(VkCommandBuffer cmd, uint32_t rows, vk::GpuTimer* perPass) const {
   gpu::DenoisePush push{};
   push.imageSize = glm::uvec2(width_, height_);
   push.rows = std::min(rows, height_);
@@ -136,28 +139,31 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows) const {
   push.handoverTau = options_.handoverTau;
   push.window = options_.window ? 1u : 0u;
   vk::memoryBarrier(cmd);  // the path tracer's writes before the first read
-  dispatch(cmd, *passes_[kPrepare], push, push.rows);
-  dispatch(cmd, *passes_[kVariance], push, push.rows);  // filter plane 0 -> 1
+  dispatch(cmd, kPrepare, push, push.rows, perPass);
+  dispatch(cmd, kVariance, push, push.rows, perPass);  // filter plane 0 -> 1
   push.source = 1;
   // At least one iteration: the last one leaves the bias the final pass reads.
   const uint32_t iterations = std::max(options_.iterations, 1u);
   for (uint32_t i = 0; i < iterations; ++i) {
     push.step = 1u << i;
     push.last = i + 1 == iterations ? 1u : 0u;
-    dispatch(cmd, *passes_[kAtrous], push, push.rows);
+    dispatch(cmd, kAtrous, push, push.rows, perPass);
     push.source ^= 1u;
   }
-  dispatch(cmd, *passes_[kFinal], push, height_);  // every row: those not filtered are copied
+  dispatch(cmd, kFinal, push, height_, perPass);  // every row: those not filtered are copied
   if (!options_.window) return;
   // One invocation per 8x8 group of the final pass.
-  passes_[kGain]->bind(cmd);
-  for (uint32_t phase = 0; phase < 2; ++phase) {
-    push.step = phase;
-    passes_[kGain]->push(cmd, push);
-    passes_[kGain]->dispatch(cmd, groups(groups(width_)), groups(groups(height_)));
-    vk::memoryBarrier(cmd);
+  {
+    vk::GpuTimer::Scope scope(perPass, cmd, kTimerKeys[kGain]);
+    passes_[kGain]->bind(cmd);
+    for (uint32_t phase = 0; phase < 2; ++phase) {
+      push.step = phase;
+      passes_[kGain]->push(cmd, push);
+      passes_[kGain]->dispatch(cmd, groups(groups(width_)), groups(groups(height_)));
+      vk::memoryBarrier(cmd);
+    }
   }
-  dispatch(cmd, *passes_[kScale], push, height_);
+  dispatch(cmd, kScale, push, height_, perPass);
 }
 
 void Denoiser::recordCompileOnly(VkCommandBuffer cmd) const {

@@ -12,6 +12,7 @@
 #include <vulkan/vulkan.h>
 
 #include "render/pass.h"
+#include "vk/gpu_timer.h"
 #include "shared/denoise_types.h"
 
 namespace wb::render {
@@ -53,7 +54,9 @@ class Denoiser {
 
   // Records every pass into cmd, barriers included: output() then holds the denoised radiance (alpha: the
   // samples per pixel, as the input). Only rows [0, rows) are read and filtered; the others are copied.
-  void record(VkCommandBuffer cmd, uint32_t rows = ~0u) const;
+  // With a timer, each pass is a scope of its own (its key: "denoise_" and the pass: prepare, variance,
+  // atrous (the iterations summed), final, gain, scale); the caller then records no scope around it.
+  void record(VkCommandBuffer cmd, uint32_t rows = ~0u, vk::GpuTimer* perPass = nullptr) const;
   // Each pass over one workgroup (a driver that compiles at the first dispatch compiles them).
   void recordCompileOnly(VkCommandBuffer cmd) const;
   // The output image (at least width() x height(): read pixels [0, width()) x [0, height()) of it) and those
@@ -69,7 +72,8 @@ class Denoiser {
  private:
   enum { kPrepare, kVariance, kAtrous, kFinal, kGain, kScale, kPassCount };
   void bind();
-  void dispatch(VkCommandBuffer cmd, const Pass& pass, const gpu::DenoisePush& push, uint32_t rows) const;
+  void dispatch(VkCommandBuffer cmd, size_t pass, const gpu::DenoisePush& push, uint32_t rows,
+                vk::GpuTimer* perPass) const;
 
   vk::Context& ctx_;
   std::array<std::unique_ptr<Pass>, kPassCount> passes_;

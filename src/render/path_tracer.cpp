@@ -121,8 +121,8 @@ std::vector<Pass*> PathTracer::passes() const {
   return out;
 }
 
-void PathTracer::recordDenoise(VkCommandBuffer cmd, uint32_t rows) const {
-  if (denoiser_) denoiser_->record(cmd, rows);
+void PathTracer::recordDenoise(VkCommandBuffer cmd, uint32_t rows, vk::GpuTimer* perPass) const {
+  if (denoiser_) denoiser_->record(cmd, rows, perPass);
 }
 
 void PathTracer::recordCompileOnly(VkCommandBuffer cmd) {

@@ -168,7 +168,7 @@ class PathTracer final : public Renderer {
   const Denoiser* denoiser() const { return denoiser_.get(); }
   Denoiser* denoiser() { return denoiser_.get(); }
   // Records the denoiser over the accumulation (rows [0, rows) hold the current samples; see Denoiser).
-  void recordDenoise(VkCommandBuffer cmd, uint32_t rows = ~0u) const;
+  void recordDenoise(VkCommandBuffer cmd, uint32_t rows = ~0u, vk::GpuTimer* perPass = nullptr) const;
   // Runs the denoiser over the accumulation, submitted and waited for (makes it if none is made); returns
   // its wall time in seconds. readDenoised() then reads its output (alpha = 1).
   double denoise();

@@ -88,7 +88,7 @@ TEST(Cli, BenchShowsItsStepsWithAnEta) {
 }
 
 // `bench --only denoise`'s keys, a contract with outside scripts: the denoiser's GPU time against one
-// sample's, per size, and its share of the sample.
+// sample's, per size, its share of the sample and each pass's time.
 TEST(Cli, BenchDenoiseReportsItsCostAgainstASample) {
   const fs::path out = tempDir() / "bench_denoise.json";
   const auto r = run("bench --quick --only denoise --size 48x48 --repeats 1 --out " + out.string());
@@ -100,6 +100,12 @@ TEST(Cli, BenchDenoiseReportsItsCostAgainstASample) {
     EXPECT_GT(d, 0.0) << c.dump();
     EXPECT_GT(t, 0.0) << c.dump();
     EXPECT_NEAR(c["denoise_share_of_sample"].get<double>(), d / t, 1e-9) << c.dump();
+    // Every pass's own GPU time, each a part of the whole.
+    for (const char* pass : {"prepare", "variance", "atrous", "final", "gain", "scale"}) {
+      ASSERT_TRUE(c["denoise_pass_ms"].contains(pass)) << pass << " " << c.dump();
+      EXPECT_GT(c["denoise_pass_ms"][pass].get<double>(), 0.0) << pass << " " << c.dump();
+    }
+    EXPECT_EQ(c["denoise_pass_ms"].size(), 6u) << c.dump();
   }
   EXPECT_EQ(j["denoise_ms"], j["cost"][0]["denoise_ms"]);
   EXPECT_EQ(j["denoise_share_of_sample"], j["cost"][0]["denoise_share_of_sample"]);
