@@ -22,7 +22,10 @@
 #  5. Issue 29: where next-event estimation's time goes (`nee_split`): `render --stats` of the default scene at
 #     2048x2048 (16 spp) and 512x512 (64 spp), two alternating rounds: the default, `--no-nee`, its shadow rays
 #     untraced (`--define WB_EXPERIMENT_SHADOWS_UNTRACED`: every one misses at once, biased) and the emitters
-#     sampled by area (`--define WB_EMITTER_SOLID_ANGLE=0`); GPU ms per sample and rays per sample.
+#     sampled by area (`--define WB_EMITTER_SOLID_ANGLE=0`), no shadow trace calls at all
+#     (`WB_EXPERIMENT_SHADOW_CALLS_SKIPPED`, biased), the PCG sampler with and without next-event estimation
+#     (what drawing the Owen-scrambled Sobol dimensions costs), reflector guiding off; GPU ms per sample and rays
+#     per sample; the sunlit glossy scene at 2048x2048 too.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
 # (e.g. ONLY='cost|guiding').
 set -uo pipefail
@@ -89,20 +92,26 @@ done
 
 # Item 5: one render per configuration and size, alternating, two rounds; the summary prints pass_ms per sample.
 nee_split() {
-  local size spp round name
+  local size spp round name scene
   for round in 1 2; do
-    for size in 2048x2048:16 512x512:64; do
+    for size in default:2048x2048:16 default:512x512:64 sunlit:2048x2048:16; do
+      scene=${size%%:*} size=${size#*:}
       spp=${size#*:} size=${size%:*}
       [ "${QUICK:-0}" = 1 ] && size=64x64 spp=4
-      for name in default no-nee untraced area; do
+      for name in default no-nee untraced calls-skipped area pcg pcg-no-nee no-guiding; do
         local args=()
+        [ "$scene" = sunlit ] && args=(assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5)
         case $name in
-          no-nee) args=(--no-nee) ;;
-          untraced) args=(--define WB_EXPERIMENT_SHADOWS_UNTRACED) ;;
-          area) args=(--define WB_EMITTER_SOLID_ANGLE=0) ;;
+          no-nee) args+=(--no-nee) ;;
+          untraced) args+=(--define WB_EXPERIMENT_SHADOWS_UNTRACED) ;;
+          calls-skipped) args+=(--define WB_EXPERIMENT_SHADOW_CALLS_SKIPPED) ;;
+          area) args+=(--define WB_EMITTER_SOLID_ANGLE=0) ;;
+          pcg) args+=(--sampler pcg) ;;
+          pcg-no-nee) args+=(--sampler pcg --no-nee) ;;
+          no-guiding) args+=(--define WB_REFLECTOR_GUIDING=0) ;;
         esac
-        "$W" render --size "$size" --spp "$spp" "${args[@]}" --stats "$OUT/nee_split/${name}_${size}_r$round.json" \
-          --out "$OUT/nee_split/image.png" || return 1
+        "$W" render --size "$size" --spp "$spp" "${args[@]}" \
+          --stats "$OUT/nee_split/${scene}_${name}_${size}_r$round.json" --out "$OUT/nee_split/image.png" || return 1
       done
     done
   done
@@ -147,7 +156,9 @@ import glob
 for f in sorted(glob.glob(os.path.join(out, "nee_split", "*.json"))):
     j = json.load(open(f))
     ms = j["pass_ms"]["pathtracer"]
-    print("nee_split %-28s %8.3f ms/sample %10.4g rays/sample" % (os.path.basename(f)[:-5], ms, j["rays"] / j["spp"]))
+    ref = j.get("error_vs_reference", {})
+    print("nee_split %-36s %8.3f ms/sample %10.4g rays/sample%s" % (os.path.basename(f)[:-5], ms, j["rays"] / j["spp"],
+          "  vs default: %s" % json.dumps(ref) if ref else ""))
 for scene in ("sunlit", "cornell", "default_guiding"):
     try:
         md = open(os.path.join(out, scene, "converge.md")).read()
