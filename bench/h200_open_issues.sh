@@ -24,8 +24,9 @@
 #     untraced (`--define WB_EXPERIMENT_SHADOWS_UNTRACED`: every one misses at once, biased) and the emitters
 #     sampled by area (`--define WB_EMITTER_SOLID_ANGLE=0`), no shadow trace calls at all
 #     (`WB_EXPERIMENT_SHADOW_CALLS_SKIPPED`, biased), the PCG sampler with and without next-event estimation
-#     (what drawing the Owen-scrambled Sobol dimensions costs), reflector guiding off; GPU ms per sample and rays
-#     per sample; the sunlit glossy scene at 2048x2048 too.
+#     (what drawing the Owen-scrambled Sobol dimensions costs), reflector guiding off, one sample per launch, and
+#     the shadow rays in a launch of their own (WB_SPLIT_SHADOWS=1: one sample per launch; its image against the
+#     default's at 512x512); GPU ms per sample and rays per sample; the sunlit glossy scene at 2048x2048 too.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
 # (e.g. ONLY='cost|guiding').
 set -uo pipefail
@@ -98,8 +99,8 @@ nee_split() {
       scene=${size%%:*} size=${size#*:}
       spp=${size#*:} size=${size%:*}
       [ "${QUICK:-0}" = 1 ] && size=64x64 spp=4
-      for name in default no-nee untraced calls-skipped area pcg pcg-no-nee no-guiding; do
-        local args=()
+      for name in default no-nee untraced calls-skipped area pcg pcg-no-nee no-guiding launch1 split; do
+        local args=() envs=() out="$OUT/nee_split/image.png"
         [ "$scene" = sunlit ] && args=(assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5)
         case $name in
           no-nee) args+=(--no-nee) ;;
@@ -109,13 +110,20 @@ nee_split() {
           pcg) args+=(--sampler pcg) ;;
           pcg-no-nee) args+=(--sampler pcg --no-nee) ;;
           no-guiding) args+=(--define WB_REFLECTOR_GUIDING=0) ;;
+          launch1) args+=(--samples-per-launch 1) ;;
+          split) envs=(WB_SPLIT_SHADOWS=1) ;;
         esac
-        "$W" render --size "$size" --spp "$spp" "${args[@]}" \
-          --stats "$OUT/nee_split/${scene}_${name}_${size}_r$round.json" --out "$OUT/nee_split/image.png" || return 1
+        # The split's image against the default's (error_vs_reference in its stats).
+        if [ "$scene.$size.$round" = default.512x512.1 ]; then
+          [ "$name" = default ] && out="$OUT/nee_split/default.exr"
+          [ "$name" = split ] && args+=(--reference "$OUT/nee_split/default.exr")
+        fi
+        env "${envs[@]}" "$W" render --size "$size" --spp "$spp" "${args[@]}" \
+          --stats "$OUT/nee_split/${scene}_${name}_${size}_r$round.json" --out "$out" || return 1
       done
     done
   done
-  rm -f "$OUT/nee_split/image.png"
+  rm -f "$OUT/nee_split/image.png" "$OUT/nee_split/default.exr"
 }
 mkdir -p "$OUT/nee_split"
 step nee_split nee_split

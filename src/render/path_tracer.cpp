@@ -102,6 +102,7 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   createImages();
   createInspectBuffers();
   createAssertBuffers(kDefaultAssertRecords);
+  createSplitBuffers();
   bindResources();
   resolve_->rebuild();
   setFeatures(features);
@@ -116,6 +117,7 @@ void PathTracer::makeDenoiser() {
 
 std::vector<Pass*> PathTracer::passes() const {
   std::vector<Pass*> out{pass_.get()};
+  if (shadowPass_) out.push_back(shadowPass_.get());
   if (denoiser_)
     for (Pass* p : denoiser_->passes()) out.push_back(p);
   return out;
@@ -141,12 +143,55 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   if (inspect) name += " (inspect)";
   if (instrumentation_.cost) name += " (cost)";
   if (instrumentation_.asserts) name += " (asserts)";
-  pass_->useProgram(name, stageKeys(features, cpuDeviceCode_, inspect, instrumentation_, clock_,
-                                    ctx_.policy().costIsolatesLanes));
+  auto keys =
+      stageKeys(features, cpuDeviceCode_, inspect, instrumentation_, clock_, ctx_.policy().costIsolatesLanes);
+  split_ = splitWanted(inspect);
+  if (split_) {
+    name += " (split)";
+    for (auto& k : keys) k.defines.push_back({"WB_SPLIT_SHADOWS", "1"});
+  }
+  pass_->useProgram(name, keys);
   features_ = features;
   featuresSet_ = true;
   inspectVariant_ = inspect;
+  if (split_ && !shadowPass_) {
+    RayTracingRecipe recipe;
+    // Shadow rays only: miss index MISS_SHADOW, any-hit where some material is not opaque, no closest-hit.
+    recipe.table.raygen("shadow_split.rgen")
+        .miss("shadow.rmiss")
+        .miss("shadow.rmiss")
+        .hitGroup({.anyHit = "anyhit.rahit"});
+    recipe.maxRecursion = kMaxRecursion;
+    shadowPass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer shadows", std::move(recipe));
+    shadowPass_->setPushConstantBytes(sizeof(gpu::PushConstants));
+  } else if (!split_) {
+    shadowPass_.reset();
+  }
+  createSplitBuffers();
+  bindResources();
+  if (split_) {
+    std::vector<shader::ShaderKey> shadowKeys = {
+        {shaderDir() / "pathtracer" / "shadow_split.rgen", std::nullopt, keys[0].defines}, keys[2]};
+    if (keys.size() > 4) shadowKeys.push_back(keys[4]);  // any-hit
+    shadowPass_->useProgram(name + " shadows", shadowKeys);
+    shadowPass_->rebuild();
+  }
   pass_->rebuild();
+}
+
+bool PathTracer::splitWanted(bool inspect) const {
+  return ctx_.policy().splitShadows && !inspect && !instrumentation_.cost && !instrumentation_.asserts &&
+         !settings_.aov && !settings_.denoise && !settings_.tileWidth && !settings_.tileHeight;
+}
+
+void PathTracer::createSplitBuffers() {
+  const VkDeviceSize pixels = split_ ? VkDeviceSize(settings_.width) * settings_.height : 1;
+  const VkDeviceSize requests = pixels * (split_ ? WB_SPLIT_SLOTS * 3 : 1) * sizeof(glm::vec4);
+  if (splitRequests_.size() == requests && splitPaths_.size() == pixels * sizeof(glm::vec4)) return;
+  ctx_.waitIdle();
+  splitRequests_ = vk::Buffer(ctx_, requests, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  splitPaths_ = vk::Buffer(ctx_, pixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  bindResources();
 }
 
 bool PathTracer::setInspection(const std::optional<InspectRequest>& request) {
@@ -364,6 +409,20 @@ void PathTracer::bindResources() {
     denoiser_->setInputs({accum_.view(), albedo_.view(), normal_.view(), stats_.view()});
   }
   p.setBuffer("SampleSlotBlock", sampleSlots_);
+  p.setBuffer("SplitRequestBlock", splitRequests_);
+  p.setBuffer("SplitPathBlock", splitPaths_);
+  if (shadowPass_) {
+    Pass& s = *shadowPass_;
+    bindSceneResources(s, gpuScene_, *env_);
+    s.setBuffer("LightBlock", lightBuffer_);
+    s.setStorageImage("accumImage", accum_.view());
+    s.setBuffer("FrameBlock", frameUniforms_);
+    s.setBuffer("CounterBlock", counters_);
+    s.setBuffer("BlueNoiseBlock", blueNoise_);
+    s.setBuffer("SobolBlock", sobol_);
+    s.setBuffer("SplitRequestBlock", splitRequests_);
+    s.setBuffer("SplitPathBlock", splitPaths_);
+  }
   resolve_->setStorageImage("accumImage", accum_.view());
   resolve_->setBuffer("SampleSlotBlock", sampleSlots_);
 }
@@ -393,6 +452,10 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   const bool aovsWritten = settings_.aov || settings_.denoise;
   settings_ = settings;
   makeDenoiser();
+  if (featuresSet_ && splitWanted(inspectVariant_) != split_) {
+    useVariant(features_, inspectVariant_);  // its install restarts the accumulation
+    return;
+  }
   if (onlyDenoise) {
     if (!aovsWritten) sampleIndex_ = 0;
     return;
@@ -401,6 +464,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   if (resized || inspectResized) {
     ctx_.waitIdle();
     if (resized) createImages();
+    if (resized) createSplitBuffers();
     if (inspectResized) createInspectBuffers();
     bindResources();
   }
@@ -459,7 +523,7 @@ uint32_t PathTracer::samplesPerLaunch() const {
   // (samples of one launch would race on them); the asserts variant records its first failures in sample
   // order. Only the radiance has the resolve pass.
   if (settings_.aov || settings_.denoise || inspection_ || instrumentation_.cost ||
-      instrumentation_.asserts || settings_.tileWidth || settings_.tileHeight)
+      instrumentation_.asserts || settings_.tileWidth || settings_.tileHeight || split_)
     return 1;
   if (settings_.samplesPerLaunch != 0) return settings_.samplesPerLaunch;
   if (ctx_.policy().compilesAtFirstDispatch) return 1;
@@ -527,6 +591,12 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_
   pass_->push(cmd, pc);
   pass_->traceRays(cmd, r.width, r.height, samples);
   vk::memoryBarrier(cmd);
+  if (split_) {  // the shadow launch accumulates the sample
+    shadowPass_->bind(cmd);
+    shadowPass_->push(cmd, pc);
+    shadowPass_->traceRays(cmd, r.width, r.height);
+    vk::memoryBarrier(cmd);
+  }
   if (samples > 1) {
     gpu::ResolveConstants rc{};
     rc.imageSize = pc.imageSize;

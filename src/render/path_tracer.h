@@ -87,6 +87,11 @@ class PathTracer final : public Renderer {
   bool isolatesLanes() const {
     return isolatesLanes(inspectVariant_, instrumentation_, clock_, ctx_.policy().costIsolatesLanes);
   }
+  // The experiment of DevicePolicy::splitShadows: whether this tracer traces next-event estimation's shadow
+  // rays in a launch of their own after the path rays' (shaders/pathtracer/shadow_split.rgen). Only the plain
+  // variant without AOVs or tiles splits (the shadow launch accumulates the radiance alone), one sample per
+  // launch.
+  bool splitsShadows() const { return split_; }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
   shader::ShaderLibrary::ProgramId program() const { return pass_->program(); }
@@ -240,6 +245,12 @@ class PathTracer final : public Renderer {
   // Before pass_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<Pass> pass_;
+  // The split's shadow launch (splitsShadows) and its buffers (WB_BIND_SPLIT_*; 16 bytes while not split).
+  bool split_ = false;
+  std::unique_ptr<Pass> shadowPass_;
+  vk::Buffer splitRequests_, splitPaths_;
+  bool splitWanted(bool inspect) const;
+  void createSplitBuffers();
   std::unique_ptr<vk::GpuTimer> timer_;
   // Accumulates the samples of a launch of several (not in passes(): a fixed part of the accumulation).
   std::unique_ptr<Pass> resolve_;

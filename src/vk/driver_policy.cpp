@@ -30,6 +30,7 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   if (env::choice("WB_SHADER_CLOCK") == false) o.shaderClock = false;
   o.deviceClock = env::choice("WB_DEVICE_CLOCK");
   o.costIsolation = env::choice("WB_COST_ISOLATE");
+  o.splitShadows = env::choice("WB_SPLIT_SHADOWS");
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   o.trialRuns = env::choice("WB_TRIAL_RUN");
@@ -67,6 +68,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   p.deviceClock = overrides.deviceClock.value_or(false);
   p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(true);
   p.costByMedian = cpu;
+  p.splitShadows = overrides.splitShadows.value_or(false);
   return p;
 }
 

@@ -35,6 +35,7 @@ struct PolicyOverrides {
   std::optional<bool> shaderClock;          // WB_SHADER_CLOCK=0 (on by default where supported)
   std::optional<bool> deviceClock;          // WB_DEVICE_CLOCK=1 (the subgroup clock by default)
   std::optional<bool> costIsolation;        // WB_COST_ISOLATE=0|1
+  std::optional<bool> splitShadows;         // WB_SPLIT_SHADOWS=1
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -88,6 +89,10 @@ struct DevicePolicy {
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would
   // set the means (lavapipe on a busy machine: a preempted group of pixels at 100x the others).
   bool costByMedian = false;
+  // An experiment, off unless WB_SPLIT_SHADOWS=1: the path tracer traces next-event estimation's shadow rays
+  // in a launch of their own after the path rays' (shaders/pathtracer/shadow_split.rgen), where its variant
+  // allows (PathTracer::splitsShadows). docs/bench/roofline.md measures it against the one loop.
+  bool splitShadows = false;
 };
 
 DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides);
