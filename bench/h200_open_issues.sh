@@ -27,6 +27,9 @@
 #     (what drawing the Owen-scrambled Sobol dimensions costs), reflector guiding off, one sample per launch, and
 #     the shadow rays in a launch of their own (WB_SPLIT_SHADOWS=1: one sample per launch; its image against the
 #     default's at 512x512); GPU ms per sample and rays per sample; the sunlit glossy scene at 2048x2048 too.
+#  6. Issue 29: the split path loop (`split`): WB_SPLIT_SHADOWS=1 (next-event estimation's shadow rays in a
+#     launch of their own) against the one loop, the default scene at 2048x2048, 512x512 and 256x256 and the
+#     sunlit scene at 2048x2048 and 256x256, three alternating rounds; the split's image against the loop's.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
 # (e.g. ONLY='cost|guiding').
 set -uo pipefail
@@ -128,6 +131,35 @@ nee_split() {
 mkdir -p "$OUT/nee_split"
 step nee_split nee_split
 
+# Item 6: the split path loop (WB_SPLIT_SHADOWS=1) against the one loop, three alternating rounds at each size;
+# round 1's split renders against the loop's image (error_vs_reference: 0 up to the sums' order).
+split_ab() {
+  local round name scene size spp
+  for round in 1 2 3; do
+    for size in default:2048x2048:16 default:512x512:64 default:256x256:256 sunlit:2048x2048:16 \
+                sunlit:256x256:256; do
+      scene=${size%%:*} size=${size#*:}
+      spp=${size#*:} size=${size%:*}
+      [ "${QUICK:-0}" = 1 ] && size=32x32 spp=4
+      local args=() tag="${scene}_${size}"
+      [ "$scene" = sunlit ] && args=(assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5)
+      for name in loop split; do
+        local envs=(WB_SPLIT_SHADOWS=0) extra=() out="$OUT/split/image.png"
+        [ "$name" = split ] && envs=(WB_SPLIT_SHADOWS=1)
+        if [ "$round" = 1 ]; then
+          [ "$name" = loop ] && out="$OUT/split/${tag}_loop.exr"
+          [ "$name" = split ] && extra=(--reference "$OUT/split/${tag}_loop.exr")
+        fi
+        env "${envs[@]}" "$W" render --size "$size" --spp "$spp" "${args[@]}" "${extra[@]}" \
+          --stats "$OUT/split/${tag}_${name}_r$round.json" --out "$out" || return 1
+      done
+    done
+  done
+  rm -f "$OUT/split/"*.exr "$OUT/split/image.png"
+}
+mkdir -p "$OUT/split"
+step split split_ab
+
 echo "== summary ($OUT)"
 python3 - "$OUT" <<'PY'
 import json, os, re, sys
@@ -161,6 +193,12 @@ for name, what in (("hybrid_inspector", "hybrid inspector (180 s bound)"),):
     except OSError:
         pass
 import glob
+for f in sorted(glob.glob(os.path.join(out, "split", "*.json"))):
+    j = json.load(open(f))
+    ref = j.get("error_vs_reference", {})
+    print("split %-36s %8.3f ms/sample %10.4g rays/sample split=%s%s" % (os.path.basename(f)[:-5],
+          j["pass_ms"]["pathtracer"], j["rays"] / j["spp"], j.get("split_shadows"),
+          "  rel_mse vs loop %.3g" % ref["rel_mse"] if ref else ""))
 for f in sorted(glob.glob(os.path.join(out, "nee_split", "*.json"))):
     j = json.load(open(f))
     ms = j["pass_ms"]["pathtracer"]

@@ -80,7 +80,7 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 #define MISS_SHADOW 1u
 
 // An experiment (PathTracer, WB_SPLIT_SHADOWS=1 in the environment): raygen traces only the path rays and leaves
-// each vertex's shadow requests in a buffer (WB_SPLIT_SLOTS per pixel, shared/bindings.h); a second launch of its own pipeline
+// each vertex's shadow requests in a buffer (PushConstants::splitSlots per sample); a second launch of its own pipeline
 // (shadow_split.rgen) traces them and accumulates the sample. A wavefront split of the path loop in two stages.
 #ifndef WB_SPLIT_SHADOWS
 #define WB_SPLIT_SHADOWS 0
@@ -88,7 +88,8 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 #if WB_SPLIT_SHADOWS
 layout(set = 0, binding = WB_BIND_SPLIT_REQUESTS, scalar) buffer SplitRequestBlock { vec4 splitRequests[]; };
 layout(set = 0, binding = WB_BIND_SPLIT_PATHS, scalar) buffer SplitPathBlock { vec4 splitPaths[]; };
-uint splitPixel(uvec2 pixel) { return pixel.y * pc.imageSize.x + pixel.x; }
+// The sample's record: one per pixel and sample of the launch (as the sample slots).
+uint splitIndex(uvec2 pixel) { return (gl_LaunchIDEXT.z * pc.imageSize.y + pixel.y) * pc.imageSize.x + pixel.x; }
 #endif
 
 // WB_INSPECT=1: the path inspector's build, which records every vertex of the inspected pixel's paths

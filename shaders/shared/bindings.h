@@ -47,11 +47,11 @@
 #define WB_BIND_ASSERT_HEADER 25
 #define WB_BIND_ASSERT_RECORDS 26
 // The split of next-event estimation's shadow rays into a launch of their own (WB_SPLIT_SHADOWS, an experiment:
-// docs/bench/roofline.md): storage buffer vec4[] of WB_SPLIT_SLOTS requests per pixel, 3 vec4 each (origin and
-// tMax, direction, the contribution if unoccluded), and vec4[] per pixel (the path's own radiance, a = requests)
+// docs/bench/roofline.md): storage buffer vec4[] of PushConstants::splitSlots requests per pixel and sample of
+// the launch, 3 vec4 each (origin and tMax, direction, the contribution if unoccluded), and vec4[] per pixel and
+// sample (the path's own radiance and what raygen traced itself, a = the requests left for the shadow launch)
 #define WB_BIND_SPLIT_REQUESTS 27
 #define WB_BIND_SPLIT_PATHS 28
-#define WB_SPLIT_SLOTS 18u  // requests per pixel: 9 vertices (8 bounces, the default) of 2 light samples
 
 // ---- the hybrid modes (G-buffer raster, shadow/AO and reflection ray tracing, composite compute) ----
 #define WB_BIND_HYBRID_FRAME 40      // uniform buffer HybridUniforms

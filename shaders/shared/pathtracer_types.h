@@ -57,6 +57,7 @@ struct PushConstants {
   uvec2 tileOffset;  // first pixel of the traced region
   uvec2 imageSize;   // full accumulation image size
   float rrExponent;  // Russian roulette survival = clamp(max throughput ^ rrExponent, rrMin, rrMax)
+  uint splitSlots;   // WB_SPLIT_SHADOWS: shadow requests a sample may leave for the shadow launch
 };
 
 // The resolve pass's push constants (pathtracer/resolve.comp): the samples of one launch, in order.

@@ -24,6 +24,8 @@ constexpr const char* kSwitches[] = {
 constexpr double kMaxRebuildYield = 1000.0;
 // WB_HANG_SECONDS: the shortest wait for a frame before it counts as hung.
 constexpr double kMinHangSeconds = 0.5, kMaxHangSeconds = 3600.0;
+// WB_SPLIT_SLOTS: the most shadow requests a sample leaves for the split's shadow launch.
+constexpr double kMaxSplitSlots = 18.0;
 
 }  // namespace
 
@@ -68,6 +70,11 @@ void checkWorkbenchVariables() {
       hang && (*hang < kMinHangSeconds || *hang > kMaxHangSeconds)) {
     throw std::invalid_argument("WB_HANG_SECONDS=" + shown(*get("WB_HANG_SECONDS")) +
                                 ": expected seconds from 0.5 to 3600");
+  }
+  if (const auto slots = number("WB_SPLIT_SLOTS");
+      slots && (*slots < 0 || *slots > kMaxSplitSlots || *slots != double(int(*slots)))) {
+    throw std::invalid_argument("WB_SPLIT_SLOTS=" + shown(*get("WB_SPLIT_SLOTS")) +
+                                ": expected a whole number of requests from 0 to 18");
   }
 }
 

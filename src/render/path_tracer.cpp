@@ -20,6 +20,20 @@ namespace {
 constexpr uint32_t kMaxRecursion = 1;             // raygen traces every ray (shadow rays too: payload.glsl)
 constexpr uint32_t kDefaultAssertRecords = 1024;  // the asserts variant's first failures kept
 constexpr size_t kSpareSets = 2;                  // image sets of earlier sizes kept for reuse
+// The split's shadow requests (splitsShadows): at most DevicePolicy::splitSlotsLimit per sample (18: 9
+// vertices of 2 light samples, the default 8 bounces), in at most an eighth of the device's largest memory
+// heap and 2 GiB; a sample's requests beyond its slots are traced in raygen's own loop.
+constexpr VkDeviceSize kMaxSplitBytes = VkDeviceSize(2) << 30;
+constexpr VkDeviceSize kSplitRequestBytes = 3 * sizeof(glm::vec4);
+
+VkDeviceSize largestHeap(VkPhysicalDevice physical) {
+  VkPhysicalDeviceMemoryProperties memory{};
+  vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+  VkDeviceSize largest = 0;
+  for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
+    largest = std::max(largest, memory.memoryHeaps[i].size);
+  return largest;
+}
 
 }  // namespace
 
@@ -156,11 +170,12 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   inspectVariant_ = inspect;
   if (split_ && !shadowPass_) {
     RayTracingRecipe recipe;
-    // Shadow rays only: miss index MISS_SHADOW, any-hit where some material is not opaque, no closest-hit.
+    // Shadow rays only: miss index MISS_SHADOW, any-hit where some material is not opaque, an empty
+    // closest-hit (shadow_split.rchit says why).
     recipe.table.raygen("shadow_split.rgen")
         .miss("shadow.rmiss")
         .miss("shadow.rmiss")
-        .hitGroup({.anyHit = "anyhit.rahit"});
+        .hitGroup({.closestHit = "shadow_split.rchit", .anyHit = "anyhit.rahit"});
     recipe.maxRecursion = kMaxRecursion;
     shadowPass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer shadows", std::move(recipe));
     shadowPass_->setPushConstantBytes(sizeof(gpu::PushConstants));
@@ -171,7 +186,9 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   bindResources();
   if (split_) {
     std::vector<shader::ShaderKey> shadowKeys = {
-        {shaderDir() / "pathtracer" / "shadow_split.rgen", std::nullopt, keys[0].defines}, keys[2]};
+        {shaderDir() / "pathtracer" / "shadow_split.rgen", std::nullopt, keys[0].defines},
+        keys[2],
+        {shaderDir() / "pathtracer" / "shadow_split.rchit", std::nullopt, keys[0].defines}};
     if (keys.size() > 4) shadowKeys.push_back(keys[4]);  // any-hit
     shadowPass_->useProgram(name + " shadows", shadowKeys);
     shadowPass_->rebuild();
@@ -185,12 +202,18 @@ bool PathTracer::splitWanted(bool inspect) const {
 }
 
 void PathTracer::createSplitBuffers() {
-  const VkDeviceSize pixels = split_ ? VkDeviceSize(settings_.width) * settings_.height : 1;
-  const VkDeviceSize requests = pixels * (split_ ? WB_SPLIT_SLOTS * 3 : 1) * sizeof(glm::vec4);
-  if (splitRequests_.size() == requests && splitPaths_.size() == pixels * sizeof(glm::vec4)) return;
+  // One record per pixel and sample of a launch; the slots per sample that fit the budget.
+  const VkDeviceSize samples =
+      split_ ? VkDeviceSize(settings_.width) * settings_.height * samplesPerLaunch() : 1;
+  const VkDeviceSize budget = std::min(kMaxSplitBytes, largestHeap(ctx_.physicalDevice()) / 8);
+  splitSlots_ = split_ ? uint32_t(std::min<VkDeviceSize>(ctx_.policy().splitSlotsLimit,
+                                                         budget / (samples * kSplitRequestBytes)))
+                       : 0;
+  const VkDeviceSize requests = std::max<VkDeviceSize>(1, samples * splitSlots_) * kSplitRequestBytes;
+  if (splitRequests_.size() == requests && splitPaths_.size() == samples * sizeof(glm::vec4)) return;
   ctx_.waitIdle();
   splitRequests_ = vk::Buffer(ctx_, requests, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
-  splitPaths_ = vk::Buffer(ctx_, pixels * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  splitPaths_ = vk::Buffer(ctx_, samples * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   bindResources();
 }
 
@@ -422,6 +445,7 @@ void PathTracer::bindResources() {
     s.setBuffer("SobolBlock", sobol_);
     s.setBuffer("SplitRequestBlock", splitRequests_);
     s.setBuffer("SplitPathBlock", splitPaths_);
+    s.setBuffer("SampleSlotBlock", sampleSlots_);
   }
   resolve_->setStorageImage("accumImage", accum_.view());
   resolve_->setBuffer("SampleSlotBlock", sampleSlots_);
@@ -464,10 +488,10 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   if (resized || inspectResized) {
     ctx_.waitIdle();
     if (resized) createImages();
-    if (resized) createSplitBuffers();
     if (inspectResized) createInspectBuffers();
     bindResources();
   }
+  createSplitBuffers();  // the size or the samples per launch may have changed
   sampleIndex_ = 0;
 }
 
@@ -523,7 +547,7 @@ uint32_t PathTracer::samplesPerLaunch() const {
   // (samples of one launch would race on them); the asserts variant records its first failures in sample
   // order. Only the radiance has the resolve pass.
   if (settings_.aov || settings_.denoise || inspection_ || instrumentation_.cost ||
-      instrumentation_.asserts || settings_.tileWidth || settings_.tileHeight || split_)
+      instrumentation_.asserts || settings_.tileWidth || settings_.tileHeight)
     return 1;
   if (settings_.samplesPerLaunch != 0) return settings_.samplesPerLaunch;
   if (ctx_.policy().compilesAtFirstDispatch) return 1;
@@ -585,16 +609,17 @@ void PathTracer::recordRegion(VkCommandBuffer cmd, const PixelRegion& r, uint32_
   pc.debugView = settings_.debugView;
   pc.tileOffset = glm::uvec2(r.x, r.y);
   pc.imageSize = glm::uvec2(settings_.width, settings_.height);
+  pc.splitSlots = splitSlots_;
 
   vk::GpuTimer::Scope timed(timer_.get(), cmd, "pathtracer", samples);  // GPU time per sample
   pass_->bind(cmd);
   pass_->push(cmd, pc);
   pass_->traceRays(cmd, r.width, r.height, samples);
   vk::memoryBarrier(cmd);
-  if (split_) {  // the shadow launch accumulates the sample
+  if (split_) {  // the shadow launch accumulates the samples (or leaves them in the slots for the resolve)
     shadowPass_->bind(cmd);
     shadowPass_->push(cmd, pc);
-    shadowPass_->traceRays(cmd, r.width, r.height);
+    shadowPass_->traceRays(cmd, r.width, r.height, samples);
     vk::memoryBarrier(cmd);
   }
   if (samples > 1) {

@@ -247,6 +247,7 @@ class PathTracer final : public Renderer {
   std::unique_ptr<Pass> pass_;
   // The split's shadow launch (splitsShadows) and its buffers (WB_BIND_SPLIT_*; 16 bytes while not split).
   bool split_ = false;
+  uint32_t splitSlots_ = 0;  // shadow requests per sample the buffers hold (PushConstants::splitSlots)
   std::unique_ptr<Pass> shadowPass_;
   vk::Buffer splitRequests_, splitPaths_;
   bool splitWanted(bool inspect) const;

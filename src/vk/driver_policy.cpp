@@ -31,6 +31,7 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   o.deviceClock = env::choice("WB_DEVICE_CLOCK");
   o.costIsolation = env::choice("WB_COST_ISOLATE");
   o.splitShadows = env::choice("WB_SPLIT_SHADOWS");
+  o.splitSlots = env::number("WB_SPLIT_SLOTS");
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   o.trialRuns = env::choice("WB_TRIAL_RUN");
@@ -69,6 +70,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(true);
   p.costByMedian = cpu;
   p.splitShadows = overrides.splitShadows.value_or(false);
+  if (overrides.splitSlots) p.splitSlotsLimit = uint32_t(*overrides.splitSlots);
   return p;
 }
 

@@ -35,7 +35,8 @@ struct PolicyOverrides {
   std::optional<bool> shaderClock;          // WB_SHADER_CLOCK=0 (on by default where supported)
   std::optional<bool> deviceClock;          // WB_DEVICE_CLOCK=1 (the subgroup clock by default)
   std::optional<bool> costIsolation;        // WB_COST_ISOLATE=0|1
-  std::optional<bool> splitShadows;         // WB_SPLIT_SHADOWS=1
+  std::optional<bool> splitShadows;         // WB_SPLIT_SHADOWS=0|1
+  std::optional<double> splitSlots;         // WB_SPLIT_SLOTS=N (0 .. 18)
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -93,6 +94,9 @@ struct DevicePolicy {
   // in a launch of their own after the path rays' (shaders/pathtracer/shadow_split.rgen), where its variant
   // allows (PathTracer::splitsShadows). docs/bench/roofline.md measures it against the one loop.
   bool splitShadows = false;
+  // The most shadow requests a sample leaves for the shadow launch (fewer where the memory budget says so;
+  // the rest are traced in the path loop). WB_SPLIT_SLOTS=N lowers it (0: every shadow ray in the path loop).
+  uint32_t splitSlotsLimit = 18;
 };
 
 DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides);
