@@ -103,7 +103,8 @@ nee_split() {
       spp=${size#*:} size=${size%:*}
       [ "${QUICK:-0}" = 1 ] && size=64x64 spp=4
       for name in default no-nee untraced calls-skipped area pcg pcg-no-nee no-guiding launch1 split; do
-        local args=() envs=() out="$OUT/nee_split/image.png"
+        # The one path loop (WB_SPLIT_SHADOWS=0): the experiments act in its shadow iterations.
+        local args=() envs=(WB_SPLIT_SHADOWS=0) out="$OUT/nee_split/image.png"
         [ "$scene" = sunlit ] && args=(assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5)
         case $name in
           no-nee) args+=(--no-nee) ;;

@@ -79,9 +79,11 @@ layout(push_constant, scalar) uniform PushBlock { PushConstants pc; };
 #define MISS_ENV 0u
 #define MISS_SHADOW 1u
 
-// An experiment (PathTracer, WB_SPLIT_SHADOWS=1 in the environment): raygen traces only the path rays and leaves
-// each vertex's shadow requests in a buffer (PushConstants::splitSlots per sample); a second launch of its own pipeline
-// (shadow_split.rgen) traces them and accumulates the sample. A wavefront split of the path loop in two stages.
+// The split path loop (PathTracer::splitsShadows; on GPUs by default, WB_SPLIT_SHADOWS=0|1 in the environment):
+// raygen traces the path rays and leaves each vertex's shadow requests in a buffer (PushConstants::splitSlots
+// per sample; the rest it traces itself); a second launch of its own small pipeline (shadow_split.rgen) traces
+// them and accumulates the sample. A wavefront split of the path loop in two stages: the shadow rays run in a
+// kernel with few registers and all lanes on the same kind of ray (docs/bench/roofline.md).
 #ifndef WB_SPLIT_SHADOWS
 #define WB_SPLIT_SHADOWS 0
 #endif

@@ -46,7 +46,7 @@
 // wbAssert's failures in the WB_ASSERTS build: storage buffers AssertHeader and AssertRecord[]
 #define WB_BIND_ASSERT_HEADER 25
 #define WB_BIND_ASSERT_RECORDS 26
-// The split of next-event estimation's shadow rays into a launch of their own (WB_SPLIT_SHADOWS, an experiment:
+// The split of next-event estimation's shadow rays into a launch of their own (WB_SPLIT_SHADOWS;
 // docs/bench/roofline.md): storage buffer vec4[] of PushConstants::splitSlots requests per pixel and sample of
 // the launch, 3 vec4 each (origin and tMax, direction, the contribution if unoccluded), and vec4[] per pixel and
 // sample (the path's own radiance and what raygen traced itself, a = the requests left for the shadow launch)

@@ -156,7 +156,7 @@ int RenderCommand::run() {
       j["rays_per_second"] = counters.rayCount / seconds;
       j["rays"] = counters.rayCount;
       j["shadow_rays"] = counters.shadowRayCount;
-      // The shadow rays in a launch of their own (WB_SPLIT_SHADOWS=1, an experiment).
+      // The shadow rays in a launch of their own (DevicePolicy::splitShadows).
       j["split_shadows"] = session.pathTracer().splitsShadows();
       j["nan_inf_dropped"] = counters.droppedSamples;
       j["mean_rgb"] = {mean[0], mean[1], mean[2]};

@@ -69,7 +69,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   p.deviceClock = overrides.deviceClock.value_or(false);
   p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(true);
   p.costByMedian = cpu;
-  p.splitShadows = overrides.splitShadows.value_or(false);
+  p.splitShadows = overrides.splitShadows.value_or(!cpu);
   if (overrides.splitSlots) p.splitSlotsLimit = uint32_t(*overrides.splitSlots);
   return p;
 }

@@ -90,9 +90,10 @@ struct DevicePolicy {
   // CPU device the clock runs on while the OS runs another thread, and the few invocations it preempted would
   // set the means (lavapipe on a busy machine: a preempted group of pixels at 100x the others).
   bool costByMedian = false;
-  // An experiment, off unless WB_SPLIT_SHADOWS=1: the path tracer traces next-event estimation's shadow rays
-  // in a launch of their own after the path rays' (shaders/pathtracer/shadow_split.rgen), where its variant
-  // allows (PathTracer::splitsShadows). docs/bench/roofline.md measures it against the one loop.
+  // The path tracer traces next-event estimation's shadow rays in a launch of their own after the path rays'
+  // (shaders/pathtracer/shadow_split.rgen) where its variant allows (PathTracer::splitsShadows): on GPUs,
+  // where it takes 6-13% off a sample (docs/bench/roofline.md, an H100); not on lavapipe, where the second
+  // pipeline costs a JIT compile and the sample is no faster. WB_SPLIT_SHADOWS=0|1.
   bool splitShadows = false;
   // The most shadow requests a sample leaves for the shadow launch (fewer where the memory budget says so;
   // the rest are traced in the path loop). WB_SPLIT_SLOTS=N lowers it (0: every shadow ray in the path loop).

@@ -190,6 +190,22 @@ TEST(DriverPolicy, TheDeviceClockIsChosenOnlyWhenAsked) {
 
 // Lane isolation in the cost variant needs subgroup operations in ray generation: on by default where the
 // device has them, WB_COST_ISOLATE=0 turns it off, never on a device without them.
+// The split path loop is the default on GPUs, off on lavapipe; both ways can be asked for, and the slots per
+// sample lowered.
+TEST(DriverPolicy, ShadowRaysAreSplitOnGpus) {
+  EXPECT_TRUE(resolveDevicePolicy(gpu(), {}).splitShadows);
+  EXPECT_FALSE(resolveDevicePolicy(cpu(), {}).splitShadows);
+  PolicyOverrides on, off;
+  on.splitShadows = true;
+  off.splitShadows = false;
+  EXPECT_TRUE(resolveDevicePolicy(cpu(), on).splitShadows);
+  EXPECT_FALSE(resolveDevicePolicy(gpu(), off).splitShadows);
+  EXPECT_EQ(resolveDevicePolicy(gpu(), {}).splitSlotsLimit, 18u);
+  PolicyOverrides few;
+  few.splitSlots = 3;
+  EXPECT_EQ(resolveDevicePolicy(gpu(), few).splitSlotsLimit, 3u);
+}
+
 TEST(DriverPolicy, LaneIsolationIsTheDefaultWhereRayGenerationHasSubgroupOperations) {
   DeviceTraits voting = gpu();
   voting.raygenSubgroupVote = true;
