@@ -198,7 +198,7 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
 
 bool PathTracer::splitWanted(bool inspect) const {
   return ctx_.policy().splitShadows && !inspect && !instrumentation_.cost && !instrumentation_.asserts &&
-         !settings_.aov && !settings_.denoise && !settings_.tileWidth && !settings_.tileHeight;
+         !settings_.aov && !settings_.denoise;
 }
 
 void PathTracer::createSplitBuffers() {

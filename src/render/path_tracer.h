@@ -88,9 +88,9 @@ class PathTracer final : public Renderer {
     return isolatesLanes(inspectVariant_, instrumentation_, clock_, ctx_.policy().costIsolatesLanes);
   }
   // DevicePolicy::splitShadows: whether this tracer traces next-event estimation's shadow rays in a launch of
-  // their own after the path rays' (shaders/pathtracer/shadow_split.rgen). Only the plain variant without
-  // AOVs or tiles splits (the shadow launch accumulates the radiance alone); the window's view (which writes
-  // the AOVs for the denoiser) keeps the one loop.
+  // their own after the path rays' (shaders/pathtracer/shadow_split.rgen; with tiles, after each region's).
+  // Only the plain variant without AOVs splits (the shadow launch accumulates the radiance alone); the
+  // window's view (which writes the AOVs for the denoiser) keeps the one loop.
   bool splitsShadows() const { return split_; }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }
