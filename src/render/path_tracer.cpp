@@ -116,6 +116,20 @@ PathTracer::PathTracer(const RendererResources& r, const RenderSettings& setting
   createImages();
   createInspectBuffers();
   createAssertBuffers(kDefaultAssertRecords);
+  if (ctx_.policy().splitShadows) {
+    // Made once for the tracer's life, used by the variants that split (splitsShadows): passes() keeps one
+    // layout, which the live-edit loop's records of passes and the A/B stand-ins rely on.
+    RayTracingRecipe shadows;
+    // Shadow rays only: miss index MISS_SHADOW, any-hit where some material is not opaque, an empty
+    // closest-hit (shadow_split.rchit says why).
+    shadows.table.raygen("shadow_split.rgen")
+        .miss("shadow.rmiss")
+        .miss("shadow.rmiss")
+        .hitGroup({.closestHit = "shadow_split.rchit", .anyHit = "anyhit.rahit"});
+    shadows.maxRecursion = kMaxRecursion;
+    shadowPass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer shadows", std::move(shadows));
+    shadowPass_->setPushConstantBytes(sizeof(gpu::PushConstants));
+  }
   createSplitBuffers();
   bindResources();
   resolve_->rebuild();
@@ -168,37 +182,25 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   features_ = features;
   featuresSet_ = true;
   inspectVariant_ = inspect;
-  if (split_ && !shadowPass_) {
-    RayTracingRecipe recipe;
-    // Shadow rays only: miss index MISS_SHADOW, any-hit where some material is not opaque, an empty
-    // closest-hit (shadow_split.rchit says why).
-    recipe.table.raygen("shadow_split.rgen")
-        .miss("shadow.rmiss")
-        .miss("shadow.rmiss")
-        .hitGroup({.closestHit = "shadow_split.rchit", .anyHit = "anyhit.rahit"});
-    recipe.maxRecursion = kMaxRecursion;
-    shadowPass_ = std::make_unique<Pass>(ctx_, library_, "pathtracer shadows", std::move(recipe));
-    shadowPass_->setPushConstantBytes(sizeof(gpu::PushConstants));
-  } else if (!split_) {
-    shadowPass_.reset();
-  }
   createSplitBuffers();
-  bindResources();
-  if (split_) {
+  if (shadowPass_) {
+    // The plain variant's stages (the only one that splits): the program follows the scene's features alone.
+    const auto plain = stageKeys(features, cpuDeviceCode_);
     std::vector<shader::ShaderKey> shadowKeys = {
-        {shaderDir() / "pathtracer" / "shadow_split.rgen", std::nullopt, keys[0].defines},
-        keys[2],
-        {shaderDir() / "pathtracer" / "shadow_split.rchit", std::nullopt, keys[0].defines}};
-    if (keys.size() > 4) shadowKeys.push_back(keys[4]);  // any-hit
-    shadowPass_->useProgram(name + " shadows", shadowKeys);
-    shadowPass_->rebuild();
+        {shaderDir() / "pathtracer" / "shadow_split.rgen", std::nullopt, plain[0].defines},
+        plain[2],
+        {shaderDir() / "pathtracer" / "shadow_split.rchit", std::nullopt, plain[0].defines}};
+    if (plain.size() > 4) shadowKeys.push_back(plain[4]);  // any-hit
+    if (shadowPass_->useProgram(features.generic ? "pathtracer shadows" : "pathtracer shadows (specialised)",
+                                shadowKeys))
+      shadowPass_->rebuild();
   }
   pass_->rebuild();
 }
 
 bool PathTracer::splitWanted(bool inspect) const {
-  return ctx_.policy().splitShadows && !inspect && !instrumentation_.cost && !instrumentation_.asserts &&
-         !settings_.aov && !settings_.denoise;
+  return shadowPass_ && !inspect && !instrumentation_.cost && !instrumentation_.asserts && !settings_.aov &&
+         !settings_.denoise;
 }
 
 void PathTracer::createSplitBuffers() {
@@ -404,21 +406,29 @@ void PathTracer::createImages() {
   sampleIndex_ = 0;
 }
 
-void PathTracer::bindResources() {
-  Pass& p = *pass_;
-  emitterVersion_ = gpuScene_.emitterVersion();
+void PathTracer::bindSharedResources(Pass& p) const {
   bindSceneResources(p, gpuScene_, *env_);
   p.setBuffer("LightBlock", lightBuffer_);  // the scene's lights with the sun's angle applied
   p.setStorageImage("accumImage", accum_.view());
+  p.setBuffer("FrameBlock", frameUniforms_);
+  p.setBuffer("CounterBlock", counters_);
+  p.setBuffer("BlueNoiseBlock", blueNoise_);
+  p.setBuffer("SobolBlock", sobol_);
+  p.setBuffer("SampleSlotBlock", sampleSlots_);
+  p.setBuffer("SplitRequestBlock", splitRequests_);
+  p.setBuffer("SplitPathBlock", splitPaths_);
+}
+
+void PathTracer::bindResources() {
+  Pass& p = *pass_;
+  emitterVersion_ = gpuScene_.emitterVersion();
+  bindSharedResources(p);
+  if (shadowPass_) bindSharedResources(*shadowPass_);
   p.setStorageImage("albedoImage", albedo_.view());
   p.setStorageImage("normalImage", normal_.view());
   p.setStorageImage("infoImage", info_.view());
   p.setStorageImage("statsImage", stats_.view());
   p.setStorageImage("costImage", cost_.view());  // the cost variant's
-  p.setBuffer("FrameBlock", frameUniforms_);
-  p.setBuffer("CounterBlock", counters_);
-  p.setBuffer("BlueNoiseBlock", blueNoise_);
-  p.setBuffer("SobolBlock", sobol_);
   // Used by the WB_INSPECT variant only (the others' layouts skip them).
   p.setBuffer("InspectHeaderBlock", inspectHeader_);
   p.setBuffer("InspectSampleBlock", inspectSamples_);
@@ -430,22 +440,6 @@ void PathTracer::bindResources() {
   if (denoiser_) {
     denoiser_->resize(settings_.width, settings_.height);
     denoiser_->setInputs({accum_.view(), albedo_.view(), normal_.view(), stats_.view()});
-  }
-  p.setBuffer("SampleSlotBlock", sampleSlots_);
-  p.setBuffer("SplitRequestBlock", splitRequests_);
-  p.setBuffer("SplitPathBlock", splitPaths_);
-  if (shadowPass_) {
-    Pass& s = *shadowPass_;
-    bindSceneResources(s, gpuScene_, *env_);
-    s.setBuffer("LightBlock", lightBuffer_);
-    s.setStorageImage("accumImage", accum_.view());
-    s.setBuffer("FrameBlock", frameUniforms_);
-    s.setBuffer("CounterBlock", counters_);
-    s.setBuffer("BlueNoiseBlock", blueNoise_);
-    s.setBuffer("SobolBlock", sobol_);
-    s.setBuffer("SplitRequestBlock", splitRequests_);
-    s.setBuffer("SplitPathBlock", splitPaths_);
-    s.setBuffer("SampleSlotBlock", sampleSlots_);
   }
   resolve_->setStorageImage("accumImage", accum_.view());
   resolve_->setBuffer("SampleSlotBlock", sampleSlots_);

@@ -245,12 +245,15 @@ class PathTracer final : public Renderer {
   // Before pass_: destroyed after the pipelines linked from it.
   std::unique_ptr<vk::RtLibraryCache> libraries_;
   std::unique_ptr<Pass> pass_;
-  // The split's shadow launch (splitsShadows) and its buffers (WB_BIND_SPLIT_*; 16 bytes while not split).
+  // The split's shadow launch (made where DevicePolicy::splitShadows, used while splitsShadows) and its
+  // buffers (WB_BIND_SPLIT_*; 16 bytes while not split).
   bool split_ = false;
   uint32_t splitSlots_ = 0;  // shadow requests per sample the buffers hold (PushConstants::splitSlots)
   std::unique_ptr<Pass> shadowPass_;
   vk::Buffer splitRequests_, splitPaths_;
   bool splitWanted(bool inspect) const;
+  // What the path and the shadow launch both read and write, bound by name (bindResources).
+  void bindSharedResources(Pass& pass) const;
   void createSplitBuffers();
   std::unique_ptr<vk::GpuTimer> timer_;
   // Accumulates the samples of a launch of several (not in passes(): a fixed part of the accumulation).

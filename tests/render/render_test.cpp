@@ -135,3 +135,30 @@ TEST(Render, ASizeUsedBeforeReusesItsImagesClearedAndRendersTheSame) {
     ASSERT_EQ(again.pixels[i], expected.pixels[i]) << "at " << i;
   expectNoValidationErrors(*session);
 }
+
+// Where the path tracer splits its shadow rays (WB_SPLIT_SHADOWS=1 here; the default on GPUs), its passes stay
+// the same objects in the same order while AOVs turn the split off and on again: the live-edit loop and the A/B
+// stand-ins keep pointers to them and their indices.
+TEST(Render, SplitShadowsKeepThePassesWhileAovsTurnItOffAndOn) {
+  ::setenv("WB_SPLIT_SHADOWS", "1", 1);
+  render::SessionOptions o;
+  o.settings.width = o.settings.height = 16;
+  auto session = makeSession(o);
+  ::unsetenv("WB_SPLIT_SHADOWS");
+  render::PathTracer& tracer = session->pathTracer();
+  ASSERT_TRUE(tracer.splitsShadows());
+  const auto before = tracer.passes();
+  render::RenderSettings settings = tracer.settings();
+  settings.aov = true;
+  tracer.setSettings(settings);
+  EXPECT_FALSE(tracer.splitsShadows());
+  EXPECT_EQ(tracer.passes(), before);
+  session->render(1);
+  settings.aov = false;
+  tracer.setSettings(settings);
+  EXPECT_TRUE(tracer.splitsShadows());
+  EXPECT_EQ(tracer.passes(), before);
+  session->render(2);
+  EXPECT_EQ(tracer.readCounters().droppedSamples, 0u);
+  expectNoValidationErrors(*session);
+}
