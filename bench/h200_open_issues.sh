@@ -29,7 +29,8 @@
 #     default's at 512x512); GPU ms per sample and rays per sample; the sunlit glossy scene at 2048x2048 too.
 #  6. Issue 29: the split path loop (`split`): WB_SPLIT_SHADOWS=1 (next-event estimation's shadow rays in a
 #     launch of their own) against the one loop, the default scene at 2048x2048, 512x512 and 256x256 and the
-#     sunlit scene at 2048x2048 and 256x256, three alternating rounds; the split's image against the loop's.
+#     sunlit scene at 2048x2048 and 256x256, the default scene denoised (AOVs) at 2048x2048 and 512x512, three
+#     alternating rounds; the split's image against the loop's.
 # QUICK=1: the benches' --quick (a smoke run, e.g. on lavapipe). ONLY=REGEX: only the steps whose names match
 # (e.g. ONLY='cost|guiding').
 set -uo pipefail
@@ -132,18 +133,20 @@ nee_split() {
 mkdir -p "$OUT/nee_split"
 step nee_split nee_split
 
-# Item 6: the split path loop (WB_SPLIT_SHADOWS=1) against the one loop, three alternating rounds at each size;
-# round 1's split renders against the loop's image (error_vs_reference: 0 up to the sums' order).
+# Item 6: the split path loop (WB_SPLIT_SHADOWS=1) against the one loop, three alternating rounds at each size
+# (`denoised`: the default scene with --denoise, whose AOVs the shadow launch writes); round 1's split renders
+# against the loop's image (error_vs_reference: 0 up to the sums' order).
 split_ab() {
   local round name scene size spp
   for round in 1 2 3; do
     for size in default:2048x2048:16 default:512x512:64 default:256x256:256 sunlit:2048x2048:16 \
-                sunlit:256x256:256; do
+                sunlit:256x256:256 denoised:2048x2048:16 denoised:512x512:64; do
       scene=${size%%:*} size=${size#*:}
       spp=${size#*:} size=${size%:*}
       [ "${QUICK:-0}" = 1 ] && size=32x32 spp=4
       local args=() tag="${scene}_${size}"
       [ "$scene" = sunlit ] && args=(assets/sunlit_spheres.gltf --env-color 0.2,0.3,0.5)
+      [ "$scene" = denoised ] && args=(--denoise)  # the window's view: AOVs and the denoiser
       for name in loop split; do
         local envs=(WB_SPLIT_SHADOWS=0) extra=() out="$OUT/split/image.png"
         [ "$name" = split ] && envs=(WB_SPLIT_SHADOWS=1)

@@ -199,8 +199,7 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
 }
 
 bool PathTracer::splitWanted(bool inspect) const {
-  return shadowPass_ && !inspect && !instrumentation_.cost && !instrumentation_.asserts && !settings_.aov &&
-         !settings_.denoise;
+  return shadowPass_ && !inspect && !instrumentation_.cost && !instrumentation_.asserts;
 }
 
 void PathTracer::createSplitBuffers() {
@@ -212,10 +211,13 @@ void PathTracer::createSplitBuffers() {
                                                          budget / (samples * kSplitRequestBytes)))
                        : 0;
   const VkDeviceSize requests = std::max<VkDeviceSize>(1, samples * splitSlots_) * kSplitRequestBytes;
-  if (splitRequests_.size() == requests && splitPaths_.size() == samples * sizeof(glm::vec4)) return;
+  // A sample's record: its radiance and requests, with AOVs (one sample per launch) also theirs.
+  const VkDeviceSize paths = samples * sizeof(glm::vec4) *
+                             (split_ && (settings_.aov || settings_.denoise) ? WB_SPLIT_PATH_VEC4S_AOV : 1);
+  if (splitRequests_.size() == requests && splitPaths_.size() == paths) return;
   ctx_.waitIdle();
   splitRequests_ = vk::Buffer(ctx_, requests, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
-  splitPaths_ = vk::Buffer(ctx_, samples * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
+  splitPaths_ = vk::Buffer(ctx_, paths, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
   bindResources();
 }
 
@@ -417,6 +419,10 @@ void PathTracer::bindSharedResources(Pass& p) const {
   p.setBuffer("SampleSlotBlock", sampleSlots_);
   p.setBuffer("SplitRequestBlock", splitRequests_);
   p.setBuffer("SplitPathBlock", splitPaths_);
+  p.setStorageImage("albedoImage", albedo_.view());  // the AOVs: accumulate.glsl
+  p.setStorageImage("normalImage", normal_.view());
+  p.setStorageImage("infoImage", info_.view());
+  p.setStorageImage("statsImage", stats_.view());
 }
 
 void PathTracer::bindResources() {
@@ -424,10 +430,6 @@ void PathTracer::bindResources() {
   emitterVersion_ = gpuScene_.emitterVersion();
   bindSharedResources(p);
   if (shadowPass_) bindSharedResources(*shadowPass_);
-  p.setStorageImage("albedoImage", albedo_.view());
-  p.setStorageImage("normalImage", normal_.view());
-  p.setStorageImage("infoImage", info_.view());
-  p.setStorageImage("statsImage", stats_.view());
   p.setStorageImage("costImage", cost_.view());  // the cost variant's
   // Used by the WB_INSPECT variant only (the others' layouts skip them).
   p.setBuffer("InspectHeaderBlock", inspectHeader_);
@@ -476,6 +478,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   }
   if (onlyDenoise) {
     if (!aovsWritten) sampleIndex_ = 0;
+    createSplitBuffers();  // the split's records hold the AOVs while they are written
     return;
   }
   if (sunChanged) uploadLights();

@@ -89,8 +89,8 @@ class PathTracer final : public Renderer {
   }
   // DevicePolicy::splitShadows: whether this tracer traces next-event estimation's shadow rays in a launch of
   // their own after the path rays' (shaders/pathtracer/shadow_split.rgen; with tiles, after each region's).
-  // Only the plain variant without AOVs splits (the shadow launch accumulates the radiance alone); the
-  // window's view (which writes the AOVs for the denoiser) keeps the one loop.
+  // The plain variant splits, with AOVs too (the shadow launch accumulates the sample and its AOVs); the
+  // inspecting, cost and asserts variants keep the one loop (their records are written along the path).
   bool splitsShadows() const { return split_; }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
   bool cpuDeviceCode() const { return cpuDeviceCode_; }

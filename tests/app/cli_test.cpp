@@ -461,8 +461,8 @@ TEST(Cli, InspectPixelInAHybridModeWritesItsRays) {
 // WB_SPLIT_SHADOWS=1 (next-event estimation's shadow rays in a launch of their own) traces the same rays and
 // renders the same image as the one path loop, up to the order of the sums: on the default scene
 // (alpha-tested leaves: the shadow launch runs any-hit) and on the Cornell box (no any-hit; 64 bounces, more
-// light samples than a sample's slots hold in some paths), one sample and four per launch; a render with AOVs
-// keeps the one loop (the shadow launch accumulates the radiance alone).
+// light samples than a sample's slots hold in some paths), one sample and four per launch; a denoised render
+// (AOVs: the denoiser's guides, which the shadow launch writes) splits too and gives the one loop's image.
 TEST(Cli, SplitShadowsRenderTheSameImage) {
   const auto dir = tempDir();
   const std::string cornell = " " + (wb::sharedDir() / "reference" / "cornell.gltf").string() +
@@ -501,9 +501,14 @@ TEST(Cli, SplitShadowsRenderTheSameImage) {
     EXPECT_EQ(few["shadow_rays"], readJsonFile(dir / "loop.json")["shadow_rays"]);
     EXPECT_LT(few["error_vs_reference"]["rel_mse"].get<double>(), 1e-10) << few.dump();
   }
-  const CommandResult r = shell("env WB_SPLIT_SHADOWS=1 " + std::string(WB_WORKBENCH_BIN) +
-                                " render --size 16x16 --spp 1 --aov albedo --out " +
-                                (dir / "aov.png").string() + " --stats " + (dir / "aov.json").string());
+  const std::string denoised = " render --size 24x24 --spp 3 --denoise ";
+  CommandResult r = run(denoised + "--out " + (dir / "loop_denoised.exr").string());
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_FALSE(readJsonFile(dir / "aov.json")["split_shadows"].get<bool>());
+  r = shell("env WB_SPLIT_SHADOWS=1 " + std::string(WB_WORKBENCH_BIN) + denoised + "--out " +
+            (dir / "split_denoised.exr").string() + " --stats " + (dir / "split_denoised.json").string() +
+            " --reference " + (dir / "loop_denoised.exr").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const auto split = readJsonFile(dir / "split_denoised.json");
+  EXPECT_TRUE(split["split_shadows"].get<bool>());
+  EXPECT_LT(split["error_vs_reference"]["rel_mse"].get<double>(), 1e-10) << split.dump();
 }

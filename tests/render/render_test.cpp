@@ -1,6 +1,10 @@
 // Small renders on the real device (lavapipe here), checked for numbers, not by eye.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "common/paths.h"
@@ -136,29 +140,101 @@ TEST(Render, ASizeUsedBeforeReusesItsImagesClearedAndRendersTheSame) {
   expectNoValidationErrors(*session);
 }
 
-// Where the path tracer splits its shadow rays (WB_SPLIT_SHADOWS=1 here; the default on GPUs), its passes stay
-// the same objects in the same order while AOVs turn the split off and on again: the live-edit loop and the A/B
-// stand-ins keep pointers to them and their indices.
-TEST(Render, SplitShadowsKeepThePassesWhileAovsTurnItOffAndOn) {
-  ::setenv("WB_SPLIT_SHADOWS", "1", 1);
-  render::SessionOptions o;
-  o.settings.width = o.settings.height = 16;
+namespace {
+
+// A session with the split path loop forced on or off (WB_SPLIT_SHADOWS; the default is on for GPUs, off on
+// lavapipe).
+std::unique_ptr<render::RenderSession> sessionSplitting(bool split, const render::SessionOptions& o) {
+  ::setenv("WB_SPLIT_SHADOWS", split ? "1" : "0", 1);
   auto session = makeSession(o);
   ::unsetenv("WB_SPLIT_SHADOWS");
-  render::PathTracer& tracer = session->pathTracer();
-  ASSERT_TRUE(tracer.splitsShadows());
-  const auto before = tracer.passes();
-  render::RenderSettings settings = tracer.settings();
-  settings.aov = true;
-  tracer.setSettings(settings);
-  EXPECT_FALSE(tracer.splitsShadows());
-  EXPECT_EQ(tracer.passes(), before);
-  session->render(1);
-  settings.aov = false;
-  tracer.setSettings(settings);
-  EXPECT_TRUE(tracer.splitsShadows());
-  EXPECT_EQ(tracer.passes(), before);
-  session->render(2);
-  EXPECT_EQ(tracer.readCounters().droppedSamples, 0u);
-  expectNoValidationErrors(*session);
+  EXPECT_EQ(session->pathTracer().splitsShadows(), split);
+  return session;
+}
+
+// The accumulation and every AOV of two tracers agree to float rounding (the split sums a sample's light
+// samples in another order).
+void expectSameAccumulationAndAovs(const render::PathTracer& a, const render::PathTracer& b,
+                                   const std::string& what) {
+  const auto compare = [&](const std::vector<float>& x, const std::vector<float>& y, const char* name) {
+    ASSERT_EQ(x.size(), y.size()) << what << ": " << name;
+    size_t differ = 0, first = x.size();
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (x[i] == y[i] || std::abs(x[i] - y[i]) <= 1e-5f * std::max(std::abs(x[i]), std::abs(y[i]))) continue;
+      if (differ++ == 0) first = i;
+    }
+    EXPECT_EQ(differ, 0u) << what << ": " << name << ", first at " << first << " (" << x[first] << " against "
+                          << y[first] << ")";
+  };
+  compare(a.readAccumulation(), b.readAccumulation(), "accumulation");
+  compare(a.readAov(render::Aov::Albedo), b.readAov(render::Aov::Albedo), "albedo");
+  compare(a.readAov(render::Aov::Normal), b.readAov(render::Aov::Normal), "normal");
+  compare(a.readAov(render::Aov::Info), b.readAov(render::Aov::Info), "info");
+  compare(a.readAov(render::Aov::Stats), b.readAov(render::Aov::Stats), "stats");
+}
+
+}  // namespace
+
+// Where the path tracer splits its shadow rays (the default on GPUs), renders with AOVs (the window's views
+// and the denoiser's guides) split too, and the shadow launch writes the one loop's AOVs after adding the
+// light samples: on the default scene (alpha-tested leaves) with the denoiser turned on after two samples
+// (the split's records grow to hold the AOVs), and under an infinite sun, where the NaN/Inf source of a pixel
+// whose camera ray hits the sphere's lit side is its first vertex's light sample (bounce 0), traced by the
+// shadow launch. The passes stay the same objects in the same
+// order while the AOVs turn on and off: the live-edit loop and the A/B stand-ins keep pointers to them and
+// their indices.
+TEST(Render, SplitShadowsWriteTheOneLoopsAovsAndKeepThePasses) {
+  render::SessionOptions o;
+  o.settings.width = o.settings.height = 16;
+  auto loop = sessionSplitting(false, o), split = sessionSplitting(true, o);
+  const auto passes = split->pathTracer().passes();
+  loop->render(2);
+  split->render(2);
+  render::RenderSettings settings = split->pathTracer().settings();
+  settings.denoise = true;
+  for (auto* s : {loop.get(), split.get()}) {
+    s->pathTracer().setSettings(settings);
+    s->render(3);
+  }
+  EXPECT_TRUE(split->pathTracer().splitsShadows());
+  EXPECT_GT(split->pathTracer().passes().size(), passes.size()) << "the denoiser's passes";
+  expectSameAccumulationAndAovs(loop->pathTracer(), split->pathTracer(), "default scene, denoised");
+  settings.denoise = false;
+  split->pathTracer().setSettings(settings);
+  split->render(1);
+  EXPECT_TRUE(split->pathTracer().splitsShadows());
+  const auto after = split->pathTracer().passes();
+  EXPECT_TRUE(std::equal(passes.begin(), passes.end(), after.begin())) << "the passes stay the same objects";
+  EXPECT_EQ(split->pathTracer().readCounters().droppedSamples, 0u);
+  expectNoValidationErrors(*loop);
+  expectNoValidationErrors(*split);
+
+  // An infinite sun over a finite environment: only next-event estimation's light samples are infinite.
+  render::SessionOptions infinite;
+  infinite.sceneData = makeFurnaceScene(lambert(glm::vec3(0.5f)));
+  gpu::DirectionalLight sun{};
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+  sun.cosAngularRadius = 1.0f;
+  sun.radiance = glm::vec3(std::numeric_limits<float>::infinity());
+  infinite.sceneData->lights.push_back(sun);
+  infinite.settings.width = infinite.settings.height = 16;
+  infinite.settings.envColor = glm::vec3(0.5f);
+  infinite.settings.aov = true;
+  loop = sessionSplitting(false, infinite);
+  split = sessionSplitting(true, infinite);
+  loop->render(2);
+  split->render(2);
+  expectSameAccumulationAndAovs(loop->pathTracer(), split->pathTracer(), "infinite sun");
+  const auto stats = split->pathTracer().readAov(render::Aov::Stats);
+  size_t lit = 0, none = 0;
+  for (size_t i = 0; i < 256; ++i) {
+    const float bounce = stats[4 * i + 3];
+    EXPECT_TRUE(bounce == 0.0f || bounce == float(WB_NO_NON_FINITE)) << "pixel " << i << ": " << bounce;
+    lit += bounce == 0.0f;
+    none += bounce == float(WB_NO_NON_FINITE);
+  }
+  EXPECT_GT(lit, 20u) << "pixels whose first vertex's sun sample is infinite (bounce 0, the shadow launch's)";
+  EXPECT_GT(none, 20u) << "pixels that miss the sphere or face away from the sun";
+  expectNoValidationErrors(*loop);
+  expectNoValidationErrors(*split);
 }
