@@ -70,31 +70,35 @@ void accumulateAovs(uvec2 pixel, vec3 radiance, float before, SampleAovs s) {
 
 #if WB_SPLIT_SHADOWS
 // The split's record of a sample (SplitPathBlock, bindings.h): its radiance without the light samples left to the
-// shadow launch and how many it left, then with AOVs the sample's SampleAovs (raygen's first hit and path; the
-// shadow launch takes the light samples' NaN/Inf bounces into nonFiniteBounce).
+// shadow launch and how many it left, then with AOVs its SampleAovs: the first hit's (stored at the first hit),
+// then the path rays and the Russian-roulette and NaN/Inf bounces of the path's own contributions (stored at its
+// end; the shadow launch takes the light samples' NaN/Inf bounces into the last).
 uint splitRecord(uint record) { return record * ((pc.flags & WB_FLAG_AOV) != 0u ? WB_SPLIT_PATH_VEC4S_AOV : 1u); }
 
-void storeSplitRecord(uint record, vec3 radiance, uint requests, SampleAovs s) {
+void storeSplitFirstHit(uint record, vec3 albedo, float firstHitT, vec3 normal, vec3 geoNormal) {
+  const uint r = splitRecord(record);
+  splitPaths[r + 1u] = vec4(albedo, firstHitT);
+  splitPaths[r + 2u] = vec4(normal, 0.0);
+  splitPaths[r + 3u] = vec4(geoNormal, 0.0);
+}
+
+void storeSplitPath(uint record, vec3 radiance, uint requests, float rays, float rrEndBounce, float nonFiniteBounce) {
   const uint r = splitRecord(record);
   splitPaths[r] = vec4(radiance, float(requests));
-  if ((pc.flags & WB_FLAG_AOV) == 0u) return;
-  splitPaths[r + 1u] = vec4(s.albedo, s.firstHitT);
-  splitPaths[r + 2u] = vec4(s.normal, s.rays);
-  splitPaths[r + 3u] = vec4(s.geoNormal, s.rrEndBounce);
-  splitPaths[r + 4u] = vec4(s.nonFiniteBounce, 0.0, 0.0, 0.0);
+  if ((pc.flags & WB_FLAG_AOV) != 0u) splitPaths[r + 4u] = vec4(rays, rrEndBounce, nonFiniteBounce, 0.0);
 }
 
 SampleAovs loadSplitAovs(uint record) {
   const uint r = splitRecord(record);
   SampleAovs s;
-  const vec4 a = splitPaths[r + 1u], n = splitPaths[r + 2u], g = splitPaths[r + 3u];
+  const vec4 a = splitPaths[r + 1u], path = splitPaths[r + 4u];
   s.albedo = a.xyz;
   s.firstHitT = a.w;
-  s.normal = n.xyz;
-  s.rays = n.w;
-  s.geoNormal = g.xyz;
-  s.rrEndBounce = g.w;
-  s.nonFiniteBounce = splitPaths[r + 4u].x;
+  s.normal = splitPaths[r + 2u].xyz;
+  s.geoNormal = splitPaths[r + 3u].xyz;
+  s.rays = path.x;
+  s.rrEndBounce = path.y;
+  s.nonFiniteBounce = path.z;
   return s;
 }
 #endif
