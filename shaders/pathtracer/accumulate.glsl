@@ -1,6 +1,7 @@
 // A finished sample into the accumulation, as raygen.rgen and the split's shadow launch (shadow_split.rgen) both
 // finish one: a running mean per pixel, or with several samples per launch the sample's slot, which resolve.comp
-// accumulates in sample order; with AOVs (WB_FLAG_AOV) the first hit's guides and the heat maps' running means.
+// accumulates in sample order; with AOVs (WB_FLAG_AOV; the split's variant with WB_SPLIT_AOVS) the first hit's
+// guides and the heat maps' running means.
 #ifndef WB_PT_ACCUMULATE_GLSL
 #define WB_PT_ACCUMULATE_GLSL
 
@@ -69,11 +70,14 @@ void accumulateAovs(uvec2 pixel, vec3 radiance, float before, SampleAovs s) {
 }
 
 #if WB_SPLIT_SHADOWS
+#ifndef WB_SPLIT_AOVS
+#define WB_SPLIT_AOVS 0  // the split's variant without AOVs (PathTracer::splitsAovs)
+#endif
 // The split's record of a sample (SplitPathBlock, bindings.h): its radiance without the light samples left to the
 // shadow launch and how many it left, then with AOVs its SampleAovs: the first hit's (stored at the first hit),
 // then the path rays and the Russian-roulette and NaN/Inf bounces of the path's own contributions (stored at its
 // end; the shadow launch takes the light samples' NaN/Inf bounces into the last).
-uint splitRecord(uint record) { return record * ((pc.flags & WB_FLAG_AOV) != 0u ? WB_SPLIT_PATH_VEC4S_AOV : 1u); }
+uint splitRecord(uint record) { return record * (WB_SPLIT_AOVS != 0 ? WB_SPLIT_PATH_VEC4S_AOV : 1u); }
 
 void storeSplitFirstHit(uint record, vec3 albedo, float firstHitT, vec3 normal, vec3 geoNormal) {
   const uint r = splitRecord(record);
@@ -85,7 +89,7 @@ void storeSplitFirstHit(uint record, vec3 albedo, float firstHitT, vec3 normal, 
 void storeSplitPath(uint record, vec3 radiance, uint requests, float rays, float rrEndBounce, float nonFiniteBounce) {
   const uint r = splitRecord(record);
   splitPaths[r] = vec4(radiance, float(requests));
-  if ((pc.flags & WB_FLAG_AOV) != 0u) splitPaths[r + 4u] = vec4(rays, rrEndBounce, nonFiniteBounce, 0.0);
+  if (WB_SPLIT_AOVS != 0) splitPaths[r + 4u] = vec4(rays, rrEndBounce, nonFiniteBounce, 0.0);
 }
 
 SampleAovs loadSplitAovs(uint record) {

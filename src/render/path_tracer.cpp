@@ -174,9 +174,12 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   auto keys =
       stageKeys(features, cpuDeviceCode_, inspect, instrumentation_, clock_, ctx_.policy().costIsolatesLanes);
   split_ = splitWanted(inspect);
+  splitAovs_ = split_ && (settings_.aov || settings_.denoise);
   if (split_) {
-    name += " (split)";
+    name += splitAovs_ ? " (split, AOVs)" : " (split)";
     for (auto& k : keys) k.defines.push_back({"WB_SPLIT_SHADOWS", "1"});
+    if (splitAovs_)
+      for (auto& k : keys) k.defines.push_back({"WB_SPLIT_AOVS", "1"});
   }
   pass_->useProgram(name, keys);
   features_ = features;
@@ -191,6 +194,8 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
         plain[2],
         {shaderDir() / "pathtracer" / "shadow_split.rchit", std::nullopt, plain[0].defines}};
     if (plain.size() > 4) shadowKeys.push_back(plain[4]);  // any-hit
+    if (splitAovs_)
+      for (auto& k : shadowKeys) k.defines.push_back({"WB_SPLIT_AOVS", "1"});
     if (shadowPass_->useProgram(features.generic ? "pathtracer shadows" : "pathtracer shadows (specialised)",
                                 shadowKeys))
       shadowPass_->rebuild();
@@ -212,8 +217,7 @@ void PathTracer::createSplitBuffers() {
                        : 0;
   const VkDeviceSize requests = std::max<VkDeviceSize>(1, samples * splitSlots_) * kSplitRequestBytes;
   // A sample's record: its radiance and requests, with AOVs (one sample per launch) also theirs.
-  const VkDeviceSize paths = samples * sizeof(glm::vec4) *
-                             (split_ && (settings_.aov || settings_.denoise) ? WB_SPLIT_PATH_VEC4S_AOV : 1);
+  const VkDeviceSize paths = samples * sizeof(glm::vec4) * (splitAovs_ ? WB_SPLIT_PATH_VEC4S_AOV : 1);
   if (splitRequests_.size() == requests && splitPaths_.size() == paths) return;
   ctx_.waitIdle();
   splitRequests_ = vk::Buffer(ctx_, requests, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, false);
@@ -472,7 +476,11 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   const bool aovsWritten = settings_.aov || settings_.denoise;
   settings_ = settings;
   makeDenoiser();
-  if (featuresSet_ && splitWanted(inspectVariant_) != split_) {
+  // The split's variant without AOVs cannot write them: one that writes them is installed when they are
+  // wanted (the accumulation restarts then anyway: they were not written), and kept when they no longer are,
+  // so that turning the denoiser off keeps the accumulation.
+  const bool splitLacksAovs = split_ && !splitAovs_ && (settings_.aov || settings_.denoise);
+  if (featuresSet_ && (splitWanted(inspectVariant_) != split_ || splitLacksAovs)) {
     useVariant(features_, inspectVariant_);  // its install restarts the accumulation
     return;
   }

@@ -180,14 +180,15 @@ void expectSameAccumulationAndAovs(const render::PathTracer& a, const render::Pa
 // light samples: on the default scene (alpha-tested leaves) with the denoiser turned on after two samples
 // (the split's records grow to hold the AOVs), and under an infinite sun, where the NaN/Inf source of a pixel
 // whose camera ray hits the sphere's lit side is its first vertex's light sample (bounce 0), traced by the
-// shadow launch. The passes stay the same objects in the same
-// order while the AOVs turn on and off: the live-edit loop and the A/B stand-ins keep pointers to them and
-// their indices.
+// shadow launch, or without next-event estimation under an infinite environment, where it is a path ray's
+// (the split's raygen). The passes stay the same objects in the same order while the AOVs turn on and off:
+// the live-edit loop and the A/B stand-ins keep pointers to them and their indices.
 TEST(Render, SplitShadowsWriteTheOneLoopsAovsAndKeepThePasses) {
   render::SessionOptions o;
   o.settings.width = o.settings.height = 16;
   auto loop = sessionSplitting(false, o), split = sessionSplitting(true, o);
   const auto passes = split->pathTracer().passes();
+  EXPECT_FALSE(split->pathTracer().splitsAovs()) << "a plain render's split carries no AOVs";
   loop->render(2);
   split->render(2);
   render::RenderSettings settings = split->pathTracer().settings();
@@ -199,8 +200,12 @@ TEST(Render, SplitShadowsWriteTheOneLoopsAovsAndKeepThePasses) {
   EXPECT_TRUE(split->pathTracer().splitsShadows());
   EXPECT_GT(split->pathTracer().passes().size(), passes.size()) << "the denoiser's passes";
   expectSameAccumulationAndAovs(loop->pathTracer(), split->pathTracer(), "default scene, denoised");
+  EXPECT_TRUE(split->pathTracer().splitsAovs());
+  const uint32_t samples = split->pathTracer().samplesAccumulated();
   settings.denoise = false;
   split->pathTracer().setSettings(settings);
+  EXPECT_EQ(split->pathTracer().samplesAccumulated(), samples)
+      << "turning the denoiser off keeps the accumulation";
   split->render(1);
   EXPECT_TRUE(split->pathTracer().splitsShadows());
   const auto after = split->pathTracer().passes();
@@ -235,6 +240,25 @@ TEST(Render, SplitShadowsWriteTheOneLoopsAovsAndKeepThePasses) {
   }
   EXPECT_GT(lit, 20u) << "pixels whose first vertex's sun sample is infinite (bounce 0, the shadow launch's)";
   EXPECT_GT(none, 20u) << "pixels that miss the sphere or face away from the sun";
+  expectNoValidationErrors(*loop);
+  expectNoValidationErrors(*split);
+
+  // An infinite environment without next-event estimation: the path's own contributions turn the samples
+  // infinite (bounce 0 for a camera ray that misses the sphere, 1 for one whose continuation escapes), which
+  // the split's raygen writes to its record as they happen.
+  infinite.sceneData = makeFurnaceScene(lambert(glm::vec3(0.5f)));
+  infinite.settings.envColor = glm::vec3(3.0e38f);
+  infinite.settings.envIntensity = 10.0f;
+  infinite.settings.nee = false;
+  loop = sessionSplitting(false, infinite);
+  split = sessionSplitting(true, infinite);
+  loop->render(2);
+  split->render(2);
+  expectSameAccumulationAndAovs(loop->pathTracer(), split->pathTracer(), "infinite environment");
+  const auto escaped = split->pathTracer().readAov(render::Aov::Stats);
+  size_t atOne = 0;
+  for (size_t i = 0; i < 256; ++i) atOne += escaped[4 * i + 3] == 1.0f;
+  EXPECT_GT(atOne, 20u) << "pixels whose continuation escapes to the infinite environment";
   expectNoValidationErrors(*loop);
   expectNoValidationErrors(*split);
 }
