@@ -50,8 +50,8 @@
 // docs/bench/roofline.md): storage buffer vec4[] of PushConstants::splitSlots requests per pixel and sample of
 // the launch, 3 vec4 each (origin and tMax, direction, the contribution if unoccluded and the bounce it leaves
 // from), and vec4[] per pixel and sample (the path's own radiance and what raygen traced itself, a = the requests
-// left for the shadow launch), with AOVs (WB_FLAG_AOV) WB_SPLIT_PATH_VEC4S_AOV vec4 per record: then the sample's
-// AOVs (accumulate.glsl, SampleAovs)
+// left for the shadow launch), in the split's variant with AOVs (WB_SPLIT_AOVS) WB_SPLIT_PATH_VEC4S_AOV vec4 per
+// record: then the sample's AOVs (accumulate.glsl, SampleAovs)
 #define WB_BIND_SPLIT_REQUESTS 27
 #define WB_BIND_SPLIT_PATHS 28
 #define WB_SPLIT_PATH_VEC4S_AOV 5u

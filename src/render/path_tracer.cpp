@@ -486,7 +486,7 @@ void PathTracer::setSettings(const RenderSettings& settings) {
   }
   if (onlyDenoise) {
     if (!aovsWritten) sampleIndex_ = 0;
-    createSplitBuffers();  // the split's records hold the AOVs while they are written
+    createSplitBuffers();  // the samples per launch follow the AOVs (one while they are written)
     return;
   }
   if (sunChanged) uploadLights();

@@ -211,6 +211,15 @@ TEST(Render, SplitShadowsWriteTheOneLoopsAovsAndKeepThePasses) {
   const auto after = split->pathTracer().passes();
   EXPECT_TRUE(std::equal(passes.begin(), passes.end(), after.begin())) << "the passes stay the same objects";
   EXPECT_EQ(split->pathTracer().readCounters().droppedSamples, 0u);
+  // Several samples per launch (without AOVs) on the variant kept: as the one loop, it leaves the AOVs alone
+  // (the samples of a launch would race on them).
+  const auto aovsBefore = split->pathTracer().readAov(render::Aov::Stats);
+  settings.samplesPerLaunch = 4;
+  split->pathTracer().setSettings(settings);
+  EXPECT_TRUE(split->pathTracer().splitsAovs());
+  split->render(4);
+  EXPECT_EQ(split->pathTracer().readAov(render::Aov::Stats), aovsBefore) << "a launch of several samples";
+  EXPECT_EQ(split->pathTracer().readCounters().droppedSamples, 0u);
   expectNoValidationErrors(*loop);
   expectNoValidationErrors(*split);
 
