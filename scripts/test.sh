@@ -9,6 +9,10 @@ bash scripts/setup.sh  # the system packages (as root, or through sudo)
 
 jobs=$(nproc)
 export CTEST_OUTPUT_ON_FAILURE=1
+# The machine, for reading a failure later (lavapipe's generated code depends on the CPU's vector units).
+avx512=no
+grep -qw avx512f /proc/cpuinfo && avx512=yes
+echo "== machine: $jobs cores,$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2), AVX-512: $avx512"
 
 echo "== Release build and tests =="
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
