@@ -16,7 +16,8 @@ double msBetween(std::chrono::steady_clock::time_point a, std::chrono::steady_cl
 // A pipeline whose trial frame never finished, as the user reads it: the stages whose SPIR-V differs from the
 // installed pipeline's (the edit), the limit, and what happens.
 std::string describeHang(const shader::ShaderLibrary::ProgramBuild& build,
-                         const shader::ShaderLibrary::ProgramBuild& installed, double limitSeconds) {
+                         const shader::ShaderLibrary::ProgramBuild& installed, double limitSeconds,
+                         double cpuSeconds) {
   std::string stages;
   for (size_t i = 0; i < build.stages.size(); ++i) {
     const auto& s = build.stages[i];
@@ -24,12 +25,15 @@ std::string describeHang(const shader::ShaderLibrary::ProgramBuild& build,
         i < installed.stages.size() && installed.stages[i] && installed.stages[i]->spirv == s->spirv;
     if (!same) stages += (stages.empty() ? "" : ", ") + s->key.path.string();
   }
-  char limit[32];
-  std::snprintf(limit, sizeof limit, "%.1f", limitSeconds);
+  char limit[96];
+  if (cpuSeconds >= 0)
+    std::snprintf(limit, sizeof limit, "%.1f s (its device's threads ran %.1f s of CPU)", limitSeconds,
+                  cpuSeconds);
+  else
+    std::snprintf(limit, sizeof limit, "%.1f s", limitSeconds);
   return "the new " + (stages.empty() ? std::string("pipeline") : stages) + " did not finish a " +
          std::to_string(kTrialSize) + "x" + std::to_string(kTrialSize) + " trial frame in " + limit +
-         " s: an endless loop? The edit is refused and the last good pipeline stays (the trial ran on a "
-         "second "
+         ": an endless loop? The edit is refused and the last good pipeline stays (the trial ran on a second "
          "device, which the workbench leaves behind)";
 }
 
@@ -123,7 +127,7 @@ render::PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::Shad
   const auto options = library_.options();
   bool failed = false;
   WarmOutcome outcome = WarmOutcome::Warmed;
-  double limit = 0;
+  double limit = 0, hangCpu = -1;
   auto built = buildBesideWarmup([&] { return entry.pass->buildPipeline(program, build); },
                                  [&] {
                                    auto make = [&] { return std::make_unique<JitWarmup>(renderer, options); };
@@ -131,6 +135,7 @@ render::PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::Shad
                                      const WarmOutcome r = x.warm(renderer, entry.passIndex, build, counter,
                                                                   warmup->compileAhead);
                                      limit = x.trialLimitSeconds();
+                                     hangCpu = x.hangCpuSeconds();
                                      return r;
                                    });
                                    outcome = o;
@@ -141,7 +146,7 @@ render::PassPipeline HotReload::buildWithWarmup(const Entry& entry, shader::Shad
   if (outcome == WarmOutcome::Hung) {
     // A new warm-up device for the next reload, made now off the loop.
     warmup->slot.makeAhead([&renderer, options] { return std::make_unique<JitWarmup>(renderer, options); });
-    throw TrialHang(describeHang(build, entry.pass->installed().build, limit));
+    throw TrialHang(describeHang(build, entry.pass->installed().build, limit, hangCpu));
   }
   const auto& rt = built.pipeline->rayTracing;
   if (!warmedHandles.empty() && rt && warmedHandles != rt->sbt().groupHandles()) ++warmup->mismatches;

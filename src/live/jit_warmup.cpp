@@ -9,6 +9,7 @@
 
 #include "common/env.h"
 #include "common/statistics.h"
+#include "common/thread_cpu.h"
 #include "scene/procedural.h"
 #include "vk/check.h"
 #include "vk/pipeline_layout.h"
@@ -138,6 +139,12 @@ bool alignGroupCounter(vk::Context& ctx, const shader::ShaderLibrary::ProgramBui
   return makeThrowawayGroups(ctx, build, *raygen, last - now) == last;
 }
 
+bool warmupFrameMayStillFinish(double wall, double cpu, double limit, bool countCpu) {
+  constexpr double kStarvedLimits = 20.0;
+  if (wall < limit) return true;
+  return countCpu && cpu < limit && wall < kStarvedLimits * limit;
+}
+
 uint64_t mesaShaderCacheBytes() {
   const auto dir = env::get("MESA_SHADER_CACHE_DIR");
   if (!dir) return 0;
@@ -151,9 +158,12 @@ uint64_t mesaShaderCacheBytes() {
 }
 
 WarmupDevice::WarmupDevice(const vk::Context& main, const shader::ShaderLibrary::Options& libraryOptions)
-    : ctx(warmupContext(main)), library(warmupLibrary(libraryOptions)), scene(standInScene()) {
+    : library(warmupLibrary(libraryOptions)), scene(standInScene()) {
+  const std::vector<long> before = threadIds();
+  ctx = warmupContext(main);
   gpuScene = std::make_unique<render::GpuScene>(*ctx, scene);
   env = std::make_unique<render::GpuEnvironment>(*ctx, blackEnvironment());
+  driverThreads = threadsStartedSince(before, threadIds());
 }
 
 WarmupDevice::~WarmupDevice() {
@@ -184,6 +194,7 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
   using Clock = std::chrono::steady_clock;
   vk::Context& ctx = *device_.ctx;
   const double hangSeconds = like.context().policy().hangSeconds;
+  const bool countCpu = like.context().policy().hangCountsDriverCpu && !device_.driverThreads.empty();
   // Compiled parameters first: a new specialisation rebuilds a pipeline here (new group numbers).
   renderer_->matchCompiledParameters(like);
   if (compileAhead && !alignGroupCounter(ctx, build, renderDeviceGroupCounter.value_or(0)))
@@ -203,8 +214,8 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
     const auto t1 = Clock::now();
     const auto compileLimit =
         std::chrono::duration<double>(std::max({60.0, 12.0 * hangSeconds, 20.0 * median(compileSeconds_)}));
-    if (!ctx.submitAndWaitFor([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); },
-                              std::chrono::duration_cast<std::chrono::nanoseconds>(compileLimit))) {
+    if (!finishes([&](VkCommandBuffer cmd) { renderer_->recordCompileOnly(cmd); }, compileLimit.count(),
+                  countCpu)) {
       trialLimit_ = compileLimit.count();
       return WarmOutcome::Hung;
     }
@@ -220,14 +231,27 @@ WarmOutcome JitWarmup::warm(const render::Renderer& like, size_t passIndex,
   trialLimit_ = std::max(hangSeconds, 50.0 * median(trialSeconds_));
   renderer_->resetAccumulation();
   const auto t2 = Clock::now();
-  if (!ctx.submitAndWaitFor(
-          [&](VkCommandBuffer cmd) { renderer_->record(cmd); },
-          std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(trialLimit_))))
+  if (!finishes([&](VkCommandBuffer cmd) { renderer_->record(cmd); }, trialLimit_, countCpu))
     return WarmOutcome::Hung;
   renderer_->advance();
   remember(trialSeconds_, seconds(Clock::now() - t2));
   ++warmups_;
   return WarmOutcome::Warmed;
+}
+
+bool JitWarmup::finishes(const std::function<void(VkCommandBuffer)>& record, double limit, bool countCpu) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto cpuAtStart = countCpu ? threadCpuSeconds(device_.driverThreads) : std::map<long, double>{};
+  double cpu = 0;
+  const bool done = device_.ctx->submitAndWaitWhile(record, [&] {
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    if (countCpu && wall >= limit)
+      cpu = cpuSecondsBetween(cpuAtStart, threadCpuSeconds(device_.driverThreads));
+    return warmupFrameMayStillFinish(wall, cpu, limit, countCpu);
+  });
+  hangCpuSeconds_ = done || !countCpu ? -1.0 : cpu;
+  return done;
 }
 
 }  // namespace wb::live

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -47,6 +48,12 @@ bool alignGroupCounter(vk::Context& ctx, const shader::ShaderLibrary::ProgramBui
 // there is the compiled pipeline; the tests use it to see who compiled.
 uint64_t mesaShaderCacheBytes();
 
+// Whether a warm-up frame that has run for `wall` seconds, while its device's driver threads spent `cpu`
+// seconds of CPU time, is still waited for under a limit of `limit` seconds. Past the limit it is not, unless
+// `countCpu` (DevicePolicy::hangCountsDriverCpu) and the threads have spent less than the limit: then the
+// machine's other work starves the frame, and it is waited for up to 20 limits.
+bool warmupFrameMayStillFinish(double wall, double cpu, double limit, bool countCpu);
+
 // The warm-up device and what every warm-up renders with there: a device like `main` (same physical device,
 // same validation setting), a shader library with the render side's options (the same SPIR-V cache: first
 // builds are cache hits), a stand-in scene (one quad, one material, a sun) and a black environment.
@@ -58,6 +65,9 @@ struct WarmupDevice {
   render::RendererResources resources() const;
 
   std::unique_ptr<vk::Context> ctx;
+  // The threads started while this was made (the driver's, for this device: where a CPU driver runs its
+  // work).
+  std::vector<long> driverThreads;
   std::unique_ptr<shader::ShaderLibrary> library;
   scene::Scene scene;
   std::unique_ptr<render::GpuScene> gpuScene;
@@ -88,6 +98,9 @@ class JitWarmup {
                    std::optional<uint32_t> renderDeviceGroupCounter, bool compileAhead);
   // How long the last trial frame was given (s), and whether a frame of this warm-up never finished.
   double trialLimitSeconds() const { return trialLimit_; }
+  // The CPU seconds the device's driver threads spent during the last frame that hung (where the policy
+  // counts them: DevicePolicy::hangCountsDriverCpu; else a negative value).
+  double hangCpuSeconds() const { return hangCpuSeconds_; }
   bool hung() const { return device_.ctx->hung(); }
   // The group handles of the last warmed pipeline (empty when it was not a ray tracing pipeline): equal to
   // the render device's pipeline's when their numbers matched.
@@ -102,6 +115,11 @@ class JitWarmup {
   std::vector<double> trialSeconds_;    // the finished trial frames', for the limit of the next
   std::vector<double> compileSeconds_;  // the finished compiles ahead', for the limit of the next
   double trialLimit_ = 0;
+  double hangCpuSeconds_ = -1;
+
+  // Submits `record` on the warm-up device and waits: false once the frame counts as hung
+  // (warmupFrameMayStillFinish).
+  bool finishes(const std::function<void(VkCommandBuffer)>& record, double limit, bool countCpu);
 };
 
 // A reload's new pipeline whose trial frame did not finish (JitWarmup::warm): what the user reads.

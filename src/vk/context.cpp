@@ -445,11 +445,18 @@ bool Context::anyHung() {
 }
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
-  submitAndWaitFor(record, std::chrono::nanoseconds::max());
+  submitAndWaitWhile(
+      record, [] { return true; }, std::chrono::nanoseconds::max());
 }
 
 bool Context::submitAndWaitFor(const std::function<void(VkCommandBuffer)>& record,
                                std::chrono::nanoseconds timeout) {
+  return submitAndWaitWhile(
+      record, [] { return false; }, timeout);
+}
+
+bool Context::submitAndWaitWhile(const std::function<void(VkCommandBuffer)>& record,
+                                 const std::function<bool()>& keepWaiting, std::chrono::nanoseconds poll) {
   std::lock_guard lock(submitMutex_);
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = pool_;
@@ -469,12 +476,14 @@ bool Context::submitAndWaitFor(const std::function<void(VkCommandBuffer)>& recor
     std::lock_guard qlock(queueMutex_);
     WB_VK(vkQueueSubmit(queue_, 1, &si, fence_));
   }
-  const uint64_t ns = timeout == std::chrono::nanoseconds::max() ? UINT64_MAX : uint64_t(timeout.count());
-  const VkResult r = vkWaitForFences(device_, 1, &fence_, VK_TRUE, ns);
-  if (r == VK_TIMEOUT) {
-    hung_ = true;
-    gAnyHung = true;
-    return false;
+  const uint64_t ns = poll == std::chrono::nanoseconds::max() ? UINT64_MAX : uint64_t(poll.count());
+  VkResult r;
+  while ((r = vkWaitForFences(device_, 1, &fence_, VK_TRUE, ns)) == VK_TIMEOUT) {
+    if (!keepWaiting()) {
+      hung_ = true;
+      gAnyHung = true;
+      return false;
+    }
   }
   WB_VK(r);
   WB_VK(vkResetFences(device_, 1, &fence_));

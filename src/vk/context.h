@@ -82,6 +82,11 @@ class Context {
   // busy for good as far as this process knows (no driver here cancels a running shader): the context is
   // marked hung and must not be used or destroyed (hung(); leak it).
   bool submitAndWaitFor(const std::function<void(VkCommandBuffer)>& record, std::chrono::nanoseconds timeout);
+  // The same, waiting while keepWaiting() says to (asked every `poll` until the work has finished): false,
+  // and the context hung as above, once it says not to.
+  bool submitAndWaitWhile(const std::function<void(VkCommandBuffer)>& record,
+                          const std::function<bool()>& keepWaiting,
+                          std::chrono::nanoseconds poll = std::chrono::milliseconds(100));
   bool hung() const { return hung_; }
   // Whether any context of the process hung: its threads may never end, so the process ends with _exit
   // rather than running the drivers' exit handlers (app/main.cpp).

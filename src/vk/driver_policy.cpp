@@ -65,6 +65,7 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   p.windowTraceShareWhileCompiling = cpu ? kLoopShareWhileCompiling : 1.0;
   p.trialRuns = overrides.trialRuns.value_or(true);
   if (overrides.hangSeconds) p.hangSeconds = *overrides.hangSeconds;
+  p.hangCountsDriverCpu = cpu;
   p.shaderClock = device.shaderClockSupported && overrides.shaderClock.value_or(true);
   p.deviceClock = overrides.deviceClock.value_or(false);
   p.costIsolatesLanes = device.raygenSubgroupVote && overrides.costIsolation.value_or(true);

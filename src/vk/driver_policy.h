@@ -72,6 +72,12 @@ struct DevicePolicy {
   // A frame that has not finished after this long, and after many times the frames before it, counts as
   // hung (the trial frame's, and the render loop's watchdog).
   double hangSeconds = 5.0;
+  // The device's work runs on the CPU, on threads the driver starts with the device: the trial frame (and the
+  // compile ahead) of a hot reload counts as hung only once those threads have also spent its limit in CPU
+  // time. A shader in an endless loop spends it at the wall clock's pace; a warm-up starved by other work on
+  // the machine (it runs at a lowered priority) does not, and is waited for (up to 20 times the limit:
+  // live/jit_warmup.h, warmupFrameMayStillFinish).
+  bool hangCountsDriverCpu = false;
   // VK_KHR_shader_clock is enabled, for the path tracer's cost variants (the cost heat maps, the inspector's
   // per-vertex cost): wherever the device has it, unless WB_SHADER_CLOCK=0 (a device without one, for
   // testing, or a driver whose clock misbehaves).
