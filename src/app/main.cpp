@@ -1,11 +1,6 @@
 // workbench: the Vulkan ray tracing shader workbench. One command line: the live window without a
 // subcommand; render, shaders, watch, converge, bench and sweep as subcommands (app/command.h).
-#include <csignal>
 #include <cstdio>
-#include <cstring>
-
-#include <execinfo.h>
-#include <unistd.h>
 #include <string>
 #include <vector>
 
@@ -16,37 +11,15 @@
 #include "app/cmd_watch.h"
 #include "app/sweep/cmd_sweep.h"
 #include "app/window/window_command.h"
+#include "common/crash_report.h"
 #include "common/env.h"
 #include "common/paths.h"
 #include "vk/context.h"
 #include "vk/driver_policy.h"
 
-namespace {
-
-#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reports crashes itself
-// A crash still says where: the call stack (addresses relative to the binary's load address, for addr2line)
-// goes to stderr before the default action ends the process.
-void crashHandler(int sig) {
-  void* frames[64];
-  const int n = backtrace(frames, 64);
-  const char* head =
-      sig == SIGSEGV ? "workbench: segmentation fault; stack:\n" : "workbench: fatal signal; stack:\n";
-  (void)!write(2, head, std::strlen(head));
-  backtrace_symbols_fd(frames, n, 2);
-  std::signal(sig, SIG_DFL);
-  std::raise(sig);
-}
-#endif
-
-}  // namespace
-
 int main(int argc, char** argv) {
-#ifndef __SANITIZE_ADDRESS__  // AddressSanitizer reports crashes itself
-  std::signal(SIGSEGV, crashHandler);
-  std::signal(SIGBUS, crashHandler);
-  std::signal(SIGILL, crashHandler);
-  std::signal(SIGFPE, crashHandler);
-#endif
+  // A crash (a driver's compiler that aborts, a segmentation fault) still says where.
+  wb::installCrashReport("workbench");
   // The environment is checked before anything else: a variable with a value it cannot take is refused
   // naming it, as a bad flag is (exit status 2), instead of meaning the default, or crashing the driver.
   try {

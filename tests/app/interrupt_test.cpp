@@ -1,5 +1,6 @@
 // `render` interrupted with Ctrl-C (SIGINT) writes the image accumulated so far, with its stats marked
-// partial, and exits with 128 + the signal; its progress lines say how far it got.
+// partial, and exits with 128 + the signal; its progress lines say how far it got. One that dies of a fatal
+// signal (SIGABRT: what a driver's compiler raises when it fails) says so with its call stack first.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -46,5 +47,29 @@ TEST(Interrupt, CtrlCWritesThePartialImageWithItsStatsMarkedPartial) {
   EXPECT_GE(j["spp"].get<int>(), 1);
   EXPECT_LT(j["spp"].get<int>(), 1000000);
   EXPECT_EQ(j["spp_requested"].get<int>(), 1000000);
+  fs::remove_all(dir);
+}
+
+TEST(Interrupt, AFatalSignalPrintsTheThreadAndTheCallStack) {
+  const fs::path dir = fs::temp_directory_path() / ("wb_abort_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path log = dir / "log.txt";
+  const std::string script = "'" + std::string(WB_WORKBENCH_BIN) +
+                             "' render --size 48x32 --spp 1000000 --out '" + (dir / "never.png").string() +
+                             "' > '" + log.string() +
+                             "' 2>&1 & pid=$!; "
+                             "for i in $(seq 6000); do grep -q 'ETA' '" +
+                             log.string() +
+                             "' && break; kill -0 $pid 2>/dev/null || break; sleep 0.1; done; "
+                             "kill -ABRT $pid; wait $pid; echo \"exit=$?\"";
+  const fs::path scriptFile = dir / "abort.sh";
+  std::ofstream(scriptFile) << script << "\n";
+  const auto r = wb::testing::runCommand("bash '" + scriptFile.string() + "'");
+  std::ifstream lf(log);
+  const std::string printed((std::istreambuf_iterator<char>(lf)), {});
+  EXPECT_NE(r.output.find("exit=134"), std::string::npos) << r.output << printed;
+  EXPECT_NE(printed.find("*** workbench: fatal signal 6 (ABRT) in thread "), std::string::npos) << printed;
+  EXPECT_NE(printed.find("its call stack:\n"), std::string::npos) << printed;
   fs::remove_all(dir);
 }
