@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -15,27 +16,44 @@
 
 namespace fs = std::filesystem;
 
-TEST(Interrupt, CtrlCWritesThePartialImageWithItsStatsMarkedPartial) {
-  const fs::path dir = fs::temp_directory_path() / ("wb_interrupt_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path out = dir / "partial.png", stats = dir / "partial.json", log = dir / "log.txt";
-  // The render is far longer than any test: the shell waits for its first progress line (an event, with a
-  // generous cap), then sends SIGINT as Ctrl-C would.
+namespace {
+
+// A render far longer than any test (48x32, a million samples, writing `out`) in folder `dir`, sent `signal`
+// by the shell once its first progress line is there (an event, with a generous cap). Returns the shell's
+// "exit=<status>" line and what the render printed.
+std::pair<std::string, std::string> renderThenSignal(const fs::path& dir, const fs::path& out,
+                                                     const std::string& signal) {
+  const fs::path log = dir / "log.txt", scriptFile = dir / "signal.sh";
   const std::string script = "'" + std::string(WB_WORKBENCH_BIN) +
                              "' render --size 48x32 --spp 1000000 --out '" + out.string() + "' --stats '" +
-                             stats.string() + "' > '" + log.string() +
+                             (dir / "partial.json").string() + "' > '" + log.string() +
                              "' 2>&1 & pid=$!; "
                              "for i in $(seq 6000); do grep -q 'ETA' '" +
                              log.string() +
                              "' && break; kill -0 $pid 2>/dev/null || break; sleep 0.1; done; "
-                             "kill -INT $pid; wait $pid; echo \"exit=$?\"";
-  const fs::path scriptFile = dir / "interrupt.sh";
+                             "kill -" +
+                             signal + " $pid; wait $pid; echo \"exit=$?\"";
   std::ofstream(scriptFile) << script << "\n";
   const auto r = wb::testing::runCommand("bash '" + scriptFile.string() + "'");
   std::ifstream lf(log);
-  const std::string printed((std::istreambuf_iterator<char>(lf)), {});
-  EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output << printed;
+  return {r.output, std::string((std::istreambuf_iterator<char>(lf)), {})};
+}
+
+fs::path freshFolder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / (name + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST(Interrupt, CtrlCWritesThePartialImageWithItsStatsMarkedPartial) {
+  const fs::path dir = freshFolder("wb_interrupt_");
+  const fs::path out = dir / "partial.png", stats = dir / "partial.json";
+  // SIGINT, as Ctrl-C sends it.
+  const auto [exitLine, printed] = renderThenSignal(dir, out, "INT");
+  EXPECT_NE(exitLine.find("exit=130"), std::string::npos) << exitLine << printed;
   EXPECT_NE(printed.find("render: "), std::string::npos) << "a progress line: " << printed;
   EXPECT_NE(printed.find("partial"), std::string::npos) << printed;
   ASSERT_TRUE(fs::exists(out)) << printed;
@@ -51,24 +69,9 @@ TEST(Interrupt, CtrlCWritesThePartialImageWithItsStatsMarkedPartial) {
 }
 
 TEST(Interrupt, AFatalSignalPrintsTheThreadAndTheCallStack) {
-  const fs::path dir = fs::temp_directory_path() / ("wb_abort_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path log = dir / "log.txt";
-  const std::string script = "'" + std::string(WB_WORKBENCH_BIN) +
-                             "' render --size 48x32 --spp 1000000 --out '" + (dir / "never.png").string() +
-                             "' > '" + log.string() +
-                             "' 2>&1 & pid=$!; "
-                             "for i in $(seq 6000); do grep -q 'ETA' '" +
-                             log.string() +
-                             "' && break; kill -0 $pid 2>/dev/null || break; sleep 0.1; done; "
-                             "kill -ABRT $pid; wait $pid; echo \"exit=$?\"";
-  const fs::path scriptFile = dir / "abort.sh";
-  std::ofstream(scriptFile) << script << "\n";
-  const auto r = wb::testing::runCommand("bash '" + scriptFile.string() + "'");
-  std::ifstream lf(log);
-  const std::string printed((std::istreambuf_iterator<char>(lf)), {});
-  EXPECT_NE(r.output.find("exit=134"), std::string::npos) << r.output << printed;
+  const fs::path dir = freshFolder("wb_abort_");
+  const auto [exitLine, printed] = renderThenSignal(dir, dir / "never.png", "ABRT");
+  EXPECT_NE(exitLine.find("exit=134"), std::string::npos) << exitLine << printed;
   EXPECT_NE(printed.find("*** workbench: fatal signal 6 (ABRT) in thread "), std::string::npos) << printed;
   EXPECT_NE(printed.find("its call stack:\n"), std::string::npos) << printed;
   fs::remove_all(dir);
