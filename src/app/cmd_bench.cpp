@@ -126,6 +126,9 @@ json benchPathTracer(const BenchScene& bs, bool generic, uint32_t w, uint32_t h,
   j["tlas_build_ms"] = s.gpuScene().accel().tlasBuildMs();
   j["scene_device_bytes"] = s.gpuScene().deviceBytes();
   j["pass_ms"] = passMsJson(s.renderer().passTimer());  // GPU ms per sample, the last run's
+  j["split_shadows"] = s.pathTracer().splitsShadows();
+  j["invocation_reorder"] = s.context().invocationReorderSupport();
+  j["invocation_reorder_used"] = s.pathTracer().reordersInvocations();
   if (!generic) j.update(benchRoofline(s, repeats));
   if (cpuDevice) *cpuDevice = s.context().policy().compilesAtFirstDispatch;
   return j;

@@ -158,6 +158,9 @@ int RenderCommand::run() {
       j["shadow_rays"] = counters.shadowRayCount;
       // The shadow rays in a launch of their own (DevicePolicy::splitShadows).
       j["split_shadows"] = session.pathTracer().splitsShadows();
+      // Shader execution reordering: what the device offers, and whether the path rays used it.
+      j["invocation_reorder"] = session.context().invocationReorderSupport();
+      j["invocation_reorder_used"] = session.pathTracer().reordersInvocations();
       j["nan_inf_dropped"] = counters.droppedSamples;
       j["mean_rgb"] = {mean[0], mean[1], mean[2]};
       j["max_bounces"] = ro.params.render.maxBounces;

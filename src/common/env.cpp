@@ -18,7 +18,7 @@ constexpr const char* kSwitches[] = {
     "WB_PIPELINE_LIBRARY", "WB_DEFERRED_HOST_OPS",   "WB_JIT_WARMUP",         "WB_TRIAL_RUN",
     "WB_CPU_DEVICE_CODE",  "WB_SIMULATE_NO_PRESENT", "WB_SIMULATE_DISK_FULL", "WB_VALIDATION",
     "WB_SHADER_CLOCK",     "WB_DEVICE_CLOCK",        "WB_COST_ISOLATE",       "WB_DENOISE_WINDOW",
-    "WB_SPLIT_SHADOWS"};
+    "WB_SPLIT_SHADOWS",    "WB_INVOCATION_REORDER"};
 
 // WB_REBUILD_YIELD: frame times of rest per frame while a rebuild compiles.
 constexpr double kMaxRebuildYield = 1000.0;

@@ -92,6 +92,8 @@ class PathTracer final : public Renderer {
   // The plain variant splits, with AOVs too (the shadow launch accumulates the sample and its AOVs); the
   // inspecting, cost and asserts variants keep the one loop (their records are written along the path).
   bool splitsShadows() const { return split_; }
+  // The path rays regrouped by shader execution reordering (DevicePolicy::invocationReorder).
+  bool reordersInvocations() const { return reorder_; }
   // Whether the split's variant writes the AOVs (WB_SPLIT_AOVS): made where they are wanted, kept after.
   bool splitsAovs() const { return splitAovs_; }
   // Whether this tracer's shaders are shaped for a CPU device (DevicePolicy::cpuShapedShaderCode).
@@ -250,6 +252,7 @@ class PathTracer final : public Renderer {
   // The split's shadow launch (made where DevicePolicy::splitShadows, used while splitsShadows) and its
   // buffers (WB_BIND_SPLIT_*; 16 bytes while not split).
   bool split_ = false;
+  bool reorder_ = false;  // the raygen variant with WB_INVOCATION_REORDER
   bool splitAovs_ = false;   // the split's variant writes AOVs (splitsAovs)
   uint32_t splitSlots_ = 0;  // shadow requests per sample the buffers hold (PushConstants::splitSlots)
   std::unique_ptr<Pass> shadowPass_;

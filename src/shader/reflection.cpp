@@ -1,6 +1,7 @@
 #include "shader/reflection.h"
 
 #include "shader/hash.h"
+#include "shader/hit_object.h"
 
 #include <spirv_cross/spirv_cross.hpp>
 
@@ -100,8 +101,9 @@ std::pair<fs::path, int> declarationIn(const std::vector<fs::path>& files, const
 
 }  // namespace
 
-Reflection reflectSpirv(const std::vector<uint32_t>& spirv, Stage stage, const fs::path& file) {
+Reflection reflectSpirv(const std::vector<uint32_t>& module, Stage stage, const fs::path& file) {
   Reflection out;
+  const std::vector<uint32_t> spirv = withoutHitObjects(module);  // what SPIRV-Cross can parse
   try {
     spirv_cross::Compiler c(spirv);
     const auto active = c.get_active_interface_variables();
@@ -178,7 +180,7 @@ void checkBindingAliases(const CompiledShader& stage) {
   };
   std::vector<Declared> declared;
   try {
-    spirv_cross::Compiler c(stage.spirv);
+    spirv_cross::Compiler c(withoutHitObjects(stage.spirv));
     const auto res = c.get_shader_resources();
     auto add = [&](const spirv_cross::SmallVector<spirv_cross::Resource>& list, const char* type) {
       for (const auto& r : list) {

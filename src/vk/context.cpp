@@ -291,6 +291,7 @@ void Context::pickDevice(const ContextOptions& options) {
   for (const auto& e : candidates[*choice.index].extensions) {
     if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
     if (e == VK_KHR_SHADER_CLOCK_EXTENSION_NAME) shaderClockExtension_ = true;
+    if (e == VK_NV_RAY_TRACING_INVOCATION_REORDER_EXTENSION_NAME) reorderExtension_ = true;
   }
   // The shader clocks, queried only where the extension is (its feature structure is valid only then).
   ShaderClock clocks;
@@ -301,6 +302,25 @@ void Context::pickDevice(const ContextOptions& options) {
     vkGetPhysicalDeviceFeatures2(physical_, &f2);
     clocks.subgroup = clock.shaderSubgroupClock;
     clocks.device = clock.shaderDeviceClock;
+  }
+  // Shader execution reordering, queried only where the extension is: the feature, and whether the device
+  // reorders at all.
+  if (reorderExtension_) {
+    VkPhysicalDeviceRayTracingInvocationReorderFeaturesNV reorder{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_INVOCATION_REORDER_FEATURES_NV};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    f2.pNext = &reorder;
+    vkGetPhysicalDeviceFeatures2(physical_, &f2);
+    VkPhysicalDeviceRayTracingInvocationReorderPropertiesNV hint{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_INVOCATION_REORDER_PROPERTIES_NV};
+    VkPhysicalDeviceProperties2 p2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    p2.pNext = &hint;
+    vkGetPhysicalDeviceProperties2(physical_, &p2);
+    if (reorder.rayTracingInvocationReorder)
+      invocationReorderSupport_ =
+          hint.rayTracingInvocationReorderReorderingHint == VK_RAY_TRACING_INVOCATION_REORDER_MODE_REORDER_NV
+              ? "reorders"
+              : "no-op";
   }
   // Subgroup operations in ray generation (the measuring variants' lane isolation, DevicePolicy).
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
@@ -315,6 +335,8 @@ void Context::pickDevice(const ContextOptions& options) {
   traits.pipelineLibrarySupported = pipelineLibrary_;
   traits.deferredHostOpsSupported = true;  // VK_KHR_deferred_host_operations is a required extension
   traits.shaderClockSupported = clocks.any();
+  traits.invocationReorderSupported = invocationReorderSupport_ != "unsupported";
+  traits.invocationReorderReorders = invocationReorderSupport_ == "reorders";
   policy_ = resolveDevicePolicy(traits, PolicyOverrides::fromEnvironment());
   if (policy_.shaderClock) shaderClock_ = clocks;
   if (policy_.deviceClock && shaderClock_.device) shaderClock_.subgroup = false;  // the cost variants read it
@@ -369,6 +391,15 @@ void Context::createDevice(const ContextOptions& options) {
     clock.shaderDeviceClock = shaderClock_.device;
     clock.pNext = const_cast<void*>(chain);
     chain = &clock;
+  }
+  // Shader execution reordering, where the policy wants it (the path tracer's WB_INVOCATION_REORDER).
+  VkPhysicalDeviceRayTracingInvocationReorderFeaturesNV reorder{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_INVOCATION_REORDER_FEATURES_NV};
+  if (policy_.invocationReorder) {
+    extensions.push_back(VK_NV_RAY_TRACING_INVOCATION_REORDER_EXTENSION_NAME);
+    reorder.rayTracingInvocationReorder = VK_TRUE;
+    reorder.pNext = const_cast<void*>(chain);
+    chain = &reorder;
   }
 
   float priority = 1.0f;

@@ -64,6 +64,10 @@ class Context {
   // Bits of a timestamp the queue writes (0: the queue has no timestamps).
   uint32_t timestampValidBits() const { return timestampValidBits_; }
   const ShaderClock& shaderClock() const { return shaderClock_; }
+  // VK_NV_ray_tracing_invocation_reorder on this device: "reorders", "no-op" (the feature, but the device
+  // says it does not reorder) or "unsupported"; whether the path tracer uses it is
+  // policy().invocationReorder.
+  const std::string& invocationReorderSupport() const { return invocationReorderSupport_; }
   // The pipeline cache every pipeline is created with (persisted at exit when a directory was given).
   VkPipelineCache pipelineCache() const { return pipelineCache_ ? pipelineCache_->handle() : VK_NULL_HANDLE; }
   PipelineCache* pipelineCacheObject() { return pipelineCache_.get(); }
@@ -144,6 +148,8 @@ class Context {
   uint32_t timestampValidBits_ = 0;
   ShaderClock shaderClock_;
   bool shaderClockExtension_ = false;  // the device lists VK_KHR_shader_clock
+  bool reorderExtension_ = false;      // the device lists VK_NV_ray_tracing_invocation_reorder
+  std::string invocationReorderSupport_ = "unsupported";
   std::atomic<uint32_t> validationErrors_{0};
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;

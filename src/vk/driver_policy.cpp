@@ -32,6 +32,7 @@ PolicyOverrides PolicyOverrides::fromEnvironment() {
   o.costIsolation = env::choice("WB_COST_ISOLATE");
   o.splitShadows = env::choice("WB_SPLIT_SHADOWS");
   o.splitSlots = env::number("WB_SPLIT_SLOTS");
+  o.invocationReorder = env::choice("WB_INVOCATION_REORDER");
   env::checkWorkbenchVariables();  // WB_REBUILD_YIELD's range
   o.rebuildRestRatio = env::number("WB_REBUILD_YIELD");
   o.trialRuns = env::choice("WB_TRIAL_RUN");
@@ -72,6 +73,8 @@ DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrid
   p.costByMedian = cpu;
   p.splitShadows = overrides.splitShadows.value_or(!cpu);
   if (overrides.splitSlots) p.splitSlotsLimit = uint32_t(*overrides.splitSlots);
+  p.invocationReorder = device.invocationReorderSupported &&
+                        overrides.invocationReorder.value_or(device.invocationReorderReorders);
   return p;
 }
 

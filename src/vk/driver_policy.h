@@ -20,6 +20,10 @@ struct DeviceTraits {
   bool deferredHostOpsSupported = false;
   bool shaderClockSupported = false;  // VK_KHR_shader_clock with the subgroup or the device clock
   bool raygenSubgroupVote = false;    // subgroup basic and vote operations in ray generation shaders
+  // VK_NV_ray_tracing_invocation_reorder: the feature, and whether the device says it reorders (its
+  // rayTracingInvocationReorderReorderingHint; where it does not, the shader's reorder calls are valid no-ops).
+  bool invocationReorderSupported = false;
+  bool invocationReorderReorders = false;
 };
 
 // The environment's overrides (unset: the default for the device). Each maps to a variable of
@@ -37,6 +41,7 @@ struct PolicyOverrides {
   std::optional<bool> costIsolation;        // WB_COST_ISOLATE=0|1
   std::optional<bool> splitShadows;         // WB_SPLIT_SHADOWS=0|1
   std::optional<double> splitSlots;         // WB_SPLIT_SLOTS=N (0 .. 18)
+  std::optional<bool> invocationReorder;    // WB_INVOCATION_REORDER=0|1
   // Throws std::invalid_argument naming the variable when one holds a value it cannot take.
   static PolicyOverrides fromEnvironment();
 };
@@ -104,6 +109,11 @@ struct DevicePolicy {
   // The most shadow requests a sample leaves for the shadow launch (fewer where the memory budget says so;
   // the rest are traced in the path loop). WB_SPLIT_SLOTS=N lowers it (0: every shadow ray in the path loop).
   uint32_t splitSlotsLimit = 18;
+  // Shader execution reordering (VK_NV_ray_tracing_invocation_reorder) in the path tracer's path rays
+  // (shaders/pathtracer/raygen.rgen, WB_INVOCATION_REORDER): where the device has the feature and says it
+  // reorders; WB_INVOCATION_REORDER=1 also where it has the feature but says it does not (to measure the
+  // calls' cost), =0 never.
+  bool invocationReorder = false;
 };
 
 DevicePolicy resolveDevicePolicy(const DeviceTraits& device, const PolicyOverrides& overrides);

@@ -175,6 +175,36 @@ void expectSameAccumulationAndAovs(const render::PathTracer& a, const render::Pa
 
 }  // namespace
 
+// Shader execution reordering (where the device has it: NVIDIA's GPUs) regroups the path rays' threads and
+// changes nothing they compute: the same accumulation and AOVs as without it, in the one path loop and in the
+// split with every shadow ray left in the path loop (a shadow ray's hit must not run closest-hit).
+TEST(Render, ReorderedInvocationsTraceTheSameImage) {
+  render::SessionOptions o;
+  o.settings.width = o.settings.height = 16;
+  o.settings.aov = true;
+  auto session = [&](const char* reorder, const char* split, const char* slots) {
+    ::setenv("WB_INVOCATION_REORDER", reorder, 1);
+    ::setenv("WB_SPLIT_SHADOWS", split, 1);
+    ::setenv("WB_SPLIT_SLOTS", slots, 1);
+    auto s = makeSession(o);
+    for (const char* v : {"WB_INVOCATION_REORDER", "WB_SPLIT_SHADOWS", "WB_SPLIT_SLOTS"}) ::unsetenv(v);
+    return s;
+  };
+  if (session("0", "0", "0")->context().invocationReorderSupport() == "unsupported")
+    GTEST_SKIP() << "the device has no VK_NV_ray_tracing_invocation_reorder";
+  for (const char* split : {"0", "1"}) {
+    auto plain = session("0", split, "0"), reordered = session("1", split, "0");
+    EXPECT_FALSE(plain->pathTracer().reordersInvocations());
+    EXPECT_TRUE(reordered->pathTracer().reordersInvocations());
+    plain->render(2);
+    reordered->render(2);
+    expectSameAccumulationAndAovs(plain->pathTracer(), reordered->pathTracer(),
+                                  std::string("reordered, split ") + split);
+    EXPECT_EQ(plain->pathTracer().readCounters().rayCount, reordered->pathTracer().readCounters().rayCount);
+    expectNoValidationErrors(*reordered);
+  }
+}
+
 // Where the path tracer splits its shadow rays (the default on GPUs), renders with AOVs (the window's views
 // and the denoiser's guides) split too, and the shadow launch writes the one loop's AOVs after adding the
 // light samples: on the default scene (alpha-tested leaves) with the denoiser turned on after two samples

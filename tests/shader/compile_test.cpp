@@ -1,5 +1,6 @@
 // Compiler, includes, stage detection, diagnostics and reflection.
 #include "shader/compiler.h"
+#include "shader/hit_object.h"
 #include "shader/library.h"
 #include "test_util.h"
 
@@ -236,6 +237,47 @@ TEST(ShaderReflect, RayTracingProgramLayout) {
   EXPECT_EQ(l.pushConstants[0].offset, 0u);
   EXPECT_EQ(l.pushConstants[0].size, 8u);
   EXPECT_EQ(l.pushConstants[0].stageFlags, VkShaderStageFlags(rgen | chit));
+}
+
+// Debian's SPIRV-Cross cannot parse shader execution reordering's hit object; the reflection reads the module
+// with each hit object trace as the plain trace it stands for, so the layout is the one the plain trace gives.
+TEST(ShaderReflect, AHitObjectTraceIsReflectedAsThePlainTrace) {
+  ShaderLibrary lib({});
+  const fs::path d = dataDir() / "rt";
+  const std::vector<ShaderKey> plainKeys = {{d / "rt.rgen"}, {d / "rt.rmiss"}, {d / "rt.rchit"}};
+  std::vector<ShaderKey> reorderKeys = plainKeys;
+  reorderKeys[0].defines.push_back({"REORDER", "1"});
+  const auto plain = lib.buildProgram(lib.registerProgram("plain", plainKeys));
+  const auto reorder = lib.buildProgram(lib.registerProgram("reorder", reorderKeys));
+  const auto& spirv = reorder.stages[0]->spirv;
+  ASSERT_TRUE(usesHitObjects(spirv));
+  EXPECT_FALSE(usesHitObjects(plain.stages[0]->spirv));
+  auto count = [](const std::vector<uint32_t>& m, uint32_t opcode) {
+    int n = 0;
+    for (size_t i = 5; i < m.size() && (m[i] >> 16) != 0; i += m[i] >> 16) n += (m[i] & 0xFFFFu) == opcode;
+    return n;
+  };
+  constexpr uint32_t kOpTraceRayKHR = 4445, kOpHitObjectTraceRayNV = 5260, kOpTypeHitObjectNV = 5281;
+  EXPECT_EQ(count(spirv, kOpTraceRayKHR), 0);
+  EXPECT_EQ(count(spirv, kOpHitObjectTraceRayNV), 1);
+  const auto seen = withoutHitObjects(spirv);
+  EXPECT_EQ(count(seen, kOpTraceRayKHR), 1);
+  EXPECT_EQ(count(seen, kOpHitObjectTraceRayNV) + count(seen, kOpTypeHitObjectNV), 0);
+  // The same layout and payload: the acceleration structure and the payload stay in use through the trace.
+  const auto& a = plain.stages[0]->reflection;
+  const auto& b = reorder.stages[0]->reflection;
+  ASSERT_EQ(a.bindings.size(), b.bindings.size());
+  for (size_t i = 0; i < a.bindings.size(); ++i) {
+    EXPECT_EQ(a.bindings[i].binding, b.bindings[i].binding);
+    EXPECT_EQ(a.bindings[i].type, b.bindings[i].type);
+    EXPECT_EQ(a.bindings[i].name, b.bindings[i].name);
+  }
+  ASSERT_TRUE(find(reorder.layout, 0));
+  EXPECT_EQ(find(reorder.layout, 0)->type, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR);
+  EXPECT_GT(b.rayPayloadBytes, 0u);
+  EXPECT_EQ(a.rayPayloadBytes, b.rayPayloadBytes);
+  ASSERT_EQ(b.pushConstants.size(), a.pushConstants.size());
+  EXPECT_EQ(withoutHitObjects(plain.stages[0]->spirv), plain.stages[0]->spirv);
 }
 
 TEST(ShaderReflect, BindingConflictNamesBothFiles) {

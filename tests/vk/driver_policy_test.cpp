@@ -206,6 +206,23 @@ TEST(DriverPolicy, ShadowRaysAreSplitOnGpus) {
   EXPECT_EQ(resolveDevicePolicy(gpu(), few).splitSlotsLimit, 3u);
 }
 
+TEST(DriverPolicy, InvocationsAreReorderedWhereTheDeviceReordersThem) {
+  DeviceTraits reorders = gpu(), noOp = gpu();
+  reorders.invocationReorderSupported = reorders.invocationReorderReorders = true;
+  noOp.invocationReorderSupported = true;
+  EXPECT_TRUE(resolveDevicePolicy(reorders, {}).invocationReorder);
+  EXPECT_FALSE(resolveDevicePolicy(noOp, {}).invocationReorder);
+  EXPECT_FALSE(resolveDevicePolicy(gpu(), {}).invocationReorder);
+  EXPECT_FALSE(resolveDevicePolicy(cpu(), {}).invocationReorder);
+  PolicyOverrides on, off;
+  on.invocationReorder = true;
+  off.invocationReorder = false;
+  EXPECT_TRUE(resolveDevicePolicy(noOp, on).invocationReorder);  // to measure what the calls cost
+  EXPECT_FALSE(resolveDevicePolicy(gpu(), on).invocationReorder);  // never without the feature
+  EXPECT_FALSE(resolveDevicePolicy(cpu(), on).invocationReorder);
+  EXPECT_FALSE(resolveDevicePolicy(reorders, off).invocationReorder);
+}
+
 TEST(DriverPolicy, LaneIsolationIsTheDefaultWhereRayGenerationHasSubgroupOperations) {
   DeviceTraits voting = gpu();
   voting.raygenSubgroupVote = true;
