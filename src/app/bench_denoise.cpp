@@ -51,11 +51,15 @@ json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device)
   vk::GpuTimer timer(s.context(), 2);
   // Warm-up: the driver compiles the pipelines at their first dispatch.
   timeSampleAndDenoise(s.context(), timer, tracer);
-  std::vector<double> sampleMs, denoiseMs;
+  // The share is the median of each submission's own denoise / sample: the two run back to back in one
+  // submission, so a change of the machine's speed between submissions (a CPU device's VM drifts by up to
+  // 1.5x within a minute) moves both and not their ratio.
+  std::vector<double> sampleMs, denoiseMs, shares;
   for (int r = 0; r < std::max(repeats, 1); ++r) {
     const auto [sample, denoise] = timeSampleAndDenoise(s.context(), timer, tracer);
     sampleMs.push_back(sample);
     denoiseMs.push_back(denoise);
+    if (sample > 0) shares.push_back(denoise / sample);
   }
   // Each pass's part: the same accumulation denoised again with a scope per pass (their sum is a little
   // above the whole's: each scope adds its timestamps). Keys: prepare, variance, atrous (its iterations
@@ -69,10 +73,14 @@ json denoiseCost(uint32_t w, uint32_t h, int repeats, const std::string& device)
   json passes = json::object();
   for (const auto& [pass, ms] : passMs) passes[pass.substr(pass.find('_') + 1)] = median(ms);
   const double d = median(denoiseMs), t = median(sampleMs);
+  const auto [lowest, highest] = shares.empty() ? std::pair(0.0, 0.0)
+                                                : std::pair(*std::min_element(shares.begin(), shares.end()),
+                                                            *std::max_element(shares.begin(), shares.end()));
   return {{"size", std::to_string(w) + "x" + std::to_string(h)},
           {"denoise_ms", d},
           {"sample_ms", t},
-          {"denoise_share_of_sample", t > 0 ? d / t : 0.0},
+          {"denoise_share_of_sample", shares.empty() ? 0.0 : median(shares)},
+          {"denoise_share_of_sample_range", {lowest, highest}},
           {"denoise_pass_ms", passes},
           {"iterations", tracer.denoiser()->options().iterations},
           {"device", s.context().deviceName()},
