@@ -176,18 +176,22 @@ void PathTracer::useVariant(const scene::SceneFeatures& features, bool inspect) 
   split_ = splitWanted(inspect);
   splitAovs_ = split_ && (settings_.aov || settings_.denoise);
   // Shader execution reordering in the plain variants' path rays (raygen only): the measuring variants keep
-  // their invocations where they are (lane isolation, one inspected pixel's records).
-  // A --define of WB_INVOCATION_REORDER (its hint's form, raygen.rgen) stands where the policy allows it.
-  reorder_ = ctx_.policy().invocationReorder && !inspect && !instrumentation_.cost && !instrumentation_.asserts;
-  const bool userChose = std::any_of(features.extraDefines.begin(), features.extraDefines.end(),
-                                     [](const shader::Define& d) { return d.name == "WB_INVOCATION_REORDER"; });
-  if (reorder_) {
-    name += " (reordered)";
-    if (!userChose) keys[0].defines.push_back({"WB_INVOCATION_REORDER", "1"});
-  } else if (userChose) {
-    for (auto& d : keys[0].defines)
-      if (d.name == "WB_INVOCATION_REORDER") d.value = "0";  // the device lacks it, or a measuring variant
+  // their invocations where they are (lane isolation, one inspected pixel's records). A --define of
+  // WB_INVOCATION_REORDER (its hint's form, raygen.rgen) stands where the policy allows reordering, and is
+  // made 0 where it does not (the device lacks the extension, or a measuring variant).
+  reorder_ =
+      ctx_.policy().invocationReorder && !inspect && !instrumentation_.cost && !instrumentation_.asserts;
+  auto& raygenDefines = keys[0].defines;
+  const auto user = std::find_if(raygenDefines.begin(), raygenDefines.end(),
+                                 [](const shader::Define& d) { return d.name == "WB_INVOCATION_REORDER"; });
+  if (user == raygenDefines.end()) {
+    if (reorder_) raygenDefines.push_back({"WB_INVOCATION_REORDER", "1"});
+  } else if (!reorder_) {
+    user->value = "0";
+  } else {
+    reorder_ = user->value != "0";
   }
+  if (reorder_) name += " (reordered)";
   if (split_) {
     name += splitAovs_ ? " (split, AOVs)" : " (split)";
     for (auto& k : keys) k.defines.push_back({"WB_SPLIT_SHADOWS", "1"});

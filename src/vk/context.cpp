@@ -288,10 +288,11 @@ void Context::pickDevice(const ContextOptions& options) {
   if (!choice.index) throw VulkanError(choice.error);
   physical_ = devices[*choice.index];
   deviceName_ = candidates[*choice.index].name;
+  bool reorderExtension = false;  // the device lists VK_NV_ray_tracing_invocation_reorder
   for (const auto& e : candidates[*choice.index].extensions) {
     if (e == VK_KHR_PIPELINE_LIBRARY_EXTENSION_NAME) pipelineLibrary_ = true;
     if (e == VK_KHR_SHADER_CLOCK_EXTENSION_NAME) shaderClockExtension_ = true;
-    if (e == VK_NV_RAY_TRACING_INVOCATION_REORDER_EXTENSION_NAME) reorderExtension_ = true;
+    if (e == VK_NV_RAY_TRACING_INVOCATION_REORDER_EXTENSION_NAME) reorderExtension = true;
   }
   // The shader clocks, queried only where the extension is (its feature structure is valid only then).
   ShaderClock clocks;
@@ -305,7 +306,7 @@ void Context::pickDevice(const ContextOptions& options) {
   }
   // Shader execution reordering, queried only where the extension is: the feature, and whether the device
   // reorders at all.
-  if (reorderExtension_) {
+  if (reorderExtension) {
     VkPhysicalDeviceRayTracingInvocationReorderFeaturesNV reorder{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_INVOCATION_REORDER_FEATURES_NV};
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};

@@ -148,7 +148,6 @@ class Context {
   uint32_t timestampValidBits_ = 0;
   ShaderClock shaderClock_;
   bool shaderClockExtension_ = false;  // the device lists VK_KHR_shader_clock
-  bool reorderExtension_ = false;      // the device lists VK_NV_ray_tracing_invocation_reorder
   std::string invocationReorderSupport_ = "unsupported";
   std::atomic<uint32_t> validationErrors_{0};
   mutable std::mutex messagesMutex_;
