@@ -44,16 +44,8 @@ bool givesValue(uint32_t op) {
   }
 }
 
-// The words a literal string starting at word `at` of an instruction takes (nul-terminated, padded to words).
-size_t stringWords(const uint32_t* words, size_t at, size_t count) {
-  for (size_t i = at; i < count; ++i) {
-    const uint32_t w = words[i];
-    if ((w & 0xFFu) == 0 || (w & 0xFF00u) == 0 || (w & 0xFF0000u) == 0 || (w & 0xFF000000u) == 0)
-      return i - at + 1;
-  }
-  return count - at;
-}
-
+// The literal string starting at word `at` of an instruction of `count` words (nul-terminated, padded to
+// words: it takes size / 4 + 1 words).
 std::string literalString(const uint32_t* words, size_t at, size_t count) {
   std::string s;
   for (size_t i = at; i < count; ++i)
@@ -80,22 +72,18 @@ bool usesHitObjects(const std::vector<uint32_t>& spirv) {
 std::vector<uint32_t> withoutHitObjects(const std::vector<uint32_t>& spirv) {
   if (!usesHitObjects(spirv)) return spirv;
   // The ids that go: the hit object type, pointers to it, variables of those pointers (and the hit object
-  // attribute variables, which only hit object instructions read).
+  // attribute variables, which only hit object instructions read). A module declares a type before what
+  // uses it, so one pass in order finds them all.
   std::set<uint32_t> removed;
-  for (bool grew = true; grew;) {
-    grew = false;
-    for (size_t i = kHeaderWords; i < spirv.size();) {
-      const uint32_t count = spirv[i] >> 16, op = spirv[i] & 0xFFFFu;
-      if (count == 0 || i + count > spirv.size()) break;
-      uint32_t id = 0;
-      if (op == spv::OpTypeHitObjectNV && count >= 2) id = spirv[i + 1];
-      if (op == spv::OpTypePointer && count >= 4 && removed.count(spirv[i + 3])) id = spirv[i + 1];
-      if (op == spv::OpVariable && count >= 4 &&
-          (removed.count(spirv[i + 1]) || spirv[i + 3] == spv::StorageClassHitObjectAttributeNV))
-        id = spirv[i + 2];
-      if (id != 0 && removed.insert(id).second) grew = true;
-      i += count;
-    }
+  for (size_t i = kHeaderWords; i < spirv.size();) {
+    const uint32_t count = spirv[i] >> 16, op = spirv[i] & 0xFFFFu;
+    if (count == 0 || i + count > spirv.size()) break;
+    if (op == spv::OpTypeHitObjectNV && count >= 2) removed.insert(spirv[i + 1]);
+    if (op == spv::OpTypePointer && count >= 4 && removed.count(spirv[i + 3])) removed.insert(spirv[i + 1]);
+    if (op == spv::OpVariable && count >= 4 &&
+        (removed.count(spirv[i + 1]) || spirv[i + 3] == spv::StorageClassHitObjectAttributeNV))
+      removed.insert(spirv[i + 2]);
+    i += count;
   }
   std::vector<uint32_t> out(spirv.begin(), spirv.begin() + kHeaderWords);
   out.reserve(spirv.size());
@@ -129,7 +117,7 @@ std::vector<uint32_t> withoutHitObjects(const std::vector<uint32_t>& spirv) {
       continue;
     if (op == spv::OpEntryPoint && count >= 4) {
       // <model> <function> <name> <interface ids>: the removed variables leave the interface.
-      const size_t interfaceAt = 3 + stringWords(words, 3, count);
+      const size_t interfaceAt = 3 + literalString(words, 3, count).size() / 4 + 1;
       std::vector<uint32_t> kept(words, words + std::min<size_t>(interfaceAt, count));
       for (size_t w = interfaceAt; w < count; ++w)
         if (!removed.count(words[w])) kept.push_back(words[w]);
