@@ -8,18 +8,6 @@
 // the last iteration also leaves each pixel's squared difference from the raw mean for final.comp's bias.
 #include "common.glsl"
 
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {
-  vec4 geometry[];
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock { vec4 filtered[]; };
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) readonly buffer DenoiseGradientBlock {
-  float gradient[];
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer DenoiseHandoverBlock {
-  vec4 handover[];  // the raw mean's demodulated luminance, its variance, the samples
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_BIAS) writeonly buffer DenoiseBiasBlock { float bias[]; };
-
 // The filtered value of pixel p (index i) from the plane starting at `source`. `squaring`: see normalWeight.
 // The weights are computed without branches (selects): a CPU driver runs every lane through both sides of a
 // branch anyway, and a loop whose body has fewer branches runs faster there.

@@ -3,10 +3,24 @@
 // (SVGF: Schied et al. 2017).
 #ifndef WB_DENOISE_COMMON_GLSL
 #define WB_DENOISE_COMMON_GLSL
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 #include "../shared/denoise_types.h"
 
 layout(local_size_x = WB_DENOISE_GROUP_SIZE, local_size_y = WB_DENOISE_GROUP_SIZE) in;
 layout(push_constant) uniform PushBlock { DenoisePush pc; };
+
+// The denoiser's buffers, by the addresses in pc.buffers (denoise_types.h says what each holds), under the names
+// the passes index them by.
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer DenoiseVec4s { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer DenoiseFloats { float v[]; };
+#define geometry DenoiseVec4s(pc.buffers.geometry).v
+#define filtered DenoiseVec4s(pc.buffers.filtered).v
+#define gradient DenoiseFloats(pc.buffers.gradient).v
+#define handover DenoiseVec4s(pc.buffers.handover).v
+#define bias DenoiseFloats(pc.buffers.bias).v
+#define tiles DenoiseVec4s(pc.buffers.tiles).v
+#define gain DenoiseVec4s(pc.buffers.gain).v
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 

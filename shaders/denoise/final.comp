@@ -12,15 +12,7 @@
 
 layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly image2D radianceImage;
 layout(set = 0, binding = WB_DENOISE_BIND_ALBEDO, rgba16f) uniform readonly image2D albedoImage;
-layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock {
-  vec4 filtered[];  // with pc.window the output goes to the plane not read, for scale.comp
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) readonly buffer DenoiseHandoverBlock {
-  vec4 handover[];  // the raw mean's demodulated luminance, its variance, the samples
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_BIAS) readonly buffer DenoiseBiasBlock { float bias[]; };
 layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
-layout(std430, set = 0, binding = WB_DENOISE_BIND_TILES) writeonly buffer DenoiseTilesBlock { vec4 tiles[]; };
 
 // The squared bias of the filter seen around p: over the 5x5 neighbourhood, the mean of (filtered - raw)^2
 // less the mean variance of the raw means (what noise alone puts there), floored at 0. Each pixel's term is

@@ -14,9 +14,6 @@
 // One invocation per group.
 #include "common.glsl"
 
-layout(std430, set = 0, binding = WB_DENOISE_BIND_TILES) buffer DenoiseTilesBlock { vec4 tiles[]; };
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GAIN) writeonly buffer DenoiseGainBlock { vec4 gain[]; };
-
 void main() {
   const ivec2 groups = ivec2(groupCount());
   const ivec2 g = ivec2(gl_GlobalInvocationID.xy);

@@ -12,15 +12,6 @@ layout(set = 0, binding = WB_DENOISE_BIND_RADIANCE, rgba32f) uniform readonly im
 layout(set = 0, binding = WB_DENOISE_BIND_ALBEDO, rgba16f) uniform readonly image2D albedoImage;
 layout(set = 0, binding = WB_DENOISE_BIND_NORMAL, rgba16f) uniform readonly image2D normalImage;
 layout(set = 0, binding = WB_DENOISE_BIND_STATS, rgba32f) uniform readonly image2D statsImage;
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) writeonly buffer DenoiseGeometryBlock {
-  vec4 geometry[];
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) writeonly buffer DenoiseFilterBlock {
-  vec4 filtered[];
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) writeonly buffer DenoiseHandoverBlock {
-  vec4 handover[];  // the raw mean's demodulated luminance, its variance (variance.comp), the samples
-};
 
 void main() {
   const ivec2 p = ivec2(gl_GlobalInvocationID.xy);

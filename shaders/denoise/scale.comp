@@ -5,10 +5,6 @@
 // no group's edge shows, into the output image.
 #include "common.glsl"
 
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GAIN) readonly buffer DenoiseGainBlock { vec4 gain[]; };
-layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) readonly buffer DenoiseFilterBlock {
-  vec4 filtered[];
-};
 layout(set = 0, binding = WB_DENOISE_BIND_OUTPUT, rgba32f) uniform writeonly image2D outputImage;
 
 vec3 gainAt(ivec2 g, ivec2 groups) {

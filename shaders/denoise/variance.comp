@@ -15,17 +15,6 @@
 // compare depths with. Reads filter plane 0, writes plane 1, the gradient and the hand-over's variance.
 #include "common.glsl"
 
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GEOMETRY) readonly buffer DenoiseGeometryBlock {
-  vec4 geometry[];
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_FILTER) buffer DenoiseFilterBlock { vec4 filtered[]; };
-layout(std430, set = 0, binding = WB_DENOISE_BIND_GRADIENT) writeonly buffer DenoiseGradientBlock {
-  float gradient[];
-};
-layout(std430, set = 0, binding = WB_DENOISE_BIND_HANDOVER) buffer DenoiseHandoverBlock {
-  vec4 handover[];  // the raw mean's demodulated luminance, its variance (written here), the samples
-};
-
 // The median of nine values by a fixed network of compare-exchanges (Paeth; no data-dependent loop, which a
 // CPU driver runs for as long as its slowest lane). Each exchange keeps both values: v stays a permutation.
 void exchange(inout float a, inout float b) {

@@ -1,7 +1,9 @@
 // The denoiser's bindings and push constants (shaders/denoise/, src/render/denoiser.h), defined once for C++ and
-// GLSL. Every denoiser pass has its own descriptor set 0 and declares only the resources it reads and writes.
-// The path tracer's images come in as storage images; the denoiser's own intermediates are storage buffers
-// indexed y * width + x (imageSize.x), each plane width * height elements long.
+// GLSL. Every denoiser pass has its own descriptor set 0 and declares only the images it reads and writes: the
+// path tracer's come in as storage images. The denoiser's own intermediates are buffers reached by device address
+// (DenoiseBuffers, in the push constants), indexed y * width + x (imageSize.x), each plane width * height
+// elements long: a CPU driver loads from a storage buffer one word of one lane at a time behind a bounds check,
+// from an address without it, and the a-trous taps' loads are most of the denoiser's time there.
 #ifndef WB_DENOISE_TYPES_H
 #define WB_DENOISE_TYPES_H
 #include "glsl_cpp.h"
@@ -10,18 +12,7 @@
 #define WB_DENOISE_BIND_ALBEDO 1    // rgba16f: first-hit albedo AOV (WB_BIND_AOV_ALBEDO)
 #define WB_DENOISE_BIND_NORMAL 2    // rgba16f: first-hit normal AOV, a = first-hit distance (WB_BIND_AOV_NORMAL)
 #define WB_DENOISE_BIND_STATS 3     // rgba32f: r = mean luminance^2 of the samples (WB_BIND_AOV_STATS)
-#define WB_DENOISE_BIND_GEOMETRY 4  // buffer of vec4 per pixel: first-hit unit normal, depth (< 0: a miss)
-#define WB_DENOISE_BIND_FILTER 5    // buffer of vec4 per pixel, two planes (the passes' ping-pong, DenoisePush::source):
-                                    // demodulated radiance rgb, a = variance of its luminance
-#define WB_DENOISE_BIND_GRADIENT 6  // buffer of float per pixel: how much the depth changes per pixel there
-#define WB_DENOISE_BIND_HANDOVER 7  // buffer of vec4 per pixel: the raw mean's demodulated luminance, its variance,
-                                    // the samples in the pixel
-#define WB_DENOISE_BIND_OUTPUT 8    // rgba32f: the denoised radiance (a = samples in the pixel, as the input)
-#define WB_DENOISE_BIND_BIAS 9      // buffer of float per pixel: (filtered - raw)^2 less the raw mean's variance, in
-                                    // the demodulated luminance (the last a-trous iteration's, for final.comp)
-#define WB_DENOISE_BIND_TILES 10    // buffer of 2 vec4 per 8x8 group of final.comp: its raw and its output radiance
-                                    // summed (rgb)
-#define WB_DENOISE_BIND_GAIN 11     // buffer of vec4 per 8x8 group: raw over output radiance in its window (rgb)
+#define WB_DENOISE_BIND_OUTPUT 4    // rgba32f: the denoised radiance (a = samples in the pixel, as the input)
 
 // The a-trous kernel over taps -1, 0, 1 (`step` pixels apart): 1/4, 1/2, 1/4. SVGF's B3 spline (5 taps) costs
 // three times the weights per iteration for no gain the converge reports show
@@ -49,6 +40,19 @@
 
 WB_NAMESPACE_BEGIN
 
+// The device addresses of the denoiser's buffers (low word, high word; common.glsl names them).
+struct DenoiseBuffers {
+  uvec2 geometry;  // vec4 per pixel: first-hit unit normal, depth (< 0: a miss)
+  uvec2 filtered;  // vec4 per pixel, two planes (the passes' ping-pong, DenoisePush::source): demodulated
+                   // radiance rgb, a = variance of its luminance
+  uvec2 gradient;  // float per pixel: how much the depth changes per pixel there
+  uvec2 handover;  // vec4 per pixel: the raw mean's demodulated luminance, its variance, the samples in the pixel
+  uvec2 bias;      // float per pixel: (filtered - raw)^2 less the raw mean's variance, in the demodulated luminance
+                   // (the last a-trous iteration's, for final.comp)
+  uvec2 tiles;     // 2 vec4 per 8x8 group of final.comp: its raw and its output radiance summed (rgb)
+  uvec2 gain;      // vec4 per 8x8 group: raw over output radiance in its window (rgb)
+};
+
 struct DenoisePush {
   uvec2 imageSize;
   uint step;              // a-trous: tap spacing in pixels (1, 2, 4, ...); gain: the phase (0, 1)
@@ -61,6 +65,7 @@ struct DenoisePush {
   uint last;              // a-trous: 1 in the last iteration (it also writes the bias buffer)
   uint window;            // 1: the output's radiance made the raw image's over windows (gain.comp, scale.comp)
   float pad2;
+  DenoiseBuffers buffers;
 };
 
 WB_NAMESPACE_END

@@ -62,8 +62,7 @@ void Denoiser::resize(uint32_t width, uint32_t height) {
                                   VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   output_ = vk::Image(ctx_, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, usage);
   const VkDeviceSize pixels = VkDeviceSize(width) * height;
-  const VkBufferUsageFlags bufferUsage =
-      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+  const VkBufferUsageFlags bufferUsage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;  // vk::Buffer adds the address
   geometry_ = vk::Buffer(ctx_, pixels * 4 * sizeof(float), bufferUsage, false);
   filter_ = vk::Buffer(ctx_, 2 * pixels * 4 * sizeof(float), bufferUsage, false);  // two planes
   gradient_ = vk::Buffer(ctx_, pixels * sizeof(float), bufferUsage, false);
@@ -94,13 +93,6 @@ void Denoiser::bind() {
     p->setStorageImage("albedoImage", inputs_.albedo);
     p->setStorageImage("normalImage", inputs_.normal);
     p->setStorageImage("statsImage", inputs_.stats);
-    p->setBuffer("DenoiseGeometryBlock", geometry_);
-    p->setBuffer("DenoiseFilterBlock", filter_);
-    p->setBuffer("DenoiseGradientBlock", gradient_);
-    p->setBuffer("DenoiseHandoverBlock", handover_);
-    p->setBuffer("DenoiseBiasBlock", bias_);
-    p->setBuffer("DenoiseTilesBlock", tiles_);
-    p->setBuffer("DenoiseGainBlock", gains_);
     p->setStorageImage("outputImage", output_.view());
   }
 }
@@ -129,9 +121,24 @@ void Denoiser::dispatch(VkCommandBuffer cmd, size_t pass, const gpu::DenoisePush
   vk::memoryBarrier(cmd);
 }
 
-void Denoiser::record(VkCommandBuffer cmd, uint32_t rows, vk::GpuTimer* perPass) const {
+gpu::DenoisePush Denoiser::basePush() const {
+  const auto address = [](const vk::Buffer& b) {
+    return glm::uvec2(uint32_t(b.address()), uint32_t(b.address() >> 32));
+  };
   gpu::DenoisePush push{};
   push.imageSize = glm::uvec2(width_, height_);
+  push.buffers.geometry = address(geometry_);
+  push.buffers.filtered = address(filter_);
+  push.buffers.gradient = address(gradient_);
+  push.buffers.handover = address(handover_);
+  push.buffers.bias = address(bias_);
+  push.buffers.tiles = address(tiles_);
+  push.buffers.gain = address(gains_);
+  return push;
+}
+
+void Denoiser::record(VkCommandBuffer cmd, uint32_t rows, vk::GpuTimer* perPass) const {
+  gpu::DenoisePush push = basePush();
   push.rows = std::min(rows, height_);
   push.sigmaLuminance = options_.sigmaLuminance;
   push.sigmaNormal = options_.sigmaNormal;
@@ -167,7 +174,7 @@ void Denoiser::record(VkCommandBuffer cmd, uint32_t rows, vk::GpuTimer* perPass)
 }
 
 void Denoiser::recordCompileOnly(VkCommandBuffer cmd) const {
-  gpu::DenoisePush push{};
+  gpu::DenoisePush push = basePush();  // the buffers hold at least the one pixel
   push.imageSize = glm::uvec2(1, 1);
   push.rows = 1;
   push.step = 1;

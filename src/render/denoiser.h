@@ -72,6 +72,8 @@ class Denoiser {
  private:
   enum { kPrepare, kVariance, kAtrous, kFinal, kGain, kScale, kPassCount };
   void bind();
+  // The push constants every pass starts from: the image's size and the buffers' addresses.
+  gpu::DenoisePush basePush() const;
   void dispatch(VkCommandBuffer cmd, size_t pass, const gpu::DenoisePush& push, uint32_t rows,
                 vk::GpuTimer* perPass) const;
 
@@ -80,8 +82,9 @@ class Denoiser {
   DenoiseOptions options_;
   uint32_t width_ = 0, height_ = 0, capacityWidth_ = 0, capacityHeight_ = 0;
   DenoiseInputs inputs_;
-  // The intermediates, storage buffers of a pixel per element (shaders/shared/denoise_types.h): a CPU driver
-  // gathers from a buffer for much less than it loads from an image.
+  // The intermediates, buffers of a pixel per element reached by device address
+  // (shaders/shared/denoise_types.h): a CPU driver gathers from an address for less than from a storage
+  // buffer, and for much less than it loads from an image.
   vk::Buffer geometry_, filter_, gradient_, handover_, bias_, tiles_, gains_;
   vk::Image output_;
 };
